@@ -1,0 +1,12 @@
+# tricyl_set_warnings(<target>): the project's warning set, and the
+# floating-point flags every exact predicate relies on.
+function(tricyl_set_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow)
+endfunction()
+
+# Flags that the error bounds of src/filter.h depend on: no contraction into
+# FMA (keeps results identical across compilers and with the documented
+# operation count) and no fast-math.
+function(tricyl_set_fp_flags target)
+  target_compile_options(${target} PRIVATE -ffp-contract=off -fno-fast-math)
+endfunction()

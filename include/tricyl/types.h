@@ -1,0 +1,105 @@
+// tricyl: plain aggregate types shared by every query.
+//
+// Conventions (the same for every header in include/tricyl/):
+// - Cylinder<S>{radius, lz}: FCL's convention. Centred at the origin of its own
+//   frame, axis +z, full length lz: the closed solid
+//       { y : y0^2 + y1^2 <= radius^2, |y2| <= lz/2 }.
+// - Pose<S>{R, t}: world = R * local + t, R row-major, exactly as FCL's
+//   Transform3 holds linear() and translation(). A world point x maps to the
+//   local point y = R^T (x - t), and every query evaluates that map EXACTLY:
+//   R is used as given, never re-orthonormalised. A rotation a hair off
+//   orthonormal is fine; the solid is then the exact preimage under that map.
+// - Triangle<S>{a, b, c}: the closed convex hull of three points. Collinear or
+//   coincident vertices are valid: the hull is a segment or a point.
+// - Answers are exact for the inputs as given (no epsilon, no tolerance
+//   parameter). Touching counts as intersecting.
+#pragma once
+
+#include <stdexcept>
+
+namespace tricyl {
+
+template <class S>
+struct Vec3 {
+  S x, y, z;
+};
+
+template <class S>
+struct Cylinder {
+  S radius;  ///< r >= 0
+  S lz;      ///< full length, >= 0; the solid spans |z| <= lz/2
+};
+
+/// FCL's cone: centred, apex at z = +lz/2, base disk of radius `radius` at
+/// z = -lz/2.
+template <class S>
+struct Cone {
+  S radius;
+  S lz;
+};
+
+template <class S>
+struct Pose {
+  S R[3][3];  ///< row-major; world = R * local + t
+  Vec3<S> t;
+};
+
+template <class S>
+struct Triangle {
+  Vec3<S> a, b, c;
+};
+
+/// The points p (1 - s) + q s for s in [0, 1].
+template <class S>
+struct Segment {
+  Vec3<S> p, q;
+};
+
+template <class S>
+struct Sphere {
+  Vec3<S> center;
+  S radius;
+};
+
+/// A closed parameter interval [lo, hi].
+template <class S>
+struct Interval {
+  S lo, hi;
+};
+
+/// The identity pose: local coordinates are world coordinates.
+template <class S>
+constexpr Pose<S> identityPose() {
+  return Pose<S>{{{S(1), S(0), S(0)}, {S(0), S(1), S(0)}, {S(0), S(0), S(1)}},
+                 {S(0), S(0), S(0)}};
+}
+
+/// Outcome of a non-throwing query.
+enum class Answer : unsigned char {
+  kDisjoint = 0,      ///< the closed sets share no point
+  kIntersect = 1,     ///< the closed sets share at least one point
+  kInvalidInput = 2,  ///< NaN or Inf somewhere, or a negative size
+};
+
+/// Which stage of the kernel decided a query (for statistics only; it never
+/// changes the answer).
+enum class Stage : unsigned char {
+  kEarlyOut = 0,  ///< a cheap certified rejection (slab or bounding box)
+  kFastPath = 1,  ///< floating-point predicates with a certified error bound
+  kExact = 2,     ///< the exact rational fallback
+  kInvalid = 3,   ///< input rejected before any arithmetic
+};
+
+struct Decision {
+  Answer answer;
+  Stage stage;
+};
+
+/// Thrown by the checked entry points (`intersect`, `contains`, `clip`) when
+/// an input is NaN or infinite, or a radius or length is negative.
+class InvalidInput : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+}  // namespace tricyl

@@ -1,0 +1,139 @@
+// The one filter-and-fallback mechanism behind every exact query in tricyl.
+//
+// A query is written ONCE as a template over a kernel K, using only +, -, *
+// on K::Num and K::sign(). It is then run with:
+//   FilterKernel  Num = Fd (double value + magnitude), sign() certified by a
+//                 derived error bound, kUnknown when the bound cannot decide;
+//   ExactKernel   Num = mpq_class (GMP rationals), sign() exact;
+//   NaiveKernel   Num = double, sign() of the rounded value (diagnostic only).
+// The query returns a three-valued Tri; kUnknown from the filter sends the
+// query to the exact kernel. See docs/exactness.md for the derivation of the
+// bound used in FilterKernel::sign().
+#pragma once
+
+#include <gmpxx.h>
+
+#include <cfloat>
+#include <cmath>
+#include <limits>
+
+namespace tricyl::detail {
+
+static_assert(std::numeric_limits<double>::is_iec559,
+              "tricyl's error bounds assume IEEE-754 binary64");
+#if defined(__FAST_MATH__)
+#error "tricyl must not be compiled with -ffast-math: it breaks the error bounds"
+#endif
+#if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD != 0
+#error "tricyl needs FLT_EVAL_METHOD == 0 (no excess precision, e.g. SSE2)"
+#endif
+
+enum class Sign : signed char { kNeg = -1, kZero = 0, kPos = 1, kUnknown = 2 };
+
+/// Kleene's three-valued logic: kUnknown means "the filter cannot tell".
+enum class Tri : unsigned char { kFalse = 0, kTrue = 1, kUnknown = 2 };
+
+constexpr Tri toTri(bool b) { return b ? Tri::kTrue : Tri::kFalse; }
+constexpr Tri kAnd(Tri a, Tri b) {
+  return (a == Tri::kFalse || b == Tri::kFalse) ? Tri::kFalse
+         : (a == Tri::kTrue && b == Tri::kTrue) ? Tri::kTrue
+                                                : Tri::kUnknown;
+}
+constexpr Tri kOr(Tri a, Tri b) {
+  return (a == Tri::kTrue || b == Tri::kTrue) ? Tri::kTrue
+         : (a == Tri::kFalse && b == Tri::kFalse) ? Tri::kFalse
+                                                  : Tri::kUnknown;
+}
+constexpr Tri kNot(Tri a) {
+  return a == Tri::kUnknown ? Tri::kUnknown : toTri(a == Tri::kFalse);
+}
+
+// Sign -> predicate on the value.
+constexpr Tri isPos(Sign s) {
+  return s == Sign::kUnknown ? Tri::kUnknown : toTri(s == Sign::kPos);
+}
+constexpr Tri isNeg(Sign s) {
+  return s == Sign::kUnknown ? Tri::kUnknown : toTri(s == Sign::kNeg);
+}
+constexpr Tri isZero(Sign s) {
+  return s == Sign::kUnknown ? Tri::kUnknown : toTri(s == Sign::kZero);
+}
+constexpr Tri isNonNeg(Sign s) { return kNot(isNeg(s)); }
+constexpr Tri isNonPos(Sign s) { return kNot(isPos(s)); }
+
+/// A double with a running magnitude: v is the rounded value of an
+/// expression E built from +, -, * on exact double inputs, and m is the
+/// rounded value of the same expression with every input replaced by its
+/// absolute value and every '-' by '+'. See FilterKernel::sign().
+struct Fd {
+  double v;
+  double m;
+};
+inline Fd operator+(Fd a, Fd b) { return {a.v + b.v, a.m + b.m}; }
+inline Fd operator-(Fd a, Fd b) { return {a.v - b.v, a.m + b.m}; }
+inline Fd operator-(Fd a) { return {-a.v, a.m}; }
+inline Fd operator*(Fd a, Fd b) { return {a.v * b.v, a.m * b.m}; }
+
+struct FilterKernel {
+  using Num = Fd;
+  static constexpr bool kExact = false;
+
+  static Num lift(double x) { return {x, std::fabs(x)}; }
+
+  // Certified sign. With u = 2^-53 and D the depth of E (longest chain of
+  // operations from an input to the result), if no product underflows,
+  //   |v - E| <= gamma_D * Etilde,  gamma_D = D u / (1 - D u),
+  // and m >= Etilde (1 - u)^D because every operation on non-negative
+  // values rounds by a factor in [1-u, 1+u]. Hence
+  //   |v - E| <= D u / ((1 - D u)(1 - u)^D) * m <= 2^-47 m   for D <= 56.
+  // Every predicate in tricyl has depth <= 20 (the triangle kernel's deepest
+  // is 14; counted in docs/exactness.md), far inside 56.
+  // Underflow: a product may lose up to 2^-1075 absolutely; with the range
+  // gate (rangeGateOk: every length input <= 2^40 in magnitude, every
+  // dimensionless input <= 2) and degree <= 8, the propagated loss is below
+  // 2^-690 (docs/exactness.md), so an absolute slack of 2^-600 covers it.
+  // Overflow yields Inf or NaN in v or m, and every comparison below is
+  // false for them, so the answer is kUnknown: overflow can only cost time.
+  static constexpr double kRel = 0x1p-47;
+  static constexpr double kAbs = 0x1p-600;
+  static Sign sign(const Fd& a) {
+    const double bound = a.m * kRel + kAbs;
+    if (a.v > bound) return Sign::kPos;
+    if (a.v < -bound) return Sign::kNeg;
+    return Sign::kUnknown;
+  }
+};
+
+/// The gate under which FilterKernel's absolute slack kAbs is valid.
+/// `max_length`: the largest magnitude of any input with the dimension of a
+/// length (coordinates, translations, radii, lengths); `max_unitless`: the
+/// largest magnitude of a dimensionless input (rotation entries). Inputs
+/// outside the gate go straight to the exact kernel.
+inline bool rangeGateOk(double max_length, double max_unitless) {
+  return max_length <= 0x1p40 && max_unitless <= 2.0;
+}
+
+struct ExactKernel {
+  using Num = mpq_class;
+  static constexpr bool kExact = true;
+  static Num lift(double x) { return Num(x); }  // exact for finite doubles
+  static Sign sign(const Num& a) {
+    const int s = sgn(a);
+    return s < 0 ? Sign::kNeg : (s > 0 ? Sign::kPos : Sign::kZero);
+  }
+};
+
+/// Diagnostic only: signs of rounded values, never kUnknown. Not exact.
+struct NaiveKernel {
+  using Num = double;
+  static constexpr bool kExact = false;
+  static Num lift(double x) { return x; }
+  static Sign sign(double a) {
+    return a < 0 ? Sign::kNeg : (a > 0 ? Sign::kPos : Sign::kZero);
+  }
+};
+
+/// True iff x is neither NaN nor infinite.
+inline bool finite(double x) { return std::isfinite(x); }
+
+}  // namespace tricyl::detail
