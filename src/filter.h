@@ -80,6 +80,18 @@ struct FilterKernel {
 
   static Num lift(double x) { return {x, std::fabs(x)}; }
 
+  /// The difference of two INPUT doubles. fl(a - b) = (a - b)(1 + delta)
+  /// with |delta| <= u: the rounding is relative to the result, so the
+  /// computed difference can enter the error analysis as an exact input
+  /// with one extra rounding along every path (depth + 1), and its magnitude
+  /// is |fl(a - b)| instead of |a| + |b|. This is what keeps far-from-origin
+  /// scenes (|a|, |b| ~ 1e9, |a - b| ~ 1) inside the filter. Only valid for
+  /// exact operands; never for computed ones.
+  static Num inputDiff(double a, double b) {
+    const double d = a - b;
+    return {d, std::fabs(d)};
+  }
+
   // Certified sign. With u = 2^-53 and D the depth of E (longest chain of
   // operations from an input to the result), if no product underflows,
   //   |v - E| <= gamma_D * Etilde,  gamma_D = D u / (1 - D u),
@@ -117,6 +129,7 @@ struct ExactKernel {
   using Num = mpq_class;
   static constexpr bool kExact = true;
   static Num lift(double x) { return Num(x); }  // exact for finite doubles
+  static Num inputDiff(double a, double b) { return Num(a) - Num(b); }
   static Sign sign(const Num& a) {
     const int s = sgn(a);
     return s < 0 ? Sign::kNeg : (s > 0 ? Sign::kPos : Sign::kZero);
@@ -128,6 +141,7 @@ struct NaiveKernel {
   using Num = double;
   static constexpr bool kExact = false;
   static Num lift(double x) { return x; }
+  static Num inputDiff(double a, double b) { return a - b; }
   static Sign sign(double a) {
     return a < 0 ? Sign::kNeg : (a > 0 ? Sign::kPos : Sign::kZero);
   }

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include "filter.h"
 #include "triangle_cylinder_impl.h"
@@ -39,26 +41,31 @@ Inputs widen(const Cylinder<S>& cyl, const Pose<S>& pose,
   return in;
 }
 
-// Valid: every value finite, radius >= 0, lz >= 0. Also returns the largest
-// magnitudes for the filter's range gate.
+// One pass over the input bits: a double is finite iff its exponent field
+// is not all ones, and for non-negative doubles the bit pattern orders like
+// the value, so the maxima of |x| are maxima of (bits & ~sign). Returns
+// false for NaN/Inf anywhere or a negative radius or length (-0 is fine);
+// otherwise the largest magnitudes for the filter's range gate.
 bool validate(const Inputs& in, double* max_len, double* max_unitless) {
-  double ml = std::max(std::fabs(in.cyl.radius), std::fabs(in.cyl.lz));
-  double mu = 0;
-  bool finite = detail::finite(in.cyl.radius) && detail::finite(in.cyl.lz);
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      finite = finite && detail::finite(in.pose.R[i][j]);
-      mu = std::max(mu, std::fabs(in.pose.R[i][j]));
-    }
-  for (const Vec3<double>* v : {&in.pose.t, &in.tri.a, &in.tri.b, &in.tri.c}) {
-    finite = finite && detail::finite(v->x) && detail::finite(v->y) &&
-             detail::finite(v->z);
-    ml = std::max({ml, std::fabs(v->x), std::fabs(v->y), std::fabs(v->z)});
-  }
-  *max_len = ml;
-  *max_unitless = mu;
-  // `!(x >= 0)` also rejects NaN.
-  return finite && in.cyl.radius >= 0 && in.cyl.lz >= 0;
+  constexpr std::uint64_t kAbs = ~(std::uint64_t(1) << 63);
+  constexpr std::uint64_t kInf = 0x7ff0000000000000ULL;
+  auto bits = [](double v) {
+    std::uint64_t b;
+    std::memcpy(&b, &v, sizeof b);
+    return b;
+  };
+  const double len[] = {in.cyl.radius, in.cyl.lz,   in.pose.t.x, in.pose.t.y,
+                        in.pose.t.z,   in.tri.a.x,  in.tri.a.y,  in.tri.a.z,
+                        in.tri.b.x,    in.tri.b.y,  in.tri.b.z,  in.tri.c.x,
+                        in.tri.c.y,    in.tri.c.z};
+  std::uint64_t ml = 0, mu = 0;
+  for (double v : len) ml = std::max(ml, bits(v) & kAbs);
+  for (const auto& row : in.pose.R)
+    for (double v : row) mu = std::max(mu, bits(v) & kAbs);
+  if (ml >= kInf || mu >= kInf) return false;
+  std::memcpy(max_len, &ml, sizeof ml);
+  std::memcpy(max_unitless, &mu, sizeof mu);
+  return in.cyl.radius >= 0 && in.cyl.lz >= 0;  // -0 passes
 }
 
 Decision decide(const Inputs& in) {
@@ -67,13 +74,15 @@ Decision decide(const Inputs& in) {
     return {Answer::kInvalidInput, Stage::kInvalid};
   bool early = false;
   if (detail::rangeGateOk(max_len, max_unitless)) {
-    const auto q = detail::makeLocal<FilterKernel>(in.cyl, in.pose, in.tri);
+    const auto q =
+        detail::makeLocal<FilterKernel>(in.cyl, in.pose, in.tri, max_unitless);
     const Tri t = detail::triangleCylinder<FilterKernel>(q, &early);
     if (t != Tri::kUnknown)
       return {t == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
               early ? Stage::kEarlyOut : Stage::kFastPath};
   }
-  const auto q = detail::makeLocal<ExactKernel>(in.cyl, in.pose, in.tri);
+  const auto q =
+      detail::makeLocal<ExactKernel>(in.cyl, in.pose, in.tri, max_unitless);
   const Tri t = detail::triangleCylinder<ExactKernel>(q, &early);
   return {t == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
           Stage::kExact};
@@ -118,7 +127,8 @@ template <class S>
 bool intersectUncertified(const Cylinder<S>& cylinder, const Pose<S>& pose,
                           const Triangle<S>& triangle) noexcept {
   const Inputs in = widen(cylinder, pose, triangle);
-  const auto q = detail::makeLocal<NaiveKernel>(in.cyl, in.pose, in.tri);
+  const auto q =
+      detail::makeLocal<NaiveKernel>(in.cyl, in.pose, in.tri, 1.0);
   bool early = false;
   return detail::triangleCylinder<NaiveKernel>(q, &early) == Tri::kTrue;
 }
