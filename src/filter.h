@@ -4,7 +4,8 @@
 // on K::Num and K::sign(). It is then run with:
 //   FilterKernel  Num = Fd (double value + magnitude), sign() certified by a
 //                 derived error bound, kUnknown when the bound cannot decide;
-//   ExactKernel   Num = mpq_class (GMP rationals), sign() exact;
+//   ExtendedKernel  the same filter in long double (second stage);
+//   ExactKernel   Num = Dyadic (GMP integer times a power of two), exact;
 //   NaiveKernel   Num = double, sign() of the rounded value (diagnostic only).
 // The query returns a three-valued Tri; kUnknown from the filter sends the
 // query to the exact kernel. See docs/exactness.md for the derivation of the
@@ -116,6 +117,53 @@ struct FilterKernel {
   }
 };
 
+/// The second stage: the same certified filter in the widest hardware
+/// floating point, long double (x87 extended on x86-64: a 64-bit
+/// significand, u_L = 2^-64, and a 15-bit exponent). Same derivation as
+/// FilterKernel::sign with u_L = 2^-LDBL_MANT_DIG:
+///   |v - E| <= D u_L / ((1 - D u_L)(1 - u_L)^D) m <= 64 u_L m  (D <= 56).
+/// Underflow: inside the range gate, every non-zero intermediate of a
+/// degree-<=8 predicate is a sum of products of at most 8 factors, each a
+/// non-zero double or a rounded difference of doubles, so its magnitude
+/// exceeds (2^-1138)^8 = 2^-9104, far above the extended format's smallest
+/// normal 2^-16382: no product underflows, and kAbs is only a guard.
+/// Where long double is no wider than double (MSVC, some ARM ABIs) the
+/// stage is still correct, just no stronger than the first; where it is
+/// software quad (AArch64 Linux) it is correct and slower.
+constexpr long double pow2neg(int k) {
+  long double r = 1;
+  for (int i = 0; i < k; ++i) r /= 2;
+  return r;
+}
+
+struct Fl {
+  long double v;
+  long double m;
+};
+inline Fl operator+(Fl a, Fl b) { return {a.v + b.v, a.m + b.m}; }
+inline Fl operator-(Fl a, Fl b) { return {a.v - b.v, a.m + b.m}; }
+inline Fl operator-(Fl a) { return {-a.v, a.m}; }
+inline Fl operator*(Fl a, Fl b) { return {a.v * b.v, a.m * b.m}; }
+
+struct ExtendedKernel {
+  using Num = Fl;
+  static constexpr bool kExact = false;
+  static Num lift(double x) { return {x, std::fabs(x)}; }
+  /// As FilterKernel::inputDiff: one rounding relative to the result.
+  static Num inputDiff(double a, double b) {
+    const long double d = static_cast<long double>(a) - b;
+    return {d, d < 0 ? -d : d};
+  }
+  static constexpr long double kRel = pow2neg(LDBL_MANT_DIG - 6);  // 64 u_L
+  static constexpr long double kAbs = 0x1p-600L;
+  static Sign sign(const Fl& a) {
+    const long double bound = a.m * kRel + kAbs;
+    if (a.v > bound) return Sign::kPos;
+    if (a.v < -bound) return Sign::kNeg;
+    return Sign::kUnknown;
+  }
+};
+
 /// The gate under which FilterKernel's absolute slack kAbs is valid.
 /// `max_length`: the largest magnitude of any input with the dimension of a
 /// length (coordinates, translations, radii, lengths); `max_unitless`: the
@@ -125,13 +173,58 @@ inline bool rangeGateOk(double max_length, double max_unitless) {
   return max_length <= 0x1p40 && max_unitless <= 2.0;
 }
 
+/// An exact dyadic rational m * 2^e (m a GMP integer). Every value the
+/// predicates meet is a polynomial in doubles, hence dyadic, so no gcd is
+/// ever needed (mpq_class canonicalises after every operation and was
+/// measured 3-4x slower here). Addition aligns the exponents exactly.
+struct Dyadic {
+  mpz_class m;
+  long e = 0;
+};
+inline Dyadic operator+(const Dyadic& a, const Dyadic& b) {
+  if (sgn(a.m) == 0) return b;
+  if (sgn(b.m) == 0) return a;
+  Dyadic r;
+  if (a.e >= b.e) {
+    mpz_mul_2exp(r.m.get_mpz_t(), a.m.get_mpz_t(),
+                 static_cast<mp_bitcnt_t>(a.e - b.e));
+    r.m += b.m;
+    r.e = b.e;
+  } else {
+    mpz_mul_2exp(r.m.get_mpz_t(), b.m.get_mpz_t(),
+                 static_cast<mp_bitcnt_t>(b.e - a.e));
+    r.m += a.m;
+    r.e = a.e;
+  }
+  return r;
+}
+inline Dyadic operator-(const Dyadic& a) { return {-a.m, a.e}; }
+inline Dyadic operator-(const Dyadic& a, const Dyadic& b) { return a + (-b); }
+inline Dyadic operator*(const Dyadic& a, const Dyadic& b) {
+  Dyadic r;
+  r.m = a.m * b.m;
+  r.e = a.e + b.e;
+  return r;
+}
+
 struct ExactKernel {
-  using Num = mpq_class;
+  using Num = Dyadic;
   static constexpr bool kExact = true;
-  static Num lift(double x) { return Num(x); }  // exact for finite doubles
-  static Num inputDiff(double a, double b) { return Num(a) - Num(b); }
+  /// Exact for every finite double: x = f 2^k with 0.5 <= |f| < 1, and
+  /// f 2^53 is an integer (also for subnormals, whose significand is
+  /// shorter).
+  static Num lift(double x) {
+    Dyadic d;
+    if (x == 0) return d;
+    int k = 0;
+    const double f = std::frexp(x, &k);
+    d.m = mpz_class(std::ldexp(f, 53));  // an integer-valued double: exact
+    d.e = long(k) - 53;
+    return d;
+  }
+  static Num inputDiff(double a, double b) { return lift(a) - lift(b); }
   static Sign sign(const Num& a) {
-    const int s = sgn(a);
+    const int s = sgn(a.m);
     return s < 0 ? Sign::kNeg : (s > 0 ? Sign::kPos : Sign::kZero);
   }
 };

@@ -13,6 +13,7 @@ namespace tricyl {
 namespace {
 
 using detail::ExactKernel;
+using detail::ExtendedKernel;
 using detail::FilterKernel;
 using detail::NaiveKernel;
 using detail::Tri;
@@ -80,6 +81,14 @@ Decision decide(const Inputs& in) {
     if (t != Tri::kUnknown)
       return {t == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
               early ? Stage::kEarlyOut : Stage::kFastPath};
+  }
+  if (detail::rangeGateOk(max_len, max_unitless)) {
+    const auto q = detail::makeLocal<ExtendedKernel>(in.cyl, in.pose, in.tri,
+                                                     max_unitless);
+    const Tri t = detail::triangleCylinder<ExtendedKernel>(q, &early);
+    if (t != Tri::kUnknown)
+      return {t == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
+              Stage::kExtended};
   }
   const auto q =
       detail::makeLocal<ExactKernel>(in.cyl, in.pose, in.tri, max_unitless);

@@ -85,9 +85,10 @@ enum class Answer : unsigned char {
 /// changes the answer).
 enum class Stage : unsigned char {
   kEarlyOut = 0,  ///< a cheap certified rejection (slab or bounding box)
-  kFastPath = 1,  ///< floating-point predicates with a certified error bound
-  kExact = 2,     ///< the exact rational fallback
+  kFastPath = 1,  ///< double predicates with a certified error bound
+  kExact = 2,     ///< the exact rational fallback (GMP)
   kInvalid = 3,   ///< input rejected before any arithmetic
+  kExtended = 4,  ///< the certified filter re-run in extended precision
 };
 
 struct Decision {
