@@ -11,8 +11,8 @@
 #include "tricyl/triangle_cylinder.h"
 
 #ifdef TRICYL_BENCH_WITH_FCL
-#include <fcl/narrowphase/detail/gjk_solver_libccd.h>
 #include <fcl/geometry/shape/cylinder.h>
+#include <fcl/narrowphase/detail/gjk_solver_libccd.h>
 #endif
 
 namespace {
@@ -86,7 +86,8 @@ void BM_FclLibccd(benchmark::State& state) {
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) tf.linear()(i, j) = k.pose.R[i][j];
     tf.translation() = fcl::Vector3d(k.pose.t.x, k.pose.t.y, k.pose.t.z);
-    fv.push_back({fcl::Cylinderd(k.cyl.radius, k.cyl.lz), tf,
+    fv.push_back({fcl::Cylinderd(k.cyl.radius, k.cyl.lz),
+                  tf,
                   {k.tri.a.x, k.tri.a.y, k.tri.a.z},
                   {k.tri.b.x, k.tri.b.y, k.tri.b.z},
                   {k.tri.c.x, k.tri.c.y, k.tri.c.z}});

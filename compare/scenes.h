@@ -39,12 +39,18 @@ inline constexpr Family kAllFamilies[] = {Family::kUniform, Family::kNear,
 
 inline const char* familyName(Family f) {
   switch (f) {
-    case Family::kUniform: return "uniform";
-    case Family::kNear: return "near";
-    case Family::kFar: return "far";
-    case Family::kThin: return "thin";
-    case Family::kSliver: return "sliver";
-    case Family::kAligned: return "aligned";
+    case Family::kUniform:
+      return "uniform";
+    case Family::kNear:
+      return "near";
+    case Family::kFar:
+      return "far";
+    case Family::kThin:
+      return "thin";
+    case Family::kSliver:
+      return "sliver";
+    case Family::kAligned:
+      return "aligned";
   }
   return "?";
 }
@@ -314,7 +320,9 @@ inline TriCase sliverCase(Rng& g) {
     case 1: {  // exactly collinear: c = a + (b - a) * 2^-k, computed exactly
       const double t = std::ldexp(1.0, -g.integer(4));
       // Snap a and b to a coarse dyadic grid so the affine point is exact.
-      auto snap = [](double v) { return std::ldexp(std::round(std::ldexp(v, 20)), -20); };
+      auto snap = [](double v) {
+        return std::ldexp(std::round(std::ldexp(v, 20)), -20);
+      };
       a = {snap(a.x), snap(a.y), snap(a.z)};
       b = {snap(b.x), snap(b.y), snap(b.z)};
       c = {a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, a.z + (b.z - a.z) * t};
@@ -412,10 +420,9 @@ inline TriCase generate(Family family, std::uint64_t seed,
     case Family::kFar: {
       TriCase k = g.coin()
                       ? internal::uniformCase(g)
-                      : internal::nearCase(g, g.logUniform(0.1, 2),
-                                           g.logUniform(0.1, 4),
-                                           internal::randomPose(g, 1),
-                                           internal::nearDelta(g));
+                      : internal::nearCase(
+                            g, g.logUniform(0.1, 2), g.logUniform(0.1, 4),
+                            internal::randomPose(g, 1), internal::nearDelta(g));
       const double mag = g.logUniform(1e3, 1e9);
       const internal::V T = internal::scale(internal::randomUnit(g), mag);
       k.pose.t = internal::add(k.pose.t, T);

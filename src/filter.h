@@ -23,7 +23,8 @@ namespace tricyl::detail {
 static_assert(std::numeric_limits<double>::is_iec559,
               "tricyl's error bounds assume IEEE-754 binary64");
 #if defined(__FAST_MATH__)
-#error "tricyl must not be compiled with -ffast-math: it breaks the error bounds"
+#error \
+    "tricyl must not be compiled with -ffast-math: it breaks the error bounds"
 #endif
 #if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD != 0
 #error "tricyl needs FLT_EVAL_METHOD == 0 (no excess precision, e.g. SSE2)"
@@ -41,7 +42,7 @@ constexpr Tri kAnd(Tri a, Tri b) {
                                                 : Tri::kUnknown;
 }
 constexpr Tri kOr(Tri a, Tri b) {
-  return (a == Tri::kTrue || b == Tri::kTrue) ? Tri::kTrue
+  return (a == Tri::kTrue || b == Tri::kTrue)     ? Tri::kTrue
          : (a == Tri::kFalse && b == Tri::kFalse) ? Tri::kFalse
                                                   : Tri::kUnknown;
 }

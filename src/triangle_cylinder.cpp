@@ -55,9 +55,9 @@ bool validate(const Inputs& in, double* max_len, double* max_unitless) {
     std::memcpy(&b, &v, sizeof b);
     return b;
   };
-  const double len[] = {in.cyl.radius, in.cyl.lz,   in.pose.t.x, in.pose.t.y,
-                        in.pose.t.z,   in.tri.a.x,  in.tri.a.y,  in.tri.a.z,
-                        in.tri.b.x,    in.tri.b.y,  in.tri.b.z,  in.tri.c.x,
+  const double len[] = {in.cyl.radius, in.cyl.lz,  in.pose.t.x, in.pose.t.y,
+                        in.pose.t.z,   in.tri.a.x, in.tri.a.y,  in.tri.a.z,
+                        in.tri.b.x,    in.tri.b.y, in.tri.b.z,  in.tri.c.x,
                         in.tri.c.y,    in.tri.c.z};
   std::uint64_t ml = 0, mu = 0;
   for (double v : len) ml = std::max(ml, bits(v) & kAbs);
@@ -136,15 +136,13 @@ template <class S>
 bool intersectUncertified(const Cylinder<S>& cylinder, const Pose<S>& pose,
                           const Triangle<S>& triangle) noexcept {
   const Inputs in = widen(cylinder, pose, triangle);
-  const auto q =
-      detail::makeLocal<NaiveKernel>(in.cyl, in.pose, in.tri, 1.0);
+  const auto q = detail::makeLocal<NaiveKernel>(in.cyl, in.pose, in.tri, 1.0);
   bool early = false;
   return detail::triangleCylinder<NaiveKernel>(q, &early) == Tri::kTrue;
 }
 template bool intersectUncertified(const Cylinder<float>&, const Pose<float>&,
                                    const Triangle<float>&) noexcept;
-template bool intersectUncertified(const Cylinder<double>&,
-                                   const Pose<double>&,
+template bool intersectUncertified(const Cylinder<double>&, const Pose<double>&,
                                    const Triangle<double>&) noexcept;
 }  // namespace diagnostic
 

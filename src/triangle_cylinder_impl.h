@@ -191,8 +191,8 @@ Tri triangleCylinder(const TriCylLocal<K>& q, bool* early) {
   for (int i = 0; i < 3; ++i) {
     const Tri in_slab = kAnd(isNonPos(top[i]), isNonNeg(bot[i]));
     if (in_slab == Tri::kFalse) continue;
-    if (any.add(kAnd(in_slab,
-                     isNonNeg(K::sign(r2 - x[i] * x[i] - y[i] * y[i])))))
+    if (any.add(
+            kAnd(in_slab, isNonNeg(K::sign(r2 - x[i] * x[i] - y[i] * y[i])))))
       return Tri::kTrue;
   }
 
@@ -214,8 +214,8 @@ Tri triangleCylinder(const TriCylLocal<K>& q, bool* early) {
       const N X = x[i] * aj - x[j] * ai;
       const N Y = y[i] * aj - y[j] * ai;
       const N W = aj - ai;
-      if (any.add(kAnd(crossing,
-                       isNonNeg(K::sign(r2 * (W * W) - X * X - Y * Y)))))
+      if (any.add(
+              kAnd(crossing, isNonNeg(K::sign(r2 * (W * W) - X * X - Y * Y)))))
         return Tri::kTrue;
     }
   }

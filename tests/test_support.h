@@ -15,20 +15,22 @@ namespace tricyl::test {
 /// default. Every randomized test puts it in a SCOPED_TRACE so a failure
 /// prints the seed to replay with.
 inline std::uint64_t baseSeed() {
-  if (const char* s = std::getenv("TRICYL_SEED")) return std::strtoull(s, nullptr, 10);
+  if (const char* s = std::getenv("TRICYL_SEED"))
+    return std::strtoull(s, nullptr, 10);
   return 20261122u;
 }
 
 /// Case counts scale with TRICYL_CASES_SCALE (default 1; the local run of
 /// the acceptance figures uses 10).
 inline long scaled(long n) {
-  if (const char* s = std::getenv("TRICYL_CASES_SCALE")) return n * std::atol(s);
+  if (const char* s = std::getenv("TRICYL_CASES_SCALE"))
+    return n * std::atol(s);
   return n;
 }
 
 inline std::string seedTrace(std::uint64_t seed) {
-  return "seed=" + std::to_string(seed) + " (replay: TRICYL_SEED=" +
-         std::to_string(seed) + ")";
+  return "seed=" + std::to_string(seed) +
+         " (replay: TRICYL_SEED=" + std::to_string(seed) + ")";
 }
 
 /// Traps invalid operations and division by zero in every test: the kernel

@@ -71,11 +71,9 @@ Decision decideAs(const TriCase& k) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) p.R[i][j] = opaqueRound<S>(k.pose.R[i][j]);
   p.t = narrow<S>(k.pose.t);
-  return decideIntersect(Cylinder<S>{opaqueRound<S>(k.cyl.radius),
-                                     opaqueRound<S>(k.cyl.lz)},
-                         p,
-                         Triangle<S>{narrow<S>(k.tri.a), narrow<S>(k.tri.b),
-                                     narrow<S>(k.tri.c)});
+  return decideIntersect(
+      Cylinder<S>{opaqueRound<S>(k.cyl.radius), opaqueRound<S>(k.cyl.lz)}, p,
+      Triangle<S>{narrow<S>(k.tri.a), narrow<S>(k.tri.b), narrow<S>(k.tri.c)});
 }
 
 class FamilyTest : public ::testing::TestWithParam<Family> {};
@@ -96,7 +94,8 @@ TEST_P(FamilyTest, AgreesWithOracle) {
     if ((d.answer == Answer::kIntersect) != truth) {
       ++failures;
       ADD_FAILURE() << "double, index " << i << ", oracle says " << truth
-                    << "\n" << dump(k);
+                    << "\n"
+                    << dump(k);
     }
     // Float: every 4th case, settled on the float-rounded input.
     if (i % 4 == 0) {
@@ -105,14 +104,16 @@ TEST_P(FamilyTest, AgreesWithOracle) {
       if ((decideAs<float>(k).answer == Answer::kIntersect) != truth_f) {
         ++failures;
         ADD_FAILURE() << "float, index " << i << ", oracle says " << truth_f
-                      << "\n" << dump(kf);
+                      << "\n"
+                      << dump(kf);
       }
     }
   }
-  std::printf("[ stats    ] %s: %ld cases, %ld hits; decided by early-out %ld, "
-              "fast path %ld, extended %ld, exact fallback %ld (%.3f%%)\n",
-              scenes::familyName(GetParam()), n, hits, stages[0], stages[1],
-              stages[4], stages[2], 100.0 * double(stages[2]) / double(n));
+  std::printf(
+      "[ stats    ] %s: %ld cases, %ld hits; decided by early-out %ld, "
+      "fast path %ld, extended %ld, exact fallback %ld (%.3f%%)\n",
+      scenes::familyName(GetParam()), n, hits, stages[0], stages[1], stages[4],
+      stages[2], 100.0 * double(stages[2]) / double(n));
 }
 
 // Vertex order, exact rigid motions of the world (signed axis permutations
@@ -130,12 +131,13 @@ TEST_P(FamilyTest, Invariances) {
     const bool base = tryIntersect(k.cyl, k.pose, k.tri) == Answer::kIntersect;
     const Vec3<double> v[3] = {k.tri.a, k.tri.b, k.tri.c};
     for (const auto& p : kPerm) {
-      if ((tryIntersect(k.cyl, k.pose, Triangle<double>{v[p[0]], v[p[1]],
-                                                         v[p[2]]}) ==
+      if ((tryIntersect(k.cyl, k.pose,
+                        Triangle<double>{v[p[0]], v[p[1]], v[p[2]]}) ==
            Answer::kIntersect) != base) {
         ++failures;
         ADD_FAILURE() << "vertex order " << p[0] << p[1] << p[2] << " index "
-                      << i << "\n" << dump(k);
+                      << i << "\n"
+                      << dump(k);
       }
     }
     // World motion x -> P x with P a signed permutation: R' = P R, t' = P t.
@@ -155,8 +157,8 @@ TEST_P(FamilyTest, Invariances) {
     moved.t = move(k.pose.t);
     if ((tryIntersect(k.cyl, moved,
                       Triangle<double>{move(k.tri.a), move(k.tri.b),
-                                       move(k.tri.c)}) ==
-         Answer::kIntersect) != base) {
+                                       move(k.tri.c)}) == Answer::kIntersect) !=
+        base) {
       ++failures;
       ADD_FAILURE() << "rigid motion " << perm << " index " << i << "\n"
                     << dump(k);
@@ -174,8 +176,8 @@ TEST_P(FamilyTest, Invariances) {
                                     std::ldexp(k.cyl.lz, e)};
       if ((tryIntersect(sc_cyl, sp,
                         Triangle<double>{sc(k.tri.a), sc(k.tri.b),
-                                         sc(k.tri.c)}) ==
-           Answer::kIntersect) != base) {
+                                         sc(k.tri.c)}) == Answer::kIntersect) !=
+          base) {
         ++failures;
         ADD_FAILURE() << "scale 2^" << e << " index " << i << "\n" << dump(k);
       }
