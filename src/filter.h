@@ -104,8 +104,11 @@ struct FilterKernel {
   // is 14; counted in docs/exactness.md), far inside 56.
   // Underflow: a product may lose up to 2^-1075 absolutely; with the range
   // gate (rangeGateOk: every length input <= 2^40 in magnitude, every
-  // dimensionless input <= 2) and degree <= 8, the propagated loss is below
-  // 2^-690 (docs/exactness.md), so an absolute slack of 2^-600 covers it.
+  // dimensionless input <= 2) the loss, multiplied by the sibling operands
+  // on its way to the root, stays below 2^-680 for every predicate whose
+  // a-priori magnitude bound is <= 2^380 (the triangle kernel's largest is
+  // about 2^370; docs/exactness.md, "Underflow"), so an absolute slack of
+  // 2^-600 covers it.
   // Overflow yields Inf or NaN in v or m, and every comparison below is
   // false for them, so the answer is kUnknown: overflow can only cost time.
   static constexpr double kRel = 0x1p-47;
@@ -123,11 +126,9 @@ struct FilterKernel {
 /// significand, u_L = 2^-64, and a 15-bit exponent). Same derivation as
 /// FilterKernel::sign with u_L = 2^-LDBL_MANT_DIG:
 ///   |v - E| <= D u_L / ((1 - D u_L)(1 - u_L)^D) m <= 64 u_L m  (D <= 56).
-/// Underflow: inside the range gate, every non-zero intermediate of a
-/// degree-<=8 predicate is a sum of products of at most 8 factors, each a
-/// non-zero double or a rounded difference of doubles, so its magnitude
-/// exceeds (2^-1138)^8 = 2^-9104, far above the extended format's smallest
-/// normal 2^-16382: no product underflows, and kAbs is only a guard.
+/// Underflow: a product may lose at most 2^-16446 (x87 extended); with the
+/// range gate the same propagation argument as for FilterKernel bounds the
+/// loss by 2^-16446 * 2^388, far below kAbs.
 /// Where long double is no wider than double (MSVC, some ARM ABIs) the
 /// stage is still correct, just no stronger than the first; where it is
 /// software quad (AArch64 Linux) it is correct and slower.
