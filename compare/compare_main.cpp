@@ -1,0 +1,226 @@
+// tricyl-compare: tricyl against FCL's GJK/libccd paths, settled by an exact
+// oracle. See compare/README.md.
+//
+//   tricyl-compare --out DIR [--cases N] [--seed S] [--families a,b,...]
+//                  [--methods m,...] [--mesh FILE...] [--threads T]
+//                  [--timeout SECONDS] [--sweep-cases N] [--mesh-cases N]
+//                  [--replay FILE] [--no-plots] [--quiet]
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "harness.h"
+#include "mesh_scenes.h"
+#include "report.h"
+#include "runner.h"
+#include "scenes.h"
+#include "sweeps.h"
+
+namespace {
+
+using namespace tricyl::compare;
+
+std::string joinArgs(int argc, char** argv) {
+  std::string s;
+  for (int i = 0; i < argc; ++i) {
+    if (i) s += ' ';
+    s += argv[i];
+  }
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "tricyl-compare: exact triangle-cylinder tests (tricyl) against FCL "
+      "0.7's GJK/libccd paths, every answer settled by an exact GMP oracle."};
+  std::string out = "report";
+  std::uint64_t cases = 20000, seed = 1;
+  std::uint64_t sweep_cases = 1000;
+  long mesh_cases = -1;
+  std::vector<std::string> families, method_names, mesh_files;
+  unsigned hw = std::thread::hardware_concurrency();
+  int threads = int(hw ? std::min(hw, 2u) : 2u);
+  double timeout = 1.0;
+  std::string replay;
+  bool no_plots = false, quiet = false;
+  app.add_option("--out,-o", out, "output folder (created)")
+      ->capture_default_str();
+  app.add_option("--cases,-n", cases, "cases per triangle family")
+      ->capture_default_str();
+  app.add_option("--seed,-s", seed,
+                 "seed; a case is a function of (seed, "
+                 "family, index)")
+      ->capture_default_str();
+  app.add_option("--families", families,
+                 "families to run (default: all): uniform near far thin "
+                 "sliver aligned mesh")
+      ->delimiter(',');
+  app.add_option("--methods", method_names,
+                 "methods to run (default: all): tricyl tricyl_fast "
+                 "tricyl_float fcl_libccd_1e-6 fcl_libccd_default fcl_indep")
+      ->delimiter(',');
+  app.add_option("--mesh", mesh_files,
+                 "OBJ files for the mesh family (replace the built-in "
+                 "sphere, torus and terrain)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--mesh-cases", mesh_cases,
+                 "cases of the mesh family (default: cases / 10)");
+  app.add_option("--sweep-cases", sweep_cases,
+                 "cases per stability sweep point; 0 disables the sweeps")
+      ->capture_default_str();
+  app.add_option("--threads,-j", threads, "worker processes")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  app.add_option("--timeout", timeout, "time limit per FCL query, seconds")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--replay", replay,
+                 "run the methods on the cases of FILE ('case' lines of "
+                 "hangs.txt, hex floats) instead of the families")
+      ->check(CLI::ExistingFile);
+  app.add_flag("--no-plots", no_plots, "do not run gnuplot");
+  app.add_flag("--quiet,-q", quiet, "no progress bar");
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    RunOptions opt;
+    opt.workers = threads;
+    opt.timeout_s = timeout;
+    opt.progress = !quiet;
+    if (method_names.empty()) {
+      for (int i = 0; i < kMethodCount; ++i) opt.methods.push_back(Method(i));
+    } else {
+      for (const auto& n : method_names) {
+        auto m = parseMethod(n);
+        if (!m) {
+          std::fprintf(stderr, "tricyl-compare: unknown method '%s'\n",
+                       n.c_str());
+          return 2;
+        }
+        opt.methods.push_back(*m);
+      }
+    }
+
+    std::vector<CaseSet> sets;
+    std::vector<std::unique_ptr<Mesh>> meshes;
+    ReportInfo info;
+    info.command_line = joinArgs(argc, argv);
+    info.seed = seed;
+    info.cases = cases;
+    info.options = opt;
+    info.plots = !no_plots;
+
+    if (!replay.empty()) {
+      const auto ks = readCaseFile(replay);
+      if (ks.empty()) {
+        std::fprintf(stderr, "tricyl-compare: no 'case' lines in %s\n",
+                     replay.c_str());
+        return 2;
+      }
+      for (std::size_t i = 0; i < ks.size(); ++i) {
+        const tricyl::scenes::TriCase k = ks[i];
+        sets.push_back({"family", "replay" + std::to_string(i), kNaN, 1,
+                        [k](std::uint64_t) {
+                          return Case{k, nullptr};
+                        }});
+      }
+      info.cases = 1;
+      sweep_cases = 0;
+    } else {
+      std::vector<std::string> fams = families;
+      if (fams.empty()) {
+        for (auto f : tricyl::scenes::kAllFamilies)
+          fams.push_back(tricyl::scenes::familyName(f));
+        fams.push_back("mesh");
+      }
+      for (const auto& name : fams) {
+        if (name == "mesh") continue;
+        auto f = tricyl::scenes::parseFamily(name);
+        if (!f) {
+          std::fprintf(stderr, "tricyl-compare: unknown family '%s'\n",
+                       name.c_str());
+          return 2;
+        }
+        const auto fam = *f;
+        sets.push_back(
+            {"family", name, kNaN, cases, [fam, seed](std::uint64_t i) {
+               return Case{tricyl::scenes::generate(fam, seed, i), nullptr};
+             }});
+      }
+      if (std::find(fams.begin(), fams.end(), "mesh") != fams.end()) {
+        if (mesh_files.empty()) {
+          for (auto& [name, tris] : meshes::builtinMeshes()) {
+            meshes.push_back(std::make_unique<Mesh>());
+            meshes.back()->name = name;
+            meshes.back()->tris = std::move(tris);
+          }
+        } else {
+          for (const auto& path : mesh_files) {
+            meshes.push_back(std::make_unique<Mesh>());
+            meshes.back()->name = path;
+            meshes.back()->tris = meshes::readObj(path);
+          }
+        }
+        for (auto& m : meshes) {
+          prepareMesh(*m);
+          info.meshes.push_back(m->name + " (" +
+                                std::to_string(m->tris.size()) + " triangles)");
+        }
+        const std::uint64_t n =
+            mesh_cases >= 0 ? std::uint64_t(mesh_cases) : cases / 10;
+        info.mesh_cases = n;
+        std::vector<const Mesh*> ms;
+        for (auto& m : meshes) ms.push_back(m.get());
+        sets.push_back({"family", "mesh", kNaN, n, [ms, seed](std::uint64_t i) {
+                          const Mesh* m = ms[i % ms.size()];
+                          return Case{meshes::meshCase(m->tris, m->lo, m->hi,
+                                                       seed, i / ms.size()),
+                                      m};
+                        }});
+      }
+      if (sweep_cases > 0) {
+        for (auto& s : sweeps::deltaSweep(seed, sweep_cases)) sets.push_back(s);
+        for (auto& s : sweeps::translationSweep(seed, sweep_cases))
+          sets.push_back(s);
+        for (auto& s : sweeps::aspectSweep(seed, sweep_cases))
+          sets.push_back(s);
+      }
+    }
+    info.sweep_cases = sweep_cases;
+
+    RunResult result = runAll(sets, opt);
+    const auto figures = writeReport(out, sets, result, info);
+
+    // A short summary on stdout.
+    std::printf(
+        "tricyl-compare: %.1f s, %zu hangs; wrote %s/report.md, "
+        "results.csv, results.json, stability.csv, hangs.txt",
+        result.wall_seconds, result.hangs.size(), out.c_str());
+    for (const auto& f : figures)
+      std::printf(", %s", f.substr(f.rfind('/') + 1).c_str());
+    std::printf("\n");
+    for (std::size_t s = 0; s < sets.size(); ++s) {
+      if (sets[s].kind != "family") continue;
+      std::printf("  %-10s", sets[s].name.c_str());
+      for (Method m : opt.methods) {
+        const MethodStats& ms = result.sets[s].method[int(m)];
+        std::printf(
+            "  %s %llu/%llu%s", methodName(m), (unsigned long long)ms.wrong(),
+            (unsigned long long)ms.cases,
+            ms.hangs ? (" (" + std::to_string(ms.hangs) + " hung)").c_str()
+                     : "");
+      }
+      std::printf("\n");
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tricyl-compare: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,112 @@
+// tricyl-compare: the pieces shared by the executable and its tests.
+//
+// A run is a list of CaseSets (a scene family, a mesh family, or one point
+// of a stability sweep). Every case of every set is settled by the exact
+// oracle (compare/oracle.h) and then answered by every selected Method; the
+// answers, timings and oracle verdicts are aggregated into per (set, method)
+// statistics. The evaluation happens in forked worker processes so that a
+// method that never returns (libccd's MPR has no iteration cap, issue 9)
+// can be killed after a per-query time limit; see runner.cpp.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "scenes.h"
+#include "tricyl/types.h"
+
+namespace tricyl::compare {
+
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+enum class Method : int {
+  kTricyl = 0,        ///< tricyl::tryIntersect: exact (filter + fallback)
+  kTricylFast,        ///< diagnostic::intersectUncertified: no certificate
+  kTricylFloat,       ///< the case rounded to float, then tricyl (exact)
+  kFclLibccd1e6,      ///< GJKSolver_libccd, collision_tolerance = 1e-6
+  kFclLibccdDefault,  ///< GJKSolver_libccd, its own default (~2e-14)
+  kFclIndep,          ///< GJKSolver_indep with its defaults
+  kCount
+};
+inline constexpr int kMethodCount = int(Method::kCount);
+
+const char* methodName(Method m);
+std::optional<Method> parseMethod(std::string_view s);
+/// True for the methods that run FCL code (and so may never return).
+bool isFcl(Method m);
+/// True if the method answers the float-rounded input (its truth differs).
+inline bool usesFloatInput(Method m) { return m == Method::kTricylFloat; }
+
+/// A triangle mesh, world coordinates, plus what the methods need.
+struct Mesh {
+  std::string name;
+  std::vector<Triangle<double>> tris;
+  std::vector<Triangle<double>> tris_f;  ///< tris rounded to float, as double
+  Vec3<double> lo{}, hi{};               ///< bounding box of the vertices
+  std::shared_ptr<void> fcl_model;       ///< built by prepareMesh (FCL BVH)
+};
+
+/// Builds the bounding box, the float copy and the FCL models.
+void prepareMesh(Mesh& mesh);
+
+/// One configuration. For mesh cases k.tri is unused and `mesh` is set.
+struct Case {
+  scenes::TriCase k;
+  const Mesh* mesh = nullptr;
+};
+
+struct CaseSet {
+  std::string kind;     ///< "family" or "sweep"
+  std::string name;     ///< family name, or the swept quantity
+  double param = kNaN;  ///< sweep abscissa (|delta|, |t|, lz / 2r)
+  std::uint64_t count = 0;
+  std::function<Case(std::uint64_t)> make;
+};
+
+/// The case with every input rounded to float (and widened back: exact).
+Case roundToFloat(const Case& c);
+
+/// Exact oracle verdict for a triangle or mesh case. With `float_input`, `c`
+/// must be roundToFloat of a case, and a mesh is taken as its float copy.
+bool oracleTruth(const Case& c, bool float_input = false);
+
+/// The size of the error a wrong answer makes: |delta| for near cases (the
+/// generator's intended relative offset), otherwise the smallest relative
+/// scaling s of the cylinder about its centre (radius and length times 1+s
+/// for a disjoint case, 1-s for an intersecting one) at which the exact
+/// answer flips, found by bisection in log scale to about 3 %. It is a
+/// relative clearance (disjoint) or penetration (intersecting); capped at 1e6.
+double errorSize(const Case& c, bool truth, bool float_input = false);
+
+/// Answers case `c` with method `m` once. Not thread-safe across Evaluators;
+/// each worker has its own.
+class Evaluator {
+ public:
+  Evaluator();
+  ~Evaluator();
+  Evaluator(const Evaluator&) = delete;
+  Evaluator& operator=(const Evaluator&) = delete;
+  /// The answer. Method::kTricylFloat rounds `c` to float itself.
+  bool run(Method m, const Case& c);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Bit-exact text form of a triangle case (hex floats, "%a"):
+///   r lz R00 R01 R02 R10 .. R22 tx ty tz ax ay az bx by bz cx cy cz
+std::string formatCaseHex(const scenes::TriCase& k);
+/// Parses formatCaseHex's output (decimal floats are accepted too).
+std::optional<scenes::TriCase> parseCaseHex(std::string_view line);
+/// Reads a hangs.txt / replay file: lines starting with "case " hold a case
+/// after the keyword; '#' lines and blank lines are ignored.
+std::vector<scenes::TriCase> readCaseFile(const std::string& path);
+
+}  // namespace tricyl::compare

@@ -1,0 +1,164 @@
+// The `mesh` family of tricyl-compare: a cylinder against a triangle mesh.
+// Header-only, no FCL: built-in procedural meshes, an OBJ reader, the seeded
+// placement of a cylinder near a mesh, and the conservative bounding-sphere
+// cull shared by the oracle and the brute-force tricyl mesh scan.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "scenes.h"
+#include "tricyl/types.h"
+
+namespace tricyl::compare::meshes {
+
+using V = Vec3<double>;
+using T = Triangle<double>;
+
+/// Reads `v x y z` and `f i j k` lines (1-based, `i/j/k` forms and polygons
+/// fanned into triangles; negative indices count from the end).
+inline std::vector<T> readObj(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open mesh file " + path);
+  std::vector<V> vs;
+  std::vector<T> tris;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream ls(line);
+    std::string tag;
+    ls >> tag;
+    if (tag == "v") {
+      V v{};
+      ls >> v.x >> v.y >> v.z;
+      vs.push_back(v);
+    } else if (tag == "f") {
+      std::vector<long> idx;
+      std::string tok;
+      while (ls >> tok) {
+        long i = std::stol(tok.substr(0, tok.find('/')));
+        idx.push_back(i < 0 ? long(vs.size()) + i : i - 1);
+      }
+      for (size_t k = 2; k < idx.size(); ++k) {
+        for (long i : {idx[0], idx[k - 1], idx[k]})
+          if (i < 0 || i >= long(vs.size()))
+            throw std::runtime_error("bad face index in " + path);
+        tris.push_back(
+            {vs[size_t(idx[0])], vs[size_t(idx[k - 1])], vs[size_t(idx[k])]});
+      }
+    }
+  }
+  if (tris.empty()) throw std::runtime_error("no triangles in " + path);
+  return tris;
+}
+
+/// A grid surface (u, v) -> point, split into two triangles per cell.
+template <class F>
+std::vector<T> gridSurface(int nu, int nv, F point) {
+  std::vector<T> tris;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const V p00 = point(i, j), p10 = point(i + 1, j);
+      const V p01 = point(i, j + 1), p11 = point(i + 1, j + 1);
+      tris.push_back({p00, p10, p11});
+      tris.push_back({p00, p11, p01});
+    }
+  return tris;
+}
+
+/// Built-in meshes: a UV sphere (radius 1), a torus (1, 0.3) and a wavy
+/// terrain (4 x 4, amplitude 0.2), each about a thousand triangles.
+inline std::vector<std::pair<std::string, std::vector<T>>> builtinMeshes() {
+  const double pi = std::acos(-1.0);
+  std::vector<std::pair<std::string, std::vector<T>>> out;
+  out.emplace_back("sphere", gridSurface(32, 16, [&](int i, int j) {
+                     const double u = 2 * pi * i / 32, v = pi * j / 16;
+                     return V{std::cos(u) * std::sin(v),
+                              std::sin(u) * std::sin(v), std::cos(v)};
+                   }));
+  out.emplace_back(
+      "torus", gridSurface(36, 16, [&](int i, int j) {
+        const double u = 2 * pi * i / 36, v = 2 * pi * j / 16;
+        const double w = 1 + 0.3 * std::cos(v);
+        return V{w * std::cos(u), w * std::sin(u), 0.3 * std::sin(v)};
+      }));
+  out.emplace_back("terrain", gridSurface(24, 24, [&](int i, int j) {
+                     const double x = -2 + 4.0 * i / 24, y = -2 + 4.0 * j / 24;
+                     return V{x, y,
+                              0.2 * std::sin(3 * x) * std::cos(2 * y) +
+                                  0.05 * std::sin(7 * x + 5 * y)};
+                   }));
+  return out;
+}
+
+inline V sub(V a, V b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline V cross(V a, V b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline double norm(V a) { return std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z); }
+
+/// Places a cylinder near the surface of a mesh (box `lo`..`hi`): at a random
+/// point of a random triangle, moved along its normal by up to one cylinder
+/// size either way, with a random rotation; the cylinder's size is 0.2 % ..
+/// 10 % of the box diagonal. Deterministic per (seed, index).
+inline scenes::TriCase meshCase(const std::vector<T>& tris, V lo, V hi,
+                                std::uint64_t seed, std::uint64_t index) {
+  scenes::Rng g(seed * 0xd1b54a32d192ed03ULL ^ 0x6d657368ULL ^
+                (index * 0x9e3779b97f4a7c15ULL));
+  const double diag = norm(sub(hi, lo));
+  const T& t = tris[size_t(g.integer(int(tris.size())))];
+  double u = g.uniform(0, 1), v = g.uniform(0, 1);
+  if (u + v > 1) u = 1 - u, v = 1 - v;
+  const V e1 = sub(t.b, t.a), e2 = sub(t.c, t.a);
+  V p = {t.a.x + u * e1.x + v * e2.x, t.a.y + u * e1.y + v * e2.y,
+         t.a.z + u * e1.z + v * e2.z};
+  V n = cross(e1, e2);
+  const double nn = norm(n);
+  n = nn > 0 ? V{n.x / nn, n.y / nn, n.z / nn} : V{0, 0, 1};
+  const double size = diag * g.logUniform(0.002, 0.1);
+  scenes::TriCase k;
+  k.cyl = {size * g.uniform(0.1, 0.5), size * g.uniform(0.1, 1.0)};
+  k.pose = scenes::internal::randomPose(g, 0);
+  const double off = size * g.uniform(-1, 1);
+  k.pose.t = {p.x + off * n.x, p.y + off * n.y, p.z + off * n.z};
+  k.tri = {p, p, p};  // unused for mesh cases
+  k.feature = "mesh";
+  return k;
+}
+
+/// A conservative cull: false only if the triangle certainly misses the
+/// cylinder. The cylinder lies in the ball about t of radius
+/// sqrt(r^2 + (lz/2)^2) (for any R within 1e-6 of orthonormal); the test
+/// compares the distance from t to the triangle's box with that radius
+/// inflated by 1e-6 relative plus 1e-12 of the coordinates' magnitude, far
+/// above the rounding of this double arithmetic.
+struct Cull {
+  V c;
+  double reach;
+  explicit Cull(const scenes::TriCase& k) : c(k.pose.t) {
+    const double h = k.cyl.lz / 2;
+    const double mag =
+        std::fmax(std::fabs(c.x), std::fmax(std::fabs(c.y), std::fabs(c.z)));
+    reach = std::sqrt(k.cyl.radius * k.cyl.radius + h * h) * (1 + 1e-6) +
+            1e-12 * mag;
+  }
+  bool mayTouch(const T& t) const {
+    auto axis = [](double p, double a, double b, double cc) {
+      const double lo = std::fmin(a, std::fmin(b, cc));
+      const double hi = std::fmax(a, std::fmax(b, cc));
+      const double slack = 1e-12 * std::fmax(std::fabs(lo), std::fabs(hi));
+      return p < lo ? lo - p - slack : (p > hi ? p - hi - slack : 0.0);
+    };
+    const double dx = axis(c.x, t.a.x, t.b.x, t.c.x);
+    const double dy = axis(c.y, t.a.y, t.b.y, t.c.y);
+    const double dz = axis(c.z, t.a.z, t.b.z, t.c.z);
+    if (dx > reach || dy > reach || dz > reach) return false;
+    return dx * dx + dy * dy + dz * dz <= reach * reach * (1 + 1e-9);
+  }
+};
+
+}  // namespace tricyl::compare::meshes

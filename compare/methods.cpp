@@ -1,0 +1,323 @@
+// The methods tricyl-compare runs, the oracle glue and the case text format.
+#include <fcl/fcl.h>
+
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include "harness.h"
+#include "mesh_scenes.h"
+#include "oracle.h"
+#include "tricyl/triangle_cylinder.h"
+
+namespace tricyl::compare {
+
+namespace {
+
+constexpr const char* kMethodNames[kMethodCount] = {
+    "tricyl",          "tricyl_fast",        "tricyl_float",
+    "fcl_libccd_1e-6", "fcl_libccd_default", "fcl_indep"};
+
+using Bvh = fcl::BVHModel<fcl::OBBRSSd>;
+
+std::shared_ptr<void> buildBvh(const std::vector<Triangle<double>>& tris) {
+  auto m = std::make_shared<Bvh>();
+  m->beginModel(int(tris.size()), int(3 * tris.size()));
+  for (const auto& t : tris)
+    m->addTriangle(fcl::Vector3d(t.a.x, t.a.y, t.a.z),
+                   fcl::Vector3d(t.b.x, t.b.y, t.b.z),
+                   fcl::Vector3d(t.c.x, t.c.y, t.c.z));
+  m->endModel();
+  return m;
+}
+
+fcl::Transform3d toFcl(const Pose<double>& p) {
+  fcl::Transform3d tf = fcl::Transform3d::Identity();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) tf.linear()(i, j) = p.R[i][j];
+  tf.translation() = fcl::Vector3d(p.t.x, p.t.y, p.t.z);
+  return tf;
+}
+
+fcl::Vector3d toFcl(const Vec3<double>& v) { return {v.x, v.y, v.z}; }
+
+// Rounds through a volatile: GCC 12 at -O2/-O3 was seen to fold a
+// double -> float -> double round trip into the identity for some vector
+// lanes (see tests/triangle_cylinder_regressions_test.cpp,
+// FloatRoundTripFoldedByOptimizer); the float method would then be judged
+// on unrounded input. The volatile store forces the rounding.
+float f(double v) {
+  volatile float r = static_cast<float>(v);
+  return r;
+}
+Vec3<float> toFloat(const Vec3<double>& v) { return {f(v.x), f(v.y), f(v.z)}; }
+Vec3<double> widen(const Vec3<float>& v) { return {v.x, v.y, v.z}; }
+
+Cylinder<float> toFloat(const Cylinder<double>& c) {
+  return {f(c.radius), f(c.lz)};
+}
+Pose<float> toFloat(const Pose<double>& p) {
+  Pose<float> q{};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) q.R[i][j] = f(p.R[i][j]);
+  q.t = toFloat(p.t);
+  return q;
+}
+Triangle<float> toFloat(const Triangle<double>& t) {
+  return {toFloat(t.a), toFloat(t.b), toFloat(t.c)};
+}
+
+/// Exact oracle over a mesh: the cull is conservative, so only triangles it
+/// cannot rule out reach the rational test.
+bool meshOracle(const scenes::TriCase& k,
+                const std::vector<Triangle<double>>& tris) {
+  const meshes::Cull cull(k);
+  for (const auto& t : tris)
+    if (cull.mayTouch(t) && oracle::triangleCylinder(k.cyl, k.pose, t))
+      return true;
+  return false;
+}
+
+scenes::TriCase scaled(const scenes::TriCase& k, double factor) {
+  scenes::TriCase s = k;
+  s.cyl.radius *= factor;
+  s.cyl.lz *= factor;
+  return s;
+}
+
+}  // namespace
+
+const char* methodName(Method m) {
+  const int i = int(m);
+  return i >= 0 && i < kMethodCount ? kMethodNames[i] : "?";
+}
+
+std::optional<Method> parseMethod(std::string_view s) {
+  for (int i = 0; i < kMethodCount; ++i)
+    if (s == kMethodNames[i]) return Method(i);
+  return std::nullopt;
+}
+
+bool isFcl(Method m) {
+  return m == Method::kFclLibccd1e6 || m == Method::kFclLibccdDefault ||
+         m == Method::kFclIndep;
+}
+
+void prepareMesh(Mesh& mesh) {
+  mesh.tris_f.clear();
+  const double inf = std::numeric_limits<double>::infinity();
+  mesh.lo = {inf, inf, inf};
+  mesh.hi = {-inf, -inf, -inf};
+  for (const auto& t : mesh.tris) {
+    for (const auto* v : {&t.a, &t.b, &t.c}) {
+      mesh.lo = {std::fmin(mesh.lo.x, v->x), std::fmin(mesh.lo.y, v->y),
+                 std::fmin(mesh.lo.z, v->z)};
+      mesh.hi = {std::fmax(mesh.hi.x, v->x), std::fmax(mesh.hi.y, v->y),
+                 std::fmax(mesh.hi.z, v->z)};
+    }
+    mesh.tris_f.push_back(
+        {widen(toFloat(t.a)), widen(toFloat(t.b)), widen(toFloat(t.c))});
+  }
+  mesh.fcl_model = buildBvh(mesh.tris);
+}
+
+Case roundToFloat(const Case& c) {
+  Case r = c;
+  const Cylinder<float> cf = toFloat(c.k.cyl);
+  r.k.cyl = {cf.radius, cf.lz};
+  const Pose<float> pf = toFloat(c.k.pose);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) r.k.pose.R[i][j] = pf.R[i][j];
+  r.k.pose.t = widen(pf.t);
+  const Triangle<float> tf = toFloat(c.k.tri);
+  r.k.tri = {widen(tf.a), widen(tf.b), widen(tf.c)};
+  return r;
+}
+
+bool oracleTruth(const Case& c, bool float_input) {
+  if (c.mesh)
+    return meshOracle(c.k, float_input ? c.mesh->tris_f : c.mesh->tris);
+  return oracle::triangleCylinder(c.k.cyl, c.k.pose, c.k.tri);
+}
+
+namespace {
+bool oracleTruthScaled(const Case& c, bool float_input, double factor) {
+  const scenes::TriCase k = scaled(c.k, factor);
+  if (c.mesh) return meshOracle(k, float_input ? c.mesh->tris_f : c.mesh->tris);
+  return oracle::triangleCylinder(k.cyl, k.pose, k.tri);
+}
+}  // namespace
+
+double errorSize(const Case& c, bool truth, bool float_input) {
+  if (std::isfinite(c.k.delta)) return std::fabs(c.k.delta);
+  // Intersecting: shrink by (1 - s); disjoint: grow by (1 + s). Find the
+  // flip point on a log scale in [1e-18, cap].
+  constexpr double kCap = 1e6;
+  auto flips = [&](double s) {
+    const double factor = truth ? std::fmax(0.0, 1 - s) : 1 + s;
+    return oracleTruthScaled(c, float_input, factor) != truth;
+  };
+  double lo = 1e-18, hi = truth ? 1.0 : kCap;
+  if (!flips(hi)) return hi;
+  if (flips(lo)) return lo;
+  while (hi / lo > 1.03) {
+    const double mid = std::sqrt(lo * hi);
+    (flips(mid) ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+struct Evaluator::Impl {
+  fcl::detail::GJKSolver_libccd<double> ccd_1e6;
+  fcl::detail::GJKSolver_libccd<double> ccd_default;
+  fcl::detail::GJKSolver_indep<double> indep;
+  Impl() { ccd_1e6.collision_tolerance = 1e-6; }
+
+  bool triangle(Method m, const scenes::TriCase& k) {
+    switch (m) {
+      case Method::kTricyl:
+        return tryIntersect(k.cyl, k.pose, k.tri) == Answer::kIntersect;
+      case Method::kTricylFast:
+        return diagnostic::intersectUncertified(k.cyl, k.pose, k.tri);
+      case Method::kTricylFloat:
+        return tryIntersect(toFloat(k.cyl), toFloat(k.pose), toFloat(k.tri)) ==
+               Answer::kIntersect;
+      default:
+        break;
+    }
+    const fcl::Cylinderd cyl(k.cyl.radius, k.cyl.lz);
+    const fcl::Transform3d tf = toFcl(k.pose);
+    const fcl::Vector3d a = toFcl(k.tri.a), b = toFcl(k.tri.b),
+                        c = toFcl(k.tri.c);
+    switch (m) {
+      case Method::kFclLibccd1e6:
+        return ccd_1e6.shapeTriangleIntersect(cyl, tf, a, b, c, nullptr,
+                                              nullptr, nullptr);
+      case Method::kFclLibccdDefault:
+        return ccd_default.shapeTriangleIntersect(cyl, tf, a, b, c, nullptr,
+                                                  nullptr, nullptr);
+      case Method::kFclIndep:
+        return indep.shapeTriangleIntersect(cyl, tf, a, b, c, nullptr, nullptr,
+                                            nullptr);
+      default:
+        return false;
+    }
+  }
+
+  // The mesh scan for the tricyl methods: the conservative cull, then the
+  // kernel per triangle (what a user without a BVH would write).
+  template <class Fn>
+  static bool scan(const scenes::TriCase& k,
+                   const std::vector<Triangle<double>>& tris, Fn&& fn) {
+    const meshes::Cull cull(k);
+    for (const auto& t : tris)
+      if (cull.mayTouch(t) && fn(t)) return true;
+    return false;
+  }
+
+  bool mesh(Method m, const Case& c) {
+    const scenes::TriCase& k = c.k;
+    switch (m) {
+      case Method::kTricyl:
+        return scan(k, c.mesh->tris, [&](const Triangle<double>& t) {
+          return tryIntersect(k.cyl, k.pose, t) == Answer::kIntersect;
+        });
+      case Method::kTricylFast:
+        return scan(k, c.mesh->tris, [&](const Triangle<double>& t) {
+          return diagnostic::intersectUncertified(k.cyl, k.pose, t);
+        });
+      case Method::kTricylFloat: {
+        const Cylinder<float> cf = toFloat(k.cyl);
+        const Pose<float> pf = toFloat(k.pose);
+        return scan(k, c.mesh->tris_f, [&](const Triangle<double>& t) {
+          return tryIntersect(cf, pf, toFloat(t)) == Answer::kIntersect;
+        });
+      }
+      default:
+        break;
+    }
+    // fcl::collide with a one-cylinder object against the BVH model, the
+    // way a planner calls it; the request picks the solver and tolerance.
+    fcl::CollisionRequestd request;
+    if (m == Method::kFclLibccdDefault)
+      request.gjk_tolerance = fcl::constants<double>::gjk_default_tolerance();
+    if (m == Method::kFclIndep) request.gjk_solver_type = fcl::GST_INDEP;
+    fcl::CollisionResultd result;
+    const fcl::Cylinderd cyl(k.cyl.radius, k.cyl.lz);
+    const auto* model = static_cast<const Bvh*>(c.mesh->fcl_model.get());
+    fcl::collide(&cyl, toFcl(k.pose), model, fcl::Transform3d::Identity(),
+                 request, result);
+    return result.isCollision();
+  }
+};
+
+Evaluator::Evaluator() : impl_(std::make_unique<Impl>()) {}
+Evaluator::~Evaluator() = default;
+
+bool Evaluator::run(Method m, const Case& c) {
+  if (c.mesh) return impl_->mesh(m, c);
+  return impl_->triangle(m, c.k);
+}
+
+std::string formatCaseHex(const scenes::TriCase& k) {
+  std::string s;
+  char buf[40];
+  auto put = [&](double v) {
+    std::snprintf(buf, sizeof buf, "%a", v);
+    if (!s.empty()) s += ' ';
+    s += buf;
+  };
+  put(k.cyl.radius);
+  put(k.cyl.lz);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) put(k.pose.R[i][j]);
+  for (const auto* v : {&k.pose.t, &k.tri.a, &k.tri.b, &k.tri.c}) {
+    put(v->x);
+    put(v->y);
+    put(v->z);
+  }
+  return s;
+}
+
+std::optional<scenes::TriCase> parseCaseHex(std::string_view line) {
+  std::string s(line);
+  double v[23];
+  const char* p = s.c_str();
+  for (double& x : v) {
+    char* end = nullptr;
+    x = std::strtod(p, &end);
+    if (end == p) return std::nullopt;
+    p = end;
+  }
+  scenes::TriCase k;
+  k.cyl = {v[0], v[1]};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) k.pose.R[i][j] = v[2 + 3 * i + j];
+  k.pose.t = {v[11], v[12], v[13]};
+  k.tri = {{v[14], v[15], v[16]}, {v[17], v[18], v[19]}, {v[20], v[21], v[22]}};
+  k.feature = "replay";
+  return k;
+}
+
+std::vector<scenes::TriCase> readCaseFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open case file " + path);
+  std::vector<scenes::TriCase> out;
+  std::string line;
+  int lineno = 0;
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (line.rfind("case ", 0) != 0) continue;
+    auto k = parseCaseHex(std::string_view(line).substr(5));
+    if (!k)
+      throw std::runtime_error(path + ":" + std::to_string(lineno) +
+                               ": expected 23 numbers after 'case'");
+    out.push_back(*k);
+  }
+  return out;
+}
+
+}  // namespace tricyl::compare

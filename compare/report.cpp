@@ -1,0 +1,575 @@
+// Output files of tricyl-compare. Every number in report.md comes from the
+// same rows as results.csv / results.json.
+#include "report.h"
+
+#include <sys/stat.h>
+#include <sys/utsname.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace tricyl::compare {
+
+namespace {
+
+using nlohmann::json;
+
+struct Row {
+  std::string family;
+  Method method;
+  std::uint64_t cases, fp, fn, hangs;
+  double error_rate, max_clear, max_pen, ns_median, ns_p99;
+  std::uint64_t timed;
+};
+
+Row makeRow(const std::string& family, Method m, MethodStats ms) {
+  Row r{family,
+        m,
+        ms.cases,
+        ms.false_positives,
+        ms.false_negatives,
+        ms.hangs,
+        0,
+        ms.max_fp_size,
+        ms.max_fn_size,
+        kNaN,
+        kNaN,
+        ms.ns.size()};
+  r.error_rate = ms.cases ? double(ms.wrong()) / double(ms.cases) : 0.0;
+  r.ns_median = percentile(ms.ns, 50);
+  r.ns_p99 = percentile(ms.ns, 99);
+  return r;
+}
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+/// A number for the tables: integers plainly, others in 3 significant digits.
+std::string num(double v) {
+  if (std::isnan(v)) return "n/a";
+  if (v == 0) return "0";
+  if (std::fabs(v) >= 1e-3 && std::fabs(v) < 1e5) return fmt("%.3g", v);
+  return fmt("%.2e", v);
+}
+
+std::string pct(double v) { return fmt("%.3g %%", 100 * v); }
+
+json jnum(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+const char* kStageNames[] = {"early_out", "fast_path", "exact", "invalid",
+                             "extended"};
+
+void mkdirs(const std::string& dir) {
+  std::string cur;
+  std::stringstream ss(dir);
+  std::string part;
+  if (!dir.empty() && dir[0] == '/') cur = "/";
+  while (std::getline(ss, part, '/')) {
+    if (part.empty()) continue;
+    cur += part + "/";
+    mkdir(cur.c_str(), 0777);
+  }
+  struct stat st;
+  if (stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+    throw std::runtime_error("cannot create output folder " + dir);
+}
+
+std::string machine() {
+  std::string cpu = "unknown CPU";
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) {
+      cpu = line.substr(line.find(':') + 2);
+      break;
+    }
+  struct utsname u;
+  uname(&u);
+  return cpu + ", " + std::to_string(sysconf(_SC_NPROCESSORS_ONLN)) +
+         " online cores, " + u.sysname + " " + u.release + ", g++ " +
+         __VERSION__;
+}
+
+/// The floor on which zero error rates are drawn: a decade below the
+/// smallest nonzero rate, at most 1e-6.
+double floorFor(const std::vector<double>& rates) {
+  double lo = 1e-6 * 10;
+  for (double r : rates)
+    if (r > 0) lo = std::min(lo, r);
+  return std::pow(10.0, std::floor(std::log10(lo)) - 1);
+}
+
+const char* kColors[] = {"#000000", "#1f77b4", "#2ca02c",
+                         "#d62728", "#ff7f0e", "#9467bd"};
+
+/// Enhanced-text escape for gnuplot single-quoted strings: '_' and '^'
+/// would otherwise start sub/superscripts.
+std::string gpText(const std::string& t) {
+  std::string o;
+  for (char ch : t) {
+    if (ch == '_' || ch == '^' || ch == '{' || ch == '}' || ch == '@' ||
+        ch == '&')
+      o += '\\';
+    o += ch;
+  }
+  return o;
+}
+
+bool runGnuplot(const std::string& dir, const std::string& script) {
+  const std::string cmd =
+      "cd '" + dir + "' && gnuplot '" + script + "' >/dev/null 2>&1";
+  return std::system(cmd.c_str()) == 0;
+}
+
+bool haveGnuplot() {
+  return std::system("command -v gnuplot >/dev/null 2>&1") == 0;
+}
+
+}  // namespace
+
+std::vector<std::string> writeReport(const std::string& dir,
+                                     const std::vector<CaseSet>& sets,
+                                     RunResult& result,
+                                     const ReportInfo& info) {
+  mkdirs(dir);
+  const auto& methods = info.options.methods;
+  std::vector<std::string> figures;
+
+  // ---- rows: families, totals, sweeps
+  std::vector<std::size_t> family_sets, sweep_sets;
+  for (std::size_t s = 0; s < sets.size(); ++s)
+    (sets[s].kind == "sweep" ? sweep_sets : family_sets).push_back(s);
+  std::vector<Row> rows, totals;
+  std::map<std::pair<std::string, int>, Row> by_key;
+  for (std::size_t s : family_sets)
+    for (Method m : methods) {
+      rows.push_back(makeRow(sets[s].name, m, result.sets[s].method[int(m)]));
+      by_key[{sets[s].name, int(m)}] = rows.back();
+    }
+  for (Method m : methods) {
+    MethodStats all;
+    for (std::size_t s : family_sets) {
+      const MethodStats& ms = result.sets[s].method[int(m)];
+      all.cases += ms.cases;
+      all.false_positives += ms.false_positives;
+      all.false_negatives += ms.false_negatives;
+      all.hangs += ms.hangs;
+      all.max_fp_size = std::max(all.max_fp_size, ms.max_fp_size);
+      all.max_fn_size = std::max(all.max_fn_size, ms.max_fn_size);
+      all.ns.insert(all.ns.end(), ms.ns.begin(), ms.ns.end());
+    }
+    totals.push_back(makeRow("all", m, std::move(all)));
+  }
+  struct SRow {
+    std::string sweep;
+    double param;
+    Row row;
+  };
+  std::vector<SRow> srows;
+  for (std::size_t s : sweep_sets)
+    for (Method m : methods)
+      srows.push_back(
+          {sets[s].name, sets[s].param,
+           makeRow(sets[s].name, m, result.sets[s].method[int(m)])});
+
+  // ---- results.csv
+  {
+    std::ofstream csv(dir + "/results.csv");
+    csv << "family,method,cases,false_positives,false_negatives,hangs,errors,"
+           "error_rate,max_missed_clearance,max_missed_penetration,ns_median,"
+           "ns_p99,timed_queries\n";
+    for (const Row& r : rows)
+      csv << r.family << ',' << methodName(r.method) << ',' << r.cases << ','
+          << r.fp << ',' << r.fn << ',' << r.hangs << ','
+          << (r.fp + r.fn + r.hangs) << ',' << fmt("%.6g", r.error_rate) << ','
+          << fmt("%.6g", r.max_clear) << ',' << fmt("%.6g", r.max_pen) << ','
+          << fmt("%.1f", r.ns_median) << ',' << fmt("%.1f", r.ns_p99) << ','
+          << r.timed << '\n';
+  }
+  // ---- stability.csv
+  {
+    std::ofstream csv(dir + "/stability.csv");
+    csv << "sweep,param,method,cases,false_positives,false_negatives,hangs,"
+           "error_rate,ns_median\n";
+    for (const SRow& s : srows)
+      csv << s.sweep << ',' << fmt("%.6g", s.param) << ','
+          << methodName(s.row.method) << ',' << s.row.cases << ',' << s.row.fp
+          << ',' << s.row.fn << ',' << s.row.hangs << ','
+          << fmt("%.6g", s.row.error_rate) << ','
+          << fmt("%.1f", s.row.ns_median) << '\n';
+  }
+  // ---- hangs.txt (always written, so that "no hangs" is visible)
+  {
+    std::ofstream h(dir + "/hangs.txt");
+    h << "# tricyl-compare hangs: queries that did not return within "
+      << info.options.timeout_s << " s and were killed.\n"
+      << "# Each 'case' line is bit-exact (hex floats): r lz R00 R01 R02 R10 "
+         "R11 R12 R20 R21 R22 tx ty tz ax ay az bx by bz cx cy cz\n"
+      << "# (fcl::Cylinderd(r, lz); pose linear() = R row-major, "
+         "translation() = t; triangle a, b, c).\n"
+      << "# Replay: tricyl-compare --replay hangs.txt --methods "
+         "fcl_libccd_default --out DIR\n";
+    if (result.hangs.empty()) h << "# none in this run\n";
+    for (const HangRecord& hr : result.hangs) {
+      const Case c = sets[hr.set].make(hr.index);
+      h << "# set=" << sets[hr.set].name << " index=" << hr.index
+        << " seed=" << info.seed << " method=" << methodName(hr.method)
+        << " feature=" << c.k.feature;
+      if (c.mesh) {
+        h << " mesh=" << c.mesh->name
+          << " (mesh case: the triangle fields are unused)\n# ";
+      } else {
+        h << "\ncase ";
+      }
+      h << formatCaseHex(c.k) << '\n';
+    }
+  }
+
+  // ---- results.json
+  {
+    json j;
+    j["tool"] = "tricyl-compare";
+    j["command"] = info.command_line;
+    j["seed"] = info.seed;
+    j["cases_per_family"] = info.cases;
+    j["mesh_cases"] = info.mesh_cases;
+    j["sweep_cases_per_point"] = info.sweep_cases;
+    j["timeout_s"] = info.options.timeout_s;
+    j["workers"] = info.options.workers;
+    j["wall_seconds"] = result.wall_seconds;
+    j["machine"] = machine();
+    j["meshes"] = info.meshes;
+    j["timing_note"] =
+        "ns per query over answered queries only; hung queries are excluded "
+        "from ns_median and ns_p99 and counted in hangs";
+    json jm = json::array();
+    for (Method m : methods) jm.push_back(methodName(m));
+    j["methods"] = jm;
+    auto rowJson = [](const Row& r) {
+      return json{{"family", r.family},
+                  {"method", methodName(r.method)},
+                  {"cases", r.cases},
+                  {"false_positives", r.fp},
+                  {"false_negatives", r.fn},
+                  {"hangs", r.hangs},
+                  {"errors", r.fp + r.fn + r.hangs},
+                  {"error_rate", r.error_rate},
+                  {"max_missed_clearance", r.max_clear},
+                  {"max_missed_penetration", r.max_pen},
+                  {"ns_median", jnum(r.ns_median)},
+                  {"ns_p99", jnum(r.ns_p99)},
+                  {"timed_queries", r.timed}};
+    };
+    json jr = json::array(), jt = json::array();
+    for (const Row& r : rows) jr.push_back(rowJson(r));
+    for (const Row& r : totals) jt.push_back(rowJson(r));
+    j["results"] = jr;
+    j["totals"] = jt;
+    json js = json::array(), ja = json::array();
+    for (std::size_t s : family_sets) {
+      const SetStats& st = result.sets[s];
+      json e{{"family", sets[s].name},
+             {"cases", st.cases},
+             {"oracle_hits", st.hits}};
+      std::uint64_t staged = 0;
+      for (auto v : st.stage) staged += v;
+      for (int k = 0; k < 5; ++k)
+        e[kStageNames[k]] = staged ? double(st.stage[k]) / double(staged) : 0.0;
+      e["staged_queries"] = staged;
+      js.push_back(e);
+      for (Method m : methods) {
+        if (m == Method::kTricyl) continue;
+        const MethodStats& ms = st.method[int(m)];
+        ja.push_back({{"family", sets[s].name},
+                      {"method", methodName(m)},
+                      {"both_hit", ms.agree[1][1]},
+                      {"both_miss", ms.agree[0][0]},
+                      {"tricyl_hit_method_miss", ms.agree[1][0]},
+                      {"tricyl_miss_method_hit", ms.agree[0][1]},
+                      {"method_hang", ms.hangs}});
+      }
+    }
+    j["stages"] = js;
+    j["agreement"] = ja;
+    json jsw = json::array();
+    for (const SRow& s : srows) {
+      json e = rowJson(s.row);
+      e.erase("family");
+      e["sweep"] = s.sweep;
+      e["param"] = s.param;
+      jsw.push_back(e);
+    }
+    j["stability"] = jsw;
+    json jh = json::array();
+    for (const HangRecord& hr : result.hangs)
+      jh.push_back(
+          {{"set", sets[hr.set].name},
+           {"index", hr.index},
+           {"method", methodName(hr.method)},
+           {"case_hex", formatCaseHex(sets[hr.set].make(hr.index).k)}});
+    j["hangs"] = jh;
+    std::ofstream(dir + "/results.json") << j.dump(2) << '\n';
+  }
+
+  // ---- figures
+  const bool gp = info.plots && haveGnuplot();
+  std::vector<std::string> fams;
+  for (std::size_t s : family_sets) fams.push_back(sets[s].name);
+  {
+    std::vector<double> rates;
+    for (const Row& r : rows) rates.push_back(r.error_rate);
+    const double floor = floorFor(rates);
+    std::ofstream g(dir + "/error_vs_time.gp");
+    g << "# gnuplot script written by tricyl-compare; run: gnuplot "
+         "error_vs_time.gp\n"
+      << "set terminal pngcairo size 1100,750 font ',10'\n"
+      << "set output 'error_vs_time.png'\n"
+      << "set logscale xy\nset format y '10^{%L}'\nset format x '10^{%L}'\n"
+      << "set xlabel 'median ns per query (log)'\n"
+      << "set ylabel 'error rate = (false positives + false negatives + "
+         "hangs) / cases (log)'\n"
+      << "set title 'Error rate against time per query: one point per method "
+         "x family'\n"
+      << "set key outside right top box\nset grid\n"
+      << "set arrow from graph 0, first " << floor << " to graph 1, first "
+      << floor << " nohead dt 2 lc rgb '#888888'\n"
+      << "set yrange [" << floor / 4 << ":1.5]\n";
+    // Data: per method a block "ns rate pointtype family".
+    for (std::size_t mi = 0; mi < methods.size(); ++mi) {
+      g << "$m" << mi << " << EOD\n";
+      for (const Row& r : rows)
+        if (r.method == methods[mi] && std::isfinite(r.ns_median)) {
+          const auto fi =
+              std::find(fams.begin(), fams.end(), r.family) - fams.begin();
+          g << r.ns_median << ' ' << (r.error_rate > 0 ? r.error_rate : floor)
+            << ' ' << (fi + 4) << ' ' << r.family << ' '
+            << (r.error_rate > 0 ? 1 : 0) << '\n';
+        }
+      g << "EOD\n";
+    }
+    g << "plot \\\n";
+    for (std::size_t mi = 0; mi < methods.size(); ++mi)
+      g << "  $m" << mi
+        << " using 1:2:3 with points pt variable ps 1.6 lc rgb '"
+        << kColors[int(methods[mi]) % 6] << "' notitle, \\\n";
+    for (std::size_t mi = 0; mi < methods.size(); ++mi)
+      g << "  NaN with points pt 5 ps 1.6 lc rgb '"
+        << kColors[int(methods[mi]) % 6]
+        << "' title 'method: " << gpText(methodName(methods[mi])) << "', \\\n";
+    for (std::size_t fi = 0; fi < fams.size(); ++fi)
+      g << "  NaN with points pt " << (fi + 4) << " ps 1.6 lc rgb '#555555' "
+        << "title 'family: " << gpText(fams[fi]) << "', \\\n";
+    g << "  NaN with lines dt 2 lc rgb '#888888' title 'error = 0: drawn on "
+         "the floor "
+      << num(floor) << "'\n";
+    g.close();
+    if (gp && runGnuplot(dir, "error_vs_time.gp"))
+      figures.push_back(dir + "/error_vs_time.png");
+  }
+  std::set<std::string> sweep_names;
+  for (const SRow& s : srows) sweep_names.insert(s.sweep);
+  const std::map<std::string, std::string> xlabels = {
+      {"delta", "relative offset |delta| of the touching feature (log)"},
+      {"translation", "translation |t| of both shapes (log), |delta| = 1e-3"},
+      {"aspect", "aspect ratio lz / (2 r) (log), |delta| = 1e-3"}};
+  for (const std::string& sw : sweep_names) {
+    std::vector<double> rates;
+    for (const SRow& s : srows)
+      if (s.sweep == sw) rates.push_back(s.row.error_rate);
+    const double floor = floorFor(rates);
+    const std::string name = "stability_" + sw;
+    std::ofstream g(dir + "/" + name + ".gp");
+    g << "# gnuplot script written by tricyl-compare\n"
+      << "set terminal pngcairo size 900,600 font ',10'\n"
+      << "set output '" << name << ".png'\n"
+      << "set logscale xy\nset format y '10^{%L}'\nset format x '10^{%L}'\n"
+      << "set xlabel '" << (xlabels.count(sw) ? xlabels.at(sw) : sw + " (log)")
+      << "'\n"
+      << "set ylabel 'error rate (log)'\nset grid\n"
+      << "set title 'Stability: error rate against " << sw
+      << " (near-touching cases)'\nset key outside right top box\n"
+      << "set arrow from graph 0, first " << floor << " to graph 1, first "
+      << floor << " nohead dt 2 lc rgb '#888888'\n"
+      << "set yrange [" << floor / 4 << ":1.5]\n";
+    for (std::size_t mi = 0; mi < methods.size(); ++mi) {
+      g << "$m" << mi << " << EOD\n";
+      for (const SRow& s : srows)
+        if (s.sweep == sw && s.row.method == methods[mi])
+          g << s.param << ' '
+            << (s.row.error_rate > 0 ? s.row.error_rate : floor) << '\n';
+      g << "EOD\n";
+    }
+    g << "plot \\\n";
+    for (std::size_t mi = 0; mi < methods.size(); ++mi)
+      g << "  $m" << mi << " using 1:2 with linespoints pt " << (mi + 4)
+        << " lw 1.5 lc rgb '" << kColors[int(methods[mi]) % 6] << "' title '"
+        << gpText(methodName(methods[mi])) << "', \\\n";
+    g << "  NaN with lines dt 2 lc rgb '#888888' title 'error = 0: drawn on "
+         "the floor "
+      << num(floor) << "'\n";
+    g.close();
+    if (gp && runGnuplot(dir, name + ".gp"))
+      figures.push_back(dir + "/" + name + ".png");
+  }
+
+  // ---- report.md
+  std::ofstream md(dir + "/report.md");
+  md << "# tricyl-compare report\n\n"
+     << "Command: `" << info.command_line << "`  \n"
+     << "Seed " << info.seed << ", " << info.cases
+     << " cases per triangle family";
+  if (info.mesh_cases) md << ", " << info.mesh_cases << " mesh cases";
+  if (info.sweep_cases)
+    md << ", " << info.sweep_cases << " cases per stability point";
+  md << "; " << info.options.workers << " worker processes; time limit "
+     << info.options.timeout_s << " s per FCL query; wall time "
+     << fmt("%.1f", result.wall_seconds) << " s.  \n"
+     << "Machine: " << machine() << ".\n\n"
+     << "Every answer is settled by the exact oracle (GMP rationals, "
+        "`compare/oracle.h`); `tricyl_float` is settled on the float-rounded "
+        "input it actually answers. An error is a false positive, a false "
+        "negative or a hang; the error rate is errors / cases. **Timings "
+        "exclude hung queries** (a hung query has no time; it is counted in "
+        "`hangs`). See compare/README.md for how to read each column.\n\n";
+  if (!gp)
+    md << "> gnuplot was not run (absent or --no-plots): the figures' "
+          "scripts (*.gp) are written; run `gnuplot FILE.gp` in this "
+          "folder.\n\n";
+
+  auto ratioTo = [&](const Row& r) -> std::string {
+    auto it = by_key.find({r.family, int(Method::kTricyl)});
+    if (it == by_key.end() || !(it->second.ns_median > 0) ||
+        !std::isfinite(r.ns_median))
+      return "n/a";
+    return fmt("%.2f", r.ns_median / it->second.ns_median);
+  };
+  md << "## Summary over all families\n\n"
+     << "| method | cases | false pos. | false neg. | hangs | error rate | "
+        "ns median | ns p99 |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const Row& r : totals)
+    md << "| " << methodName(r.method) << " | " << r.cases << " | " << r.fp
+       << " | " << r.fn << " | " << r.hangs << " | " << pct(r.error_rate)
+       << " | " << num(r.ns_median) << " | " << num(r.ns_p99) << " |\n";
+  md << "\n## Per family\n\n"
+     << "Max missed clearance / penetration: the largest error size among "
+        "the false positives / false negatives (relative: |delta| for near "
+        "cases, else the relative scaling of the cylinder that flips the "
+        "exact answer). `x tricyl`: median time relative to `tricyl` on the "
+        "same family.\n\n";
+  for (std::size_t s : family_sets) {
+    md << "### " << sets[s].name << "\n\n"
+       << "| method | cases | false pos. | false neg. | hangs | error rate | "
+          "max missed clearance | max missed penetration | ns median | ns p99 "
+          "| x tricyl |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+          "---:|\n";
+    for (const Row& r : rows)
+      if (r.family == sets[s].name)
+        md << "| " << methodName(r.method) << " | " << r.cases << " | " << r.fp
+           << " | " << r.fn << " | " << r.hangs << " | " << pct(r.error_rate)
+           << " | " << num(r.max_clear) << " | " << num(r.max_pen) << " | "
+           << num(r.ns_median) << " | " << num(r.ns_p99) << " | " << ratioTo(r)
+           << " |\n";
+    md << "\n";
+  }
+  md << "## Which stage of tricyl decided\n\n"
+     << "Share of the `tricyl` queries per deciding stage (mesh cases are "
+        "many kernel calls and are not staged).\n\n"
+     << "| family | cases | oracle hits | early-out | fast path | extended "
+        "| exact fallback |\n|---|---:|---:|---:|---:|---:|---:|\n";
+  for (std::size_t s : family_sets) {
+    const SetStats& st = result.sets[s];
+    std::uint64_t staged = 0;
+    for (auto v : st.stage) staged += v;
+    auto share = [&](Stage k) {
+      return staged ? pct(double(st.stage[int(k)]) / double(staged))
+                    : std::string("n/a");
+    };
+    md << "| " << sets[s].name << " | " << st.cases << " | " << st.hits << " | "
+       << share(Stage::kEarlyOut) << " | " << share(Stage::kFastPath) << " | "
+       << share(Stage::kExtended) << " | " << share(Stage::kExact) << " |\n";
+  }
+  md << "\n## Agreement with tricyl\n\n"
+     << "tricyl's answer is exact, so where another method disagrees with "
+        "it, that method is wrong (for `tricyl_float`, the input itself "
+        "differs). Columns: both say hit, both say miss, tricyl hit but the "
+        "method missed, tricyl missed but the method hit, the method hung.\n\n"
+     << "| family | method | both hit | both miss | tricyl hit / method miss "
+        "| tricyl miss / method hit | hangs | agreement |\n"
+        "|---|---|---:|---:|---:|---:|---:|---:|\n";
+  for (std::size_t s : family_sets)
+    for (Method m : methods) {
+      if (m == Method::kTricyl) continue;
+      const MethodStats& ms = result.sets[s].method[int(m)];
+      const double agree =
+          ms.cases ? double(ms.agree[0][0] + ms.agree[1][1]) / double(ms.cases)
+                   : 0;
+      md << "| " << sets[s].name << " | " << methodName(m) << " | "
+         << ms.agree[1][1] << " | " << ms.agree[0][0] << " | " << ms.agree[1][0]
+         << " | " << ms.agree[0][1] << " | " << ms.hangs << " | " << pct(agree)
+         << " |\n";
+    }
+  if (!sweep_names.empty()) {
+    md << "\n## Stability sweeps\n\n"
+       << "Error rate per sweep point (near-touching cases, "
+       << info.sweep_cases
+       << " per point; see compare/sweeps.h). Data: stability.csv.\n\n";
+    for (const std::string& sw : sweep_names) {
+      md << "### " << sw << "\n\n| " << sw << " |";
+      for (Method m : methods) md << ' ' << methodName(m) << " |";
+      md << "\n|---:|";
+      for (std::size_t i = 0; i < methods.size(); ++i) md << "---:|";
+      md << '\n';
+      std::vector<double> params;
+      for (const SRow& s : srows)
+        if (s.sweep == sw &&
+            std::find(params.begin(), params.end(), s.param) == params.end())
+          params.push_back(s.param);
+      for (double p : params) {
+        md << "| " << num(p) << " |";
+        for (Method m : methods)
+          for (const SRow& s : srows)
+            if (s.sweep == sw && s.param == p && s.row.method == m)
+              md << ' ' << pct(s.row.error_rate)
+                 << (s.row.hangs
+                         ? " (" + std::to_string(s.row.hangs) + " hangs)"
+                         : std::string())
+                 << " |";
+        md << '\n';
+      }
+      md << "\n![" << sw << "](stability_" << sw << ".png)\n\n";
+    }
+  }
+  md << "\n## Hangs\n\n";
+  if (result.hangs.empty()) {
+    md << "No query exceeded the time limit in this run.\n";
+  } else {
+    md << result.hangs.size()
+       << " queries did not return within the time limit; the worker was "
+          "killed and restarted after each, and each is counted as a wrong "
+          "answer in `hangs`. The cases are in `hangs.txt`, bit-exact (replay "
+          "with `tricyl-compare --replay hangs.txt`).\n\n"
+          "| set | index | method |\n|---|---:|---|\n";
+    for (std::size_t i = 0; i < result.hangs.size() && i < 50; ++i)
+      md << "| " << sets[result.hangs[i].set].name << " | "
+         << result.hangs[i].index << " | " << methodName(result.hangs[i].method)
+         << " |\n";
+  }
+  md << "\n## Figures\n\n![error rate against time](error_vs_time.png)\n\n"
+     << "Zero error rates cannot be drawn on a log axis: they are drawn on "
+        "the dashed floor line, as the legend says.\n";
+  return figures;
+}
+
+}  // namespace tricyl::compare
