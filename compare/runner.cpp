@@ -12,6 +12,7 @@
 // of workers or on the scheduling; only the timings do.
 #include "runner.h"
 
+#include <fenv.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -123,6 +124,9 @@ double timeQuery(Fn&& fn, bool* answer) {
 [[noreturn]] void childMain(const std::vector<CaseSet>& sets,
                             const RunOptions& opt, const Unit& unit, int fd) {
   signal(SIGPIPE, SIG_DFL);
+  // FCL is measured as users run it: in the default floating-point
+  // environment, even if the parent (a test) enabled FP traps.
+  fedisableexcept(FE_ALL_EXCEPT);
   Writer out(fd);
   Evaluator ev;
   const CaseSet& set = sets[unit.set];
@@ -390,6 +394,18 @@ RunResult runAll(const std::vector<CaseSet>& sets, const RunOptions& opt) {
       } else if (n == 0) {  // EOF: the child has exited
         const bool ok = w.done;
         const Unit u = w.unit;
+        if (!ok && w.start_pending) {
+          // Died inside an FCL call: recorded like a hang (a query that
+          // never answered), with a note on stderr.
+          std::fprintf(stderr,
+                       "\ntricyl-compare: %s crashed on set '%s' case %llu; "
+                       "counted in hangs\n",
+                       methodName(Method(w.start.method)),
+                       sets[w.start.set].name.c_str(),
+                       (unsigned long long)w.start.index);
+          w.start_time = Clock::now() - timeout - timeout;
+          continue;  // handled below as a timeout (kill is harmless)
+        }
         reap(w, false);
         if (!ok)
           throw std::runtime_error(

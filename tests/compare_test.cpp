@@ -1,0 +1,374 @@
+// Tests of the comparison harness (issue 4) and its time limit (issue 9):
+// the oracle on hand cases, the near generator's claimed clearance checked
+// exactly, the output files of a small end-to-end run, and the libccd hang
+// of issue 9 detected and recorded within the time limit.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "harness.h"
+#include "oracle.h"
+#include "runner.h"
+#include "scenes.h"
+#include "test_support.h"
+
+namespace tricyl {
+namespace {
+
+using compare::Case;
+using compare::CaseSet;
+using compare::Method;
+using scenes::TriCase;
+
+Triangle<double> tri(Vec3<double> a, Vec3<double> b, Vec3<double> c) {
+  return {a, b, c};
+}
+
+// ------------------------------------------------------------ the oracle
+
+// Hand cases with dyadic inputs, each decided by inspection. Cylinder r = 1,
+// lz = 2 (|z| <= 1) at the identity unless stated.
+TEST(CompareOracle, HandCases) {
+  const Cylinder<double> cyl{1, 2};
+  const Pose<double> id = identityPose<double>();
+  // Far away.
+  EXPECT_FALSE(
+      oracle::triangleCylinder(cyl, id, tri({5, 5, 5}, {6, 5, 5}, {5, 6, 5})));
+  // Through the axis: a large triangle in the plane z = 0.
+  EXPECT_TRUE(oracle::triangleCylinder(
+      cyl, id, tri({-4, -4, 0}, {4, -4, 0}, {0, 4, 0})));
+  // A vertex exactly on the side (touching counts).
+  EXPECT_TRUE(
+      oracle::triangleCylinder(cyl, id, tri({1, 0, 0}, {2, 1, 0}, {2, -1, 0})));
+  // The same pushed out by 2^-40: disjoint.
+  EXPECT_FALSE(oracle::triangleCylinder(
+      cyl, id, tri({1 + 0x1p-40, 0, 0}, {2, 1, 0}, {2, -1, 0})));
+  // An edge touching the rim circle at (1, 0, 1), in the cap plane.
+  EXPECT_TRUE(
+      oracle::triangleCylinder(cyl, id, tri({1, -1, 1}, {1, 1, 1}, {2, 0, 3})));
+  // A face in the cap plane z = 1 over the disk; then lifted by 2^-50.
+  EXPECT_TRUE(oracle::triangleCylinder(
+      cyl, id, tri({-0.5, -0.5, 1}, {0.5, -0.5, 1}, {0, 0.5, 1})));
+  EXPECT_FALSE(oracle::triangleCylinder(
+      cyl, id,
+      tri({-0.5, -0.5, 1 + 0x1p-50}, {0.5, -0.5, 1 + 0x1p-50},
+          {0, 0.5, 1 + 0x1p-50})));
+  // A triangle whose plane contains the axis, passing beside it: the
+  // projection is a segment through the disk, so it meets the cylinder.
+  EXPECT_TRUE(oracle::triangleCylinder(
+      cyl, id, tri({-3, 0, -3}, {3, 0, -3}, {0, 0, 3})));
+  // The plane contains the axis but the triangle is beyond the rim corner:
+  // the segment {x = 2 .. 3, y = 0}: disjoint.
+  EXPECT_FALSE(oracle::triangleCylinder(
+      cyl, id, tri({2, 0, -3}, {3, 0, -3}, {2, 0, 3})));
+  // Degenerate: a point inside; a segment crossing above the cap.
+  EXPECT_TRUE(
+      oracle::triangleCylinder(cyl, id, tri({0, 0, 0}, {0, 0, 0}, {0, 0, 0})));
+  EXPECT_FALSE(oracle::triangleCylinder(
+      cyl, id, tri({-2, 0, 1.5}, {2, 0, 1.5}, {0, 0, 1.5})));
+  // A posed cylinder: axis along world x (R maps local z to world x),
+  // translated by (8, 0, 0); the triangle crosses x = 8 + 1 at y = 0.
+  Pose<double> p{};
+  p.R[0][2] = 1;   // world x = local z
+  p.R[1][1] = 1;   // world y = local y
+  p.R[2][0] = -1;  // world z = -local x
+  p.t = {8, 0, 0};
+  EXPECT_TRUE(oracle::triangleCylinder(
+      cyl, p, tri({9, -0.5, 0}, {9, 0.5, 0}, {10, 0, 0})));
+  EXPECT_FALSE(oracle::triangleCylinder(
+      cyl, p, tri({9.25, -0.5, 0}, {9.25, 0.5, 0}, {10, 0, 0})));
+}
+
+// ------------------------------------------------------ generator claims
+
+TriCase scaledCyl(TriCase k, double f) {
+  k.cyl.radius *= f;
+  k.cyl.lz *= f;
+  return k;
+}
+
+// Every near feature is built so that, in the cylinder frame, the triangle
+// meets the cylinder scaled about its centre by f iff f >= 1 + delta (the
+// touching feature is the triangle's closest point to the scaled surface;
+// see nearCase in scenes.h). The world mapping rounds, so the claim holds to
+// an accuracy eta of a few ulps of the coordinates relative to the feature
+// size: eta = 64 eps max|coordinate| / min(r, lz / 2). Checked exactly with
+// the GMP oracle on both sides of 1 + delta.
+TEST(CompareGenerators, NearCasesHaveTheClaimedClearance) {
+  const std::uint64_t seed = test::baseSeed();
+  SCOPED_TRACE(test::seedTrace(seed));
+  const long n = test::scaled(3000);
+  long checked = 0, below_resolution = 0;
+  for (long i = 0; i < n; ++i) {
+    const TriCase k = scenes::generate(scenes::Family::kNear, seed, i);
+    ASSERT_TRUE(std::isfinite(k.delta)) << "index " << i;
+    double mag = 0;
+    for (const auto* v : {&k.pose.t, &k.tri.a, &k.tri.b, &k.tri.c})
+      mag = std::fmax(mag,
+                      std::fmax(std::fabs(v->x),
+                                std::fmax(std::fabs(v->y), std::fabs(v->z))));
+    const double size = std::fmin(k.cyl.radius, k.cyl.lz / 2);
+    const double eta = 64 * 0x1p-52 * mag / size;
+    if (std::fabs(k.delta) <= 2 * eta) {
+      ++below_resolution;
+      continue;
+    }
+    ++checked;
+    const double f_out = (1 + k.delta) * (1 - eta);  // just below the flip
+    const double f_in = (1 + k.delta) * (1 + eta);   // just above it
+    const TriCase lo = scaledCyl(k, f_out), hi = scaledCyl(k, f_in);
+    EXPECT_FALSE(oracle::triangleCylinder(lo.cyl, lo.pose, lo.tri))
+        << "index " << i << " feature " << k.feature << " delta " << k.delta;
+    EXPECT_TRUE(oracle::triangleCylinder(hi.cyl, hi.pose, hi.tri))
+        << "index " << i << " feature " << k.feature << " delta " << k.delta;
+    // And so the unscaled case is on the side delta's sign says.
+    EXPECT_EQ(oracle::triangleCylinder(k.cyl, k.pose, k.tri), k.delta < 0)
+        << "index " << i << " feature " << k.feature << " delta " << k.delta;
+  }
+  // Offsets of 1e-15 and a few ulps are below the construction's accuracy;
+  // everything from 1e-1 to about 1e-13 must have been checked.
+  EXPECT_GT(checked, n / 2);
+  RecordProperty("checked", int(checked));
+  RecordProperty("below_resolution", int(below_resolution));
+}
+
+// The sets are a pure function of (seed, index): the basis of "results do
+// not depend on the thread count".
+TEST(CompareGenerators, CasesAreDeterministic) {
+  for (auto f : scenes::kAllFamilies)
+    for (std::uint64_t i : {0u, 7u, 1234u}) {
+      const TriCase a = scenes::generate(f, 5, i),
+                    b = scenes::generate(f, 5, i);
+      EXPECT_EQ(compare::formatCaseHex(a), compare::formatCaseHex(b));
+    }
+}
+
+TEST(CompareCaseText, HexRoundTripIsBitExact) {
+  for (auto f : scenes::kAllFamilies) {
+    const TriCase k = scenes::generate(f, 11, 3);
+    const auto back = compare::parseCaseHex(compare::formatCaseHex(k));
+    ASSERT_TRUE(back.has_value());
+    EXPECT_EQ(compare::formatCaseHex(*back), compare::formatCaseHex(k));
+    EXPECT_EQ(std::memcmp(&back->tri, &k.tri, sizeof k.tri), 0);
+    EXPECT_EQ(std::memcmp(&back->pose, &k.pose, sizeof k.pose), 0);
+  }
+  EXPECT_FALSE(compare::parseCaseHex("1 2 3").has_value());
+}
+
+// -------------------------------------------------- issue 9: the hang
+
+// The case of issue 9, bit-exact: a disc (r ~ 778, lz ~ 1.06e-6) whose rim
+// edge the triangle crosses. GJKSolver_libccd<double> with its default
+// tolerance (~2e-14) never returns on it (libccd's MPR has no iteration
+// cap); the harness must kill the query at its time limit, count it in
+// `hangs`, and go on.
+TriCase issue9Case() {
+  TriCase k;
+  k.cyl = {0x1.8523b2c7f16bfp+9, 0x1.1d3482e4f382bp-20};
+  const double R[3][3] = {
+      {0x1.48b62eb9de056p-2, -0x1.5f07bdb4e0192p-1, -0x1.4e872644fc344p-1},
+      {0x1.5c2a442996f94p-2, 0x1.746386dd0c053p-1, -0x1.313b183115a55p-1},
+      {0x1.c493d98a71998p-1, -0x1.f850245fded6p-6, 0x1.ddc88111b7d02p-2}};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) k.pose.R[i][j] = R[i][j];
+  k.pose.t = {-0x1.51bb1180c6b4p-1, 0x1.a407417745a74p+0, 0x1.286f93e83346p-1};
+  k.tri = {
+      {-0x1.3534e5984faf4p+6, -0x1.a6f71157db70ep+8, -0x1.44a19c5402542p+9},
+      {-0x1.6fc68327e9913p+7, -0x1.4d2ce616c4b6cp+8, -0x1.55e5b744efdp+9},
+      {-0x1.5d58739ed8ec2p+6, -0x1.6c8a172168b19p+8, -0x1.3777f50c50d2cp+9}};
+  k.feature = "issue9";
+  return k;
+}
+
+TEST(CompareTimeLimit, Issue9HangIsDetectedWithinTheLimit) {
+  const TriCase k = issue9Case();
+  ASSERT_TRUE(oracle::triangleCylinder(k.cyl, k.pose, k.tri));
+  std::vector<CaseSet> sets = {
+      {"family", "issue9", compare::kNaN, 1, [k](std::uint64_t) {
+         return Case{k, nullptr};
+       }}};
+  compare::RunOptions opt;
+  opt.methods = {Method::kTricyl, Method::kFclLibccdDefault,
+                 Method::kFclLibccd1e6};
+  opt.workers = 1;
+  opt.timeout_s = 0.5;
+  opt.progress = false;
+  const auto t0 = std::chrono::steady_clock::now();
+  compare::RunResult r = compare::runAll(sets, opt);
+  const double secs =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+          .count();
+  // The limit plus fork and poll slack, far from "never".
+  EXPECT_LT(secs, 5.0);
+  ASSERT_EQ(r.hangs.size(), 1u);
+  EXPECT_EQ(r.hangs[0].method, Method::kFclLibccdDefault);
+  const auto& st = r.sets[0];
+  EXPECT_EQ(st.cases, 1u);
+  EXPECT_EQ(st.method[int(Method::kFclLibccdDefault)].hangs, 1u);
+  EXPECT_EQ(st.method[int(Method::kFclLibccdDefault)].ns.size(), 0u)
+      << "a hung query must not be timed";
+  // The methods after the hung one still ran (the worker was restarted).
+  EXPECT_EQ(st.method[int(Method::kFclLibccd1e6)].cases, 1u);
+  EXPECT_EQ(st.method[int(Method::kFclLibccd1e6)].hangs, 0u);
+  // tricyl answers it, correctly.
+  EXPECT_EQ(st.method[int(Method::kTricyl)].wrong(), 0u);
+}
+
+// The statistics do not depend on the number of workers.
+TEST(CompareRunner, CountsDoNotDependOnWorkers) {
+  std::vector<CaseSet> sets;
+  for (auto f : {scenes::Family::kNear, scenes::Family::kAligned})
+    sets.push_back({"family", scenes::familyName(f), compare::kNaN, 300,
+                    [f](std::uint64_t i) {
+                      return Case{scenes::generate(f, 3, i), nullptr};
+                    }});
+  compare::RunOptions opt;
+  opt.methods = {Method::kTricyl, Method::kTricylFast, Method::kTricylFloat,
+                 Method::kFclLibccd1e6, Method::kFclIndep};
+  opt.progress = false;
+  opt.unit = 37;
+  opt.workers = 1;
+  compare::RunResult a = compare::runAll(sets, opt);
+  opt.workers = 3;
+  compare::RunResult b = compare::runAll(sets, opt);
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    EXPECT_EQ(a.sets[s].cases, 300u);
+    EXPECT_EQ(a.sets[s].hits, b.sets[s].hits);
+    EXPECT_EQ(a.sets[s].stage, b.sets[s].stage);
+    for (Method m : opt.methods) {
+      const auto &x = a.sets[s].method[int(m)], &y = b.sets[s].method[int(m)];
+      EXPECT_EQ(x.cases, 300u);
+      EXPECT_EQ(x.false_positives, y.false_positives) << compare::methodName(m);
+      EXPECT_EQ(x.false_negatives, y.false_negatives) << compare::methodName(m);
+      EXPECT_EQ(x.hangs, y.hangs);
+      EXPECT_EQ(x.max_fp_size, y.max_fp_size);
+    }
+    EXPECT_EQ(a.sets[s].method[0].wrong(), 0u) << "tricyl must be exact";
+  }
+}
+
+// ------------------------------------------- end to end: the executable
+
+#ifdef TRICYL_COMPARE_EXE
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string f;
+  while (std::getline(ss, f, ',')) out.push_back(f);
+  return out;
+}
+
+TEST(CompareEndToEnd, SmallRunWritesParsableReports) {
+  char tmpl[] = "/tmp/tricyl_compare_test_XXXXXX";
+  ASSERT_NE(mkdtemp(tmpl), nullptr);
+  const std::string dir = tmpl;
+  const std::string cmd = std::string("'") + TRICYL_COMPARE_EXE + "' --out '" +
+                          dir + "' --cases 150 --mesh-cases 30 " +
+                          "--sweep-cases 8 --threads 2 --quiet > '" + dir +
+                          "/stdout.txt' 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir + "/stdout.txt");
+
+  // results.json parses and has one row per family x method.
+  const auto j = nlohmann::json::parse(slurp(dir + "/results.json"));
+  const std::set<std::string> fams = {"uniform", "near",    "far", "thin",
+                                      "sliver",  "aligned", "mesh"};
+  EXPECT_EQ(j["results"].size(), fams.size() * compare::kMethodCount);
+  EXPECT_FALSE(j["stability"].empty());
+  EXPECT_FALSE(j["stages"].empty());
+  EXPECT_FALSE(j["agreement"].empty());
+  for (const auto& row : j["results"]) {
+    EXPECT_TRUE(fams.count(row["family"].get<std::string>()));
+    if (row["method"] == "tricyl") {
+      EXPECT_EQ(row["false_positives"], 0) << row["family"];
+      EXPECT_EQ(row["false_negatives"], 0) << row["family"];
+      EXPECT_EQ(row["hangs"], 0) << row["family"];
+    }
+  }
+
+  // results.csv has the required columns, and the same rows.
+  std::ifstream csv(dir + "/results.csv");
+  std::string header;
+  ASSERT_TRUE(std::getline(csv, header));
+  const auto cols = splitCsv(header);
+  for (const char* c : {"family", "method", "cases", "false_positives",
+                        "false_negatives", "hangs", "ns_median", "ns_p99"})
+    EXPECT_NE(std::find(cols.begin(), cols.end(), c), cols.end()) << c;
+  std::size_t rows = 0;
+  std::set<std::string> methods;
+  for (std::string line; std::getline(csv, line);) {
+    const auto f = splitCsv(line);
+    ASSERT_EQ(f.size(), cols.size()) << line;
+    methods.insert(f[1]);
+    ++rows;
+  }
+  EXPECT_EQ(rows, j["results"].size());
+  EXPECT_TRUE(methods.count("tricyl"));
+  for (const auto& m : methods)
+    EXPECT_TRUE(m.rfind("tricyl", 0) == 0 || m.rfind("fcl", 0) == 0) << m;
+
+  const std::string md = slurp(dir + "/report.md");
+  EXPECT_NE(md.find("## Per family"), std::string::npos);
+  EXPECT_NE(md.find("## Agreement with tricyl"), std::string::npos);
+  EXPECT_NE(slurp(dir + "/error_vs_time.gp").find("plot"), std::string::npos);
+  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
+    struct stat st;
+    EXPECT_EQ(stat((dir + "/error_vs_time.png").c_str(), &st), 0);
+    EXPECT_EQ(stat((dir + "/stability_delta.png").c_str(), &st), 0);
+  }
+  std::system(("rm -rf '" + dir + "'").c_str());
+}
+
+// The replay path: the issue 9 case from a hangs.txt-style file, through the
+// executable, reports the hang in results.csv within the limit.
+TEST(CompareEndToEnd, ReplayReportsTheIssue9Hang) {
+  char tmpl[] = "/tmp/tricyl_compare_replay_XXXXXX";
+  ASSERT_NE(mkdtemp(tmpl), nullptr);
+  const std::string dir = tmpl;
+  {
+    std::ofstream f(dir + "/case.txt");
+    f << "# issue 9\ncase " << compare::formatCaseHex(issue9Case()) << "\n";
+  }
+  const std::string cmd = std::string("'") + TRICYL_COMPARE_EXE +
+                          "' --replay '" + dir + "/case.txt' --out '" + dir +
+                          "/out' --methods tricyl,fcl_libccd_default "
+                          "--timeout 0.5 --no-plots --quiet > /dev/null 2>&1";
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+                .count(),
+            10.0);
+  const auto j = nlohmann::json::parse(slurp(dir + "/out/results.json"));
+  ASSERT_EQ(j["hangs"].size(), 1u);
+  EXPECT_EQ(j["hangs"][0]["case_hex"], compare::formatCaseHex(issue9Case()));
+  for (const auto& row : j["results"])
+    if (row["method"] == "fcl_libccd_default") {
+      EXPECT_EQ(row["hangs"], 1);
+    }
+  EXPECT_NE(slurp(dir + "/out/hangs.txt")
+                .find("case " + compare::formatCaseHex(issue9Case())),
+            std::string::npos);
+  std::system(("rm -rf '" + dir + "'").c_str());
+}
+#endif
+
+}  // namespace
+}  // namespace tricyl
