@@ -106,12 +106,16 @@ void BM_FclLibccd(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
   state.SetLabel(tricyl::scenes::familyName(Family(state.range(0))));
 }
-BENCHMARK(BM_FclLibccd)->Arg(int(Family::kUniform))->Arg(int(Family::kNear));
+// Not thin or aligned: libccd can loop forever there (issue 9); the harness
+// runs those under a time limit instead.
+BENCHMARK(BM_FclLibccd)
+    ->Arg(int(Family::kUniform))
+    ->Arg(int(Family::kNear))
+    ->Arg(int(Family::kFar))
+    ->Arg(int(Family::kSliver));
 #endif
 
-BENCHMARK_TEMPLATE(BM_Tricyl, double)
-    ->Arg(int(Family::kUniform))
-    ->Arg(int(Family::kNear));
+BENCHMARK_TEMPLATE(BM_Tricyl, double)->DenseRange(0, 5);
 BENCHMARK_TEMPLATE(BM_Tricyl, float)
     ->Arg(int(Family::kUniform))
     ->Arg(int(Family::kNear));

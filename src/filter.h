@@ -121,45 +121,68 @@ struct FilterKernel {
   }
 };
 
-/// The second stage: the same certified filter in the widest hardware
-/// floating point, long double (x87 extended on x86-64: a 64-bit
-/// significand, u_L = 2^-64, and a 15-bit exponent). Same derivation as
-/// FilterKernel::sign with u_L = 2^-LDBL_MANT_DIG:
-///   |v - E| <= D u_L / ((1 - D u_L)(1 - u_L)^D) m <= 64 u_L m  (D <= 56).
+/// The second stage: the filter re-run in the widest hardware floating
+/// point, long double (x87 extended on x86-64: u_L = 2^-64), with a RUNNING
+/// error bound instead of a magnitude: each value carries e >= |v - E|.
+/// The magnitude bound of FilterKernel is cheap but pessimistic when a
+/// value is small after cancellation (a local coordinate 1e-5 computed from
+/// world terms of 500 has m ~ 500, so x^2 gets 2^-47 * 500^2 although its
+/// error is ~ 2 * 1e-5 * 500 u); the running bound follows the actual
+/// values. Rules (u' = u_L (1 + 2 u_L) >= u_L / (1 - u_L) covers the
+/// rounding of the operation itself, relative to the computed result):
+///   a + b:  e = e_a + e_b + u' |v|
+///   a * b:  e = |v_a| e_b + |v_b| e_a + e_a e_b + u' |v|
+///     since |v_a v_b - A B| <= |v_a| |v_b - B| + |B| |v_a - A| and
+///     |B| <= |v_b| + e_b.
+///   input difference a - b of doubles: e = u' |v|; an input: e = 0.
+/// e itself is computed with rounding to nearest from non-negative terms,
+/// so it falls short of the exact bound by at most a factor (1 - u_L)^k,
+/// k <= 4 roundings per operation times depth <= 56: sign() inflates it by
+/// (1 + 2^-50), which covers (1 - u_L)^-224 with room to spare.
 /// Underflow: a product may lose at most 2^-16446 (x87 extended); with the
-/// range gate the same propagation argument as for FilterKernel bounds the
-/// loss by 2^-16446 * 2^388, far below kAbs.
-/// Where long double is no wider than double (MSVC, some ARM ABIs) the
-/// stage is still correct, just no stronger than the first; where it is
-/// software quad (AArch64 Linux) it is correct and slower.
+/// range gate the propagation argument of FilterKernel bounds the loss by
+/// 2^-16446 * 2^388, far below kAbs. Where long double is no wider than
+/// double (MSVC, some ARM ABIs) u_L = 2^-53 and the stage is still correct;
+/// where it is software quad (AArch64 Linux) it is correct and slower.
 constexpr long double pow2neg(int k) {
   long double r = 1;
   for (int i = 0; i < k; ++i) r /= 2;
   return r;
 }
+constexpr long double kUL = pow2neg(LDBL_MANT_DIG);  // u_L
+constexpr long double kUL1 = kUL + 2 * kUL * kUL;    // u'
+inline long double absl(long double x) { return x < 0 ? -x : x; }
 
 struct Fl {
   long double v;
-  long double m;
+  long double e;
 };
-inline Fl operator+(Fl a, Fl b) { return {a.v + b.v, a.m + b.m}; }
-inline Fl operator-(Fl a, Fl b) { return {a.v - b.v, a.m + b.m}; }
-inline Fl operator-(Fl a) { return {-a.v, a.m}; }
-inline Fl operator*(Fl a, Fl b) { return {a.v * b.v, a.m * b.m}; }
+inline Fl operator+(Fl a, Fl b) {
+  const long double v = a.v + b.v;
+  return {v, a.e + b.e + kUL1 * absl(v)};
+}
+inline Fl operator-(Fl a, Fl b) {
+  const long double v = a.v - b.v;
+  return {v, a.e + b.e + kUL1 * absl(v)};
+}
+inline Fl operator-(Fl a) { return {-a.v, a.e}; }
+inline Fl operator*(Fl a, Fl b) {
+  const long double v = a.v * b.v;
+  return {v, absl(a.v) * b.e + absl(b.v) * a.e + a.e * b.e + kUL1 * absl(v)};
+}
 
 struct ExtendedKernel {
   using Num = Fl;
   static constexpr bool kExact = false;
-  static Num lift(double x) { return {x, std::fabs(x)}; }
-  /// As FilterKernel::inputDiff: one rounding relative to the result.
+  static Num lift(double x) { return {x, 0}; }
   static Num inputDiff(double a, double b) {
     const long double d = static_cast<long double>(a) - b;
-    return {d, d < 0 ? -d : d};
+    return {d, kUL1 * absl(d)};
   }
-  static constexpr long double kRel = pow2neg(LDBL_MANT_DIG - 6);  // 64 u_L
+  static constexpr long double kInflate = 1 + pow2neg(50);
   static constexpr long double kAbs = 0x1p-600L;
   static Sign sign(const Fl& a) {
-    const long double bound = a.m * kRel + kAbs;
+    const long double bound = a.e * kInflate + kAbs;
     if (a.v > bound) return Sign::kPos;
     if (a.v < -bound) return Sign::kNeg;
     return Sign::kUnknown;

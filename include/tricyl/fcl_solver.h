@@ -1,0 +1,261 @@
+// tricyl::Solver: FCL 0.7's libccd narrow phase with the exact
+// triangle/cylinder test in place of libccd's MPR for that one pair.
+// CMake target tricyl::fcl. Change one name in user code:
+//
+//   fcl::collide(o1, o2, request, result)   ->  tricyl::collide(...)
+//   fcl::DefaultCollisionFunction<double>   -> tricyl::DefaultCollisionFunction
+//   fcl::DefaultCollisionData<double>       ->  tricyl::DefaultCollisionData
+//   fcl::collide(o1, o2, &solver, ...)      with  tricyl::Solver<double> solver
+//
+// WHAT CHANGES (and nothing else does)
+// - Cylinder vs a BVHModel<BV> triangle (every BV: AABB, KDOP16/18/24 use the
+//   world-frame overload, OBB, RSS, kIOS, OBBRSS the one with the mesh
+//   transform), in either argument order of collide: the Boolean is
+//   tricyl::tryIntersect's, exact for the triangle FCL hands the solver
+//   (see FRAMES). Touching counts as colliding.
+// - TriangleP vs Cylinder and Cylinder vs TriangleP: FCL 0.7 has no entry
+//   for them (collide prints a warning and returns 0); Solver registers one
+//   in its own collision table, with the same exact Boolean.
+// - Contact data for those pairs (request.enable_contact) comes from
+//   tricyl::estimateContact (fcl_contact.h): bounded time, no libccd, point
+//   in triangle ∩ cylinder, unit normal, depth > 0 with a separation
+//   certificate. The Boolean never depends on whether contact data is
+//   requested. libccd's MPR, which has no iteration cap and can hang on thin
+//   cylinders (issue 9), is never reached for these pairs.
+// - Every other pair (Box, Sphere, Capsule, Cone, Convex, ... vs meshes and
+//   shapes, and distance queries) runs GJKSolver_libccd<S>'s own code,
+//   inherited unchanged.
+//
+// CONVENTIONS (FCL's, for the overloads FCL calls)
+// - shapeTriangleIntersect: `normal` points from the cylinder toward the
+//   triangle (libccd's convention; FCL's traversal stores -normal in
+//   Contact::normal, which then points from o1 = mesh to o2 = cylinder),
+//   `contact_points` is a world-frame point, `penetration_depth` > 0.
+// - shapeIntersect (TriangleP/Cylinder): ContactPoint::normal points from
+//   the first shape to the second, as for FCL's other shape pairs.
+// - No intersection: no output is written.
+// - INVALID INPUT (NaN/Inf anywhere, negative radius or length): the answer
+//   is "in collision" (the safe answer for a collision query), and contact
+//   outputs, if requested, get finite placeholders (fcl_contact.h).
+//
+// FRAMES
+// - World-frame overload (AABB, KDOP meshes): FCL has already moved the mesh
+//   vertices to the world frame (tf * v, rounded, in FCL's initialize); the
+//   cylinder's Transform3 is converted to tricyl::Pose exactly
+//   (R = linear(), t = translation()), so the answer is exact for those
+//   world points.
+// - Mesh-frame overload (OBB, RSS, kIOS, OBBRSS): the vertices are moved to
+//   the world frame with the same Eigen expression, tf_mesh * v, so that
+//   every BV type sees bit-identical triangles; the answer is exact for
+//   those points. (libccd's own path rounds the same way.)
+//
+// THREADS AND STATE
+// - Solver holds only GJKSolver_libccd's tolerances and iteration caps; the
+//   overloads added here are const and read no member. One Solver can be
+//   shared across threads as far as this code is concerned.
+// - The first Solver<S> constructed registers TriangleP/Cylinder in
+//   fcl::getCollisionFunctionLookTable<Solver<S>>() (a thread-safe static).
+//   Nothing else is ever written to FCL's tables; no FCL template is
+//   specialised (libfcl.so has its own instantiations: that would be an ODR
+//   violation).
+//
+// COMPILE TIME
+// - The collision and distance matrices for Solver<double> (FCL's whole
+//   traversal code, ~40 s and ~0.9 GB of compiler memory) are instantiated
+//   once in src/fcl/fcl_solver.cpp; the extern template declarations below
+//   keep every including file from instantiating them again.
+// - request.gjk_solver_type is ignored by tricyl::collide: it always uses
+//   Solver<S> (which is libccd-based).
+#pragma once
+
+#include <fcl/broadphase/default_broadphase_callbacks.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/triangle_p.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/collision_object.h>
+#include <fcl/narrowphase/detail/gjk_solver_libccd.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <cstddef>
+#include <vector>
+
+#include "tricyl/fcl_contact.h"
+#include "tricyl/types.h"
+
+namespace tricyl {
+
+/// FCL narrow-phase solver: GJKSolver_libccd<S> plus exact
+/// triangle/cylinder. Use wherever FCL takes a NarrowPhaseSolver.
+template <class S>
+class Solver : public fcl::detail::GJKSolver_libccd<S> {
+ public:
+  using Base = fcl::detail::GJKSolver_libccd<S>;
+
+  /// Same defaults as GJKSolver_libccd; also registers the TriangleP /
+  /// Cylinder pairs in this solver type's collision table (once).
+  Solver();
+
+  using Base::shapeIntersect;
+  using Base::shapeTriangleIntersect;
+
+  /// Cylinder `s` at `tf` vs the world-frame triangle (P1, P2, P3): the
+  /// form FCL's AABB and KDOP mesh traversals call. Exact Boolean.
+  /// [out] contact_points, penetration_depth, normal: see the header comment.
+  bool shapeTriangleIntersect(
+      const fcl::Cylinder<S>& s, const fcl::Transform3<S>& tf,
+      const fcl::Vector3<S>& P1, const fcl::Vector3<S>& P2,
+      const fcl::Vector3<S>& P3, fcl::Vector3<S>* contact_points = nullptr,
+      S* penetration_depth = nullptr, fcl::Vector3<S>* normal = nullptr) const;
+
+  /// Cylinder `s` at `tf1` vs the triangle (P1, P2, P3) given in the mesh
+  /// frame `tf2`: the form FCL's OBB, RSS, kIOS and OBBRSS traversals call.
+  bool shapeTriangleIntersect(
+      const fcl::Cylinder<S>& s, const fcl::Transform3<S>& tf1,
+      const fcl::Vector3<S>& P1, const fcl::Vector3<S>& P2,
+      const fcl::Vector3<S>& P3, const fcl::Transform3<S>& tf2,
+      fcl::Vector3<S>* contact_points = nullptr, S* penetration_depth = nullptr,
+      fcl::Vector3<S>* normal = nullptr) const;
+
+  /// TriangleP vs Cylinder (and the reverse): at most one contact, whose
+  /// normal points from the first shape to the second.
+  bool shapeIntersect(
+      const fcl::TriangleP<S>& s1, const fcl::Transform3<S>& tf1,
+      const fcl::Cylinder<S>& s2, const fcl::Transform3<S>& tf2,
+      std::vector<fcl::ContactPoint<S>>* contacts = nullptr) const;
+  bool shapeIntersect(
+      const fcl::Cylinder<S>& s1, const fcl::Transform3<S>& tf1,
+      const fcl::TriangleP<S>& s2, const fcl::Transform3<S>& tf2,
+      std::vector<fcl::ContactPoint<S>>* contacts = nullptr) const;
+
+  /// The same pairs in the pointer form (deprecated in FCL, kept so that no
+  /// route reaches libccd for them). Normal from the first shape to the
+  /// second.
+  bool shapeIntersect(const fcl::TriangleP<S>& s1,
+                      const fcl::Transform3<S>& tf1, const fcl::Cylinder<S>& s2,
+                      const fcl::Transform3<S>& tf2,
+                      fcl::Vector3<S>* contact_points, S* penetration_depth,
+                      fcl::Vector3<S>* normal) const;
+  bool shapeIntersect(const fcl::Cylinder<S>& s1, const fcl::Transform3<S>& tf1,
+                      const fcl::TriangleP<S>& s2,
+                      const fcl::Transform3<S>& tf2,
+                      fcl::Vector3<S>* contact_points, S* penetration_depth,
+                      fcl::Vector3<S>* normal) const;
+};
+
+/// FCL's Transform3 as a tricyl::Pose, bit for bit: R[i][j] = linear()(i, j),
+/// t = translation().
+template <class S>
+Pose<S> toPose(const fcl::Transform3<S>& tf) {
+  Pose<S> pose;
+  const auto& L = tf.linear();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) pose.R[i][j] = L(i, j);
+  pose.t = {tf.translation()(0), tf.translation()(1), tf.translation()(2)};
+  return pose;
+}
+
+/// fcl::collide(o1, o2, request, result) with Solver<S>: the solver's
+/// collision_tolerance is request.gjk_tolerance, as FCL's 4-argument form
+/// sets it for GJKSolver_libccd. Returns the number of contacts.
+template <class S>
+std::size_t collide(const fcl::CollisionObject<S>* o1,
+                    const fcl::CollisionObject<S>* o2,
+                    const fcl::CollisionRequest<S>& request,
+                    fcl::CollisionResult<S>& result) {
+  Solver<S> solver;
+  solver.collision_tolerance = request.gjk_tolerance;
+  return fcl::collide(o1, o2, &solver, request, result);
+}
+
+/// fcl::collide(g1, tf1, g2, tf2, request, result) with Solver<S>.
+template <class S>
+std::size_t collide(const fcl::CollisionGeometry<S>* g1,
+                    const fcl::Transform3<S>& tf1,
+                    const fcl::CollisionGeometry<S>* g2,
+                    const fcl::Transform3<S>& tf2,
+                    const fcl::CollisionRequest<S>& request,
+                    fcl::CollisionResult<S>& result) {
+  Solver<S> solver;
+  solver.collision_tolerance = request.gjk_tolerance;
+  return fcl::collide(g1, tf1, g2, tf2, &solver, request, result);
+}
+
+/// The broadphase callback data: FCL's own struct (request, result, done).
+template <class S>
+using DefaultCollisionData = fcl::DefaultCollisionData<S>;
+
+/// fcl::DefaultCollisionFunction with tricyl::collide: pass it with a
+/// DefaultCollisionData<S>* to BroadPhaseCollisionManager::collide.
+template <class S>
+bool DefaultCollisionFunction(fcl::CollisionObject<S>* o1,
+                              fcl::CollisionObject<S>* o2, void* data) {
+  auto* collision_data = static_cast<DefaultCollisionData<S>*>(data);
+  const fcl::CollisionRequest<S>& request = collision_data->request;
+  fcl::CollisionResult<S>& result = collision_data->result;
+  if (collision_data->done) return true;
+  tricyl::collide(o1, o2, request, result);
+  // Same stopping rule as FCL's: enough contacts and no cost wanted.
+  if (!request.enable_cost && result.isCollision() &&
+      result.numContacts() >= request.num_max_contacts) {
+    collision_data->done = true;
+  }
+  return collision_data->done;
+}
+
+extern template class Solver<double>;
+
+}  // namespace tricyl
+
+// Instantiated once, in src/fcl/fcl_solver.cpp (see COMPILE TIME). These are
+// explicit instantiations of FCL templates for OUR solver type, never
+// specialisations.
+namespace fcl {
+extern template detail::CollisionFunctionMatrix<tricyl::Solver<double>>&
+getCollisionFunctionLookTable<tricyl::Solver<double>>();
+extern template detail::DistanceFunctionMatrix<tricyl::Solver<double>>&
+getDistanceFunctionLookTable<tricyl::Solver<double>>();
+extern template std::size_t collide(const CollisionObject<double>*,
+                                    const CollisionObject<double>*,
+                                    const tricyl::Solver<double>*,
+                                    const CollisionRequest<double>&,
+                                    CollisionResult<double>&);
+extern template std::size_t collide(const CollisionGeometry<double>*,
+                                    const Transform3<double>&,
+                                    const CollisionGeometry<double>*,
+                                    const Transform3<double>&,
+                                    const tricyl::Solver<double>*,
+                                    const CollisionRequest<double>&,
+                                    CollisionResult<double>&);
+extern template double distance(const CollisionObject<double>*,
+                                const CollisionObject<double>*,
+                                const tricyl::Solver<double>*,
+                                const DistanceRequest<double>&,
+                                DistanceResult<double>&);
+extern template double distance(const CollisionGeometry<double>*,
+                                const Transform3<double>&,
+                                const CollisionGeometry<double>*,
+                                const Transform3<double>&,
+                                const tricyl::Solver<double>*,
+                                const DistanceRequest<double>&,
+                                DistanceResult<double>&);
+namespace detail {
+extern template struct CollisionFunctionMatrix<tricyl::Solver<double>>;
+extern template struct DistanceFunctionMatrix<tricyl::Solver<double>>;
+}  // namespace detail
+}  // namespace fcl
+
+namespace tricyl {
+extern template std::size_t collide(const fcl::CollisionObject<double>*,
+                                    const fcl::CollisionObject<double>*,
+                                    const fcl::CollisionRequest<double>&,
+                                    fcl::CollisionResult<double>&);
+extern template std::size_t collide(const fcl::CollisionGeometry<double>*,
+                                    const fcl::Transform3<double>&,
+                                    const fcl::CollisionGeometry<double>*,
+                                    const fcl::Transform3<double>&,
+                                    const fcl::CollisionRequest<double>&,
+                                    fcl::CollisionResult<double>&);
+extern template bool DefaultCollisionFunction(fcl::CollisionObject<double>*,
+                                              fcl::CollisionObject<double>*,
+                                              void*);
+}  // namespace tricyl

@@ -1,0 +1,229 @@
+// tricyl::Solver's members and the ONE place where FCL's collision and
+// distance matrices are instantiated for it (see fcl_solver.h, COMPILE
+// TIME). Explicit instantiations only: no FCL template is specialised.
+#include "tricyl/fcl_solver.h"
+
+#include "tricyl/fcl_contact.h"
+#include "tricyl/triangle_cylinder.h"
+
+namespace tricyl {
+namespace {
+
+template <class S>
+Vec3<S> toVec(const fcl::Vector3<S>& v) {
+  return {v[0], v[1], v[2]};
+}
+
+template <class S>
+fcl::Vector3<S> toFcl(const Vec3<S>& v) {
+  return fcl::Vector3<S>(v.x, v.y, v.z);
+}
+
+/// The one body behind every overload: world-frame triangle vs posed
+/// cylinder. The Boolean is the kernel's (kInvalidInput counts as "in
+/// collision", fcl_solver.h); contact data only on request and only when
+/// the answer is not "disjoint".
+template <class S>
+bool cylinderVsWorldTriangle(const fcl::Cylinder<S>& s,
+                             const fcl::Transform3<S>& tf,
+                             const fcl::Vector3<S>& p1,
+                             const fcl::Vector3<S>& p2,
+                             const fcl::Vector3<S>& p3,
+                             fcl::Vector3<S>* contact_point, S* depth,
+                             fcl::Vector3<S>* normal) {
+  const Cylinder<S> cyl{s.radius, s.lz};
+  const Pose<S> pose = toPose(tf);
+  const Triangle<S> tri{toVec(p1), toVec(p2), toVec(p3)};
+  if (contact_point == nullptr && depth == nullptr && normal == nullptr)
+    return tryIntersect(cyl, pose, tri) != Answer::kDisjoint;
+  ContactEstimate<S> est;
+  if (estimateContact(cyl, pose, tri, &est) == Answer::kDisjoint) return false;
+  if (contact_point != nullptr) *contact_point = toFcl(est.point);
+  if (depth != nullptr) *depth = est.depth;
+  if (normal != nullptr) *normal = toFcl(est.normal);
+  return true;
+}
+
+/// TriangleP at tf_tri vs Cylinder at tf_cyl. `tri_first` says which shape
+/// is the first argument of the caller, so the normal points from the first
+/// to the second (libccd gives cylinder -> triangle).
+template <class S>
+bool cylinderVsTriangleP(const fcl::Cylinder<S>& cyl,
+                         const fcl::Transform3<S>& tf_cyl,
+                         const fcl::TriangleP<S>& tri,
+                         const fcl::Transform3<S>& tf_tri, bool tri_first,
+                         fcl::Vector3<S>* contact_point, S* depth,
+                         fcl::Vector3<S>* normal) {
+  // Same expression as FCL uses for mesh vertices (fcl_solver.h, FRAMES).
+  const fcl::Vector3<S> a = tf_tri * tri.a;
+  const fcl::Vector3<S> b = tf_tri * tri.b;
+  const fcl::Vector3<S> c = tf_tri * tri.c;
+  const bool hit = cylinderVsWorldTriangle(cyl, tf_cyl, a, b, c, contact_point,
+                                           depth, normal);
+  if (hit && tri_first && normal != nullptr) *normal = -*normal;
+  return hit;
+}
+
+template <class S>
+bool cylinderVsTrianglePContacts(const fcl::Cylinder<S>& cyl,
+                                 const fcl::Transform3<S>& tf_cyl,
+                                 const fcl::TriangleP<S>& tri,
+                                 const fcl::Transform3<S>& tf_tri,
+                                 bool tri_first,
+                                 std::vector<fcl::ContactPoint<S>>* contacts) {
+  if (contacts == nullptr)
+    return cylinderVsTriangleP(cyl, tf_cyl, tri, tf_tri, tri_first,
+                               static_cast<fcl::Vector3<S>*>(nullptr),
+                               static_cast<S*>(nullptr),
+                               static_cast<fcl::Vector3<S>*>(nullptr));
+  fcl::Vector3<S> point, normal;
+  S depth;
+  if (!cylinderVsTriangleP(cyl, tf_cyl, tri, tf_tri, tri_first, &point, &depth,
+                           &normal))
+    return false;
+  contacts->emplace_back(normal, point, depth);
+  return true;
+}
+
+/// Puts TriangleP/Cylinder (both orders) into Solver<S>'s own table. FCL's
+/// generic ShapeShapeCollide calls Solver::shapeIntersect above.
+template <class S>
+bool registerTrianglePairs() {
+  auto& table = fcl::getCollisionFunctionLookTable<Solver<S>>();
+  table.collision_matrix[fcl::GEOM_TRIANGLE][fcl::GEOM_CYLINDER] =
+      &fcl::detail::ShapeShapeCollide<fcl::TriangleP<S>, fcl::Cylinder<S>,
+                                      Solver<S>>;
+  table.collision_matrix[fcl::GEOM_CYLINDER][fcl::GEOM_TRIANGLE] =
+      &fcl::detail::ShapeShapeCollide<fcl::Cylinder<S>, fcl::TriangleP<S>,
+                                      Solver<S>>;
+  return true;
+}
+
+}  // namespace
+
+template <class S>
+Solver<S>::Solver() : Base() {
+  // Thread-safe once (a function-local static); every path into the table
+  // goes through a constructed Solver, so it is always registered in time.
+  static const bool registered = registerTrianglePairs<S>();
+  (void)registered;
+}
+
+template <class S>
+bool Solver<S>::shapeTriangleIntersect(
+    const fcl::Cylinder<S>& s, const fcl::Transform3<S>& tf,
+    const fcl::Vector3<S>& P1, const fcl::Vector3<S>& P2,
+    const fcl::Vector3<S>& P3, fcl::Vector3<S>* contact_points,
+    S* penetration_depth, fcl::Vector3<S>* normal) const {
+  return cylinderVsWorldTriangle(s, tf, P1, P2, P3, contact_points,
+                                 penetration_depth, normal);
+}
+
+template <class S>
+bool Solver<S>::shapeTriangleIntersect(
+    const fcl::Cylinder<S>& s, const fcl::Transform3<S>& tf1,
+    const fcl::Vector3<S>& P1, const fcl::Vector3<S>& P2,
+    const fcl::Vector3<S>& P3, const fcl::Transform3<S>& tf2,
+    fcl::Vector3<S>* contact_points, S* penetration_depth,
+    fcl::Vector3<S>* normal) const {
+  // Mesh frame -> world, as FCL's initialize() does for AABB meshes.
+  const fcl::Vector3<S> a = tf2 * P1;
+  const fcl::Vector3<S> b = tf2 * P2;
+  const fcl::Vector3<S> c = tf2 * P3;
+  return cylinderVsWorldTriangle(s, tf1, a, b, c, contact_points,
+                                 penetration_depth, normal);
+}
+
+template <class S>
+bool Solver<S>::shapeIntersect(
+    const fcl::TriangleP<S>& s1, const fcl::Transform3<S>& tf1,
+    const fcl::Cylinder<S>& s2, const fcl::Transform3<S>& tf2,
+    std::vector<fcl::ContactPoint<S>>* contacts) const {
+  return cylinderVsTrianglePContacts(s2, tf2, s1, tf1, true, contacts);
+}
+
+template <class S>
+bool Solver<S>::shapeIntersect(
+    const fcl::Cylinder<S>& s1, const fcl::Transform3<S>& tf1,
+    const fcl::TriangleP<S>& s2, const fcl::Transform3<S>& tf2,
+    std::vector<fcl::ContactPoint<S>>* contacts) const {
+  return cylinderVsTrianglePContacts(s1, tf1, s2, tf2, false, contacts);
+}
+
+template <class S>
+bool Solver<S>::shapeIntersect(const fcl::TriangleP<S>& s1,
+                               const fcl::Transform3<S>& tf1,
+                               const fcl::Cylinder<S>& s2,
+                               const fcl::Transform3<S>& tf2,
+                               fcl::Vector3<S>* contact_points,
+                               S* penetration_depth,
+                               fcl::Vector3<S>* normal) const {
+  return cylinderVsTriangleP(s2, tf2, s1, tf1, true, contact_points,
+                             penetration_depth, normal);
+}
+
+template <class S>
+bool Solver<S>::shapeIntersect(const fcl::Cylinder<S>& s1,
+                               const fcl::Transform3<S>& tf1,
+                               const fcl::TriangleP<S>& s2,
+                               const fcl::Transform3<S>& tf2,
+                               fcl::Vector3<S>* contact_points,
+                               S* penetration_depth,
+                               fcl::Vector3<S>* normal) const {
+  return cylinderVsTriangleP(s1, tf1, s2, tf2, false, contact_points,
+                             penetration_depth, normal);
+}
+
+template class Solver<double>;
+
+template std::size_t collide(const fcl::CollisionObject<double>*,
+                             const fcl::CollisionObject<double>*,
+                             const fcl::CollisionRequest<double>&,
+                             fcl::CollisionResult<double>&);
+template std::size_t collide(const fcl::CollisionGeometry<double>*,
+                             const fcl::Transform3<double>&,
+                             const fcl::CollisionGeometry<double>*,
+                             const fcl::Transform3<double>&,
+                             const fcl::CollisionRequest<double>&,
+                             fcl::CollisionResult<double>&);
+template bool DefaultCollisionFunction(fcl::CollisionObject<double>*,
+                                       fcl::CollisionObject<double>*, void*);
+
+}  // namespace tricyl
+
+// FCL's templates, instantiated for tricyl::Solver<double> (declared extern
+// in fcl_solver.h).
+namespace fcl {
+template detail::CollisionFunctionMatrix<tricyl::Solver<double>>&
+getCollisionFunctionLookTable<tricyl::Solver<double>>();
+template detail::DistanceFunctionMatrix<tricyl::Solver<double>>&
+getDistanceFunctionLookTable<tricyl::Solver<double>>();
+template std::size_t collide(const CollisionObject<double>*,
+                             const CollisionObject<double>*,
+                             const tricyl::Solver<double>*,
+                             const CollisionRequest<double>&,
+                             CollisionResult<double>&);
+template std::size_t collide(const CollisionGeometry<double>*,
+                             const Transform3<double>&,
+                             const CollisionGeometry<double>*,
+                             const Transform3<double>&,
+                             const tricyl::Solver<double>*,
+                             const CollisionRequest<double>&,
+                             CollisionResult<double>&);
+template double distance(const CollisionObject<double>*,
+                         const CollisionObject<double>*,
+                         const tricyl::Solver<double>*,
+                         const DistanceRequest<double>&,
+                         DistanceResult<double>&);
+template double distance(const CollisionGeometry<double>*,
+                         const Transform3<double>&,
+                         const CollisionGeometry<double>*,
+                         const Transform3<double>&,
+                         const tricyl::Solver<double>*,
+                         const DistanceRequest<double>&,
+                         DistanceResult<double>&);
+namespace detail {
+template struct CollisionFunctionMatrix<tricyl::Solver<double>>;
+template struct DistanceFunctionMatrix<tricyl::Solver<double>>;
+}  // namespace detail
+}  // namespace fcl
