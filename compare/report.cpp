@@ -222,10 +222,16 @@ std::vector<std::string> writeReport(const std::string& dir,
       << "# Replay: tricyl-compare --replay hangs.txt --methods "
          "fcl_libccd_default --out DIR\n";
     if (result.hangs.empty()) h << "# none in this run\n";
+    // One entry per case, listing every method that hung on it.
+    std::map<std::pair<std::size_t, std::uint64_t>, std::string> hung;
     for (const HangRecord& hr : result.hangs) {
-      const Case c = sets[hr.set].make(hr.index);
-      h << "# set=" << sets[hr.set].name << " index=" << hr.index
-        << " seed=" << info.seed << " method=" << methodName(hr.method)
+      std::string& ms = hung[{hr.set, hr.index}];
+      ms += (ms.empty() ? "" : ",") + std::string(methodName(hr.method));
+    }
+    for (const auto& [key, ms] : hung) {
+      const Case c = sets[key.first].make(key.second);
+      h << "# set=" << sets[key.first].name << " index=" << key.second
+        << " seed=" << info.seed << " methods=" << ms
         << " feature=" << c.k.feature;
       if (c.mesh) {
         h << " mesh=" << c.mesh->name
@@ -290,7 +296,7 @@ std::vector<std::string> writeReport(const std::string& dir,
       e["staged_queries"] = staged;
       js.push_back(e);
       for (Method m : methods) {
-        if (m == Method::kTricyl) continue;
+        if (m == Method::kTricyl || usesFloatInput(m)) continue;
         const MethodStats& ms = st.method[int(m)];
         ja.push_back({{"family", sets[s].name},
                       {"method", methodName(m)},
@@ -301,6 +307,17 @@ std::vector<std::string> writeReport(const std::string& dir,
                       {"method_hang", ms.hangs}});
       }
     }
+    json jf = json::array();
+    for (std::size_t s : family_sets)
+      for (const auto& [feat, fs] : result.sets[s].features) {
+        json w;
+        for (Method m : methods) w[methodName(m)] = fs.wrong[int(m)];
+        jf.push_back({{"family", sets[s].name},
+                      {"feature", feat},
+                      {"cases", fs.cases},
+                      {"errors", w}});
+      }
+    j["features"] = jf;
     j["stages"] = js;
     j["agreement"] = ja;
     json jsw = json::array();
@@ -502,15 +519,16 @@ std::vector<std::string> writeReport(const std::string& dir,
   }
   md << "\n## Agreement with tricyl\n\n"
      << "tricyl's answer is exact, so where another method disagrees with "
-        "it, that method is wrong (for `tricyl_float`, the input itself "
-        "differs). Columns: both say hit, both say miss, tricyl hit but the "
+        "it, that method is wrong. (`tricyl_float` answers a different, "
+        "float-rounded input and is left out.) Columns: both say hit, both say "
+        "miss, tricyl hit but the "
         "method missed, tricyl missed but the method hit, the method hung.\n\n"
      << "| family | method | both hit | both miss | tricyl hit / method miss "
         "| tricyl miss / method hit | hangs | agreement |\n"
         "|---|---|---:|---:|---:|---:|---:|---:|\n";
   for (std::size_t s : family_sets)
     for (Method m : methods) {
-      if (m == Method::kTricyl) continue;
+      if (m == Method::kTricyl || usesFloatInput(m)) continue;
       const MethodStats& ms = result.sets[s].method[int(m)];
       const double agree =
           ms.cases ? double(ms.agree[0][0] + ms.agree[1][1]) / double(ms.cases)
@@ -520,6 +538,25 @@ std::vector<std::string> writeReport(const std::string& dir,
          << " | " << ms.agree[0][1] << " | " << ms.hangs << " | " << pct(agree)
          << " |\n";
     }
+  md << "\n## Where the errors are: per generator feature\n\n"
+     << "Errors (false positives + false negatives + hangs) per feature of "
+        "the generator (scenes.h: which touching configuration, degeneracy "
+        "or alignment the case was built around).\n\n";
+  for (std::size_t s : family_sets) {
+    const auto& feats = result.sets[s].features;
+    if (feats.size() < 2) continue;
+    md << "**" << sets[s].name << "**\n\n| feature | cases |";
+    for (Method m : methods) md << ' ' << methodName(m) << " |";
+    md << "\n|---|---:|";
+    for (std::size_t i = 0; i < methods.size(); ++i) md << "---:|";
+    md << '\n';
+    for (const auto& [feat, fs] : feats) {
+      md << "| " << feat << " | " << fs.cases << " |";
+      for (Method m : methods) md << ' ' << fs.wrong[int(m)] << " |";
+      md << '\n';
+    }
+    md << '\n';
+  }
   if (!sweep_names.empty()) {
     md << "\n## Stability sweeps\n\n"
        << "Error rate per sweep point (near-touching cases, "

@@ -295,6 +295,7 @@ RunResult runAll(const std::vector<CaseSet>& sets, const RunOptions& opt) {
   std::vector<Worker> workers(std::size_t(std::max(1, opt.workers)));
   // Per-worker current case: tricyl's answer for the agreement matrix.
   std::vector<Msg> current(workers.size());
+  std::vector<FeatureStats*> feature(workers.size(), nullptr);
   const auto timeout = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(opt.timeout_s));
   // A child that is silent this long outside an FCL call is broken.
@@ -307,9 +308,12 @@ RunResult runAll(const std::vector<CaseSet>& sets, const RunOptions& opt) {
     SetStats& st = res.sets[m.set];
     switch (m.type) {
       case kBegin: {
+        // (Both are per worker slot; a resumed unit may land on another.)
         current[wi] = m;
+        feature[wi] = &st.features[sets[m.set].make(m.index).k.feature];
         // A resumed unit repeats the kBegin of the case that hung.
         if (w.unit.first_method > 0 && m.index == w.unit.begin) break;
+        ++feature[wi]->cases;
         ++begun;
         ++st.cases;
         st.hits += m.truth & 1;
@@ -335,6 +339,7 @@ RunResult runAll(const std::vector<CaseSet>& sets, const RunOptions& opt) {
           ++ms.false_negatives;
           ms.max_fn_size = std::max(ms.max_fn_size, m.error_size);
         }
+        if (bool(m.answer) != truth) ++feature[wi]->wrong[m.method];
         ++ms.agree[current[wi].answer][m.answer];
         ms.ns.push_back(float(m.ns));
         break;
@@ -426,6 +431,7 @@ RunResult runAll(const std::vector<CaseSet>& sets, const RunOptions& opt) {
         MethodStats& ms = res.sets[s.set].method[s.method];
         ++ms.cases;
         ++ms.hangs;
+        if (feature[i]) ++feature[i]->wrong[s.method];
         res.hangs.push_back({s.set, s.index, Method(s.method)});
         // Resume just after the hung query, on this worker slot.
         std::size_t pos = 0;

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -38,12 +39,19 @@ struct MethodStats {
   }
 };
 
+/// Errors per generator feature (scenes::TriCase::feature) of a set.
+struct FeatureStats {
+  std::uint64_t cases = 0;
+  std::array<std::uint64_t, kMethodCount> wrong{};  ///< fp + fn + hangs
+};
+
 struct SetStats {
   std::uint64_t cases = 0;
   std::uint64_t hits = 0;  ///< oracle says "intersect"
   /// tricyl's deciding stage, counted by int(tricyl::Stage) (triangle sets).
   std::array<std::uint64_t, 8> stage{};
   std::array<MethodStats, kMethodCount> method;
+  std::map<std::string, FeatureStats> features;
 };
 
 struct HangRecord {

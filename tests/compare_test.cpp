@@ -226,6 +226,42 @@ TEST(CompareTimeLimit, Issue9HangIsDetectedWithinTheLimit) {
   EXPECT_EQ(st.method[int(Method::kTricyl)].wrong(), 0u);
 }
 
+// Found by the default run (aligned family, seed 1, index 25990): a plain
+// configuration, r = 0.75, lz = 2, an axis-permutation pose, small dyadic
+// coordinates, the triangle's plane containing the cylinder's axis. libccd
+// never returns on it with EITHER tolerance, so fcl::collide with a default
+// CollisionRequest (gjk_tolerance 1e-6) hangs too. The harness must record
+// both hangs and continue.
+TEST(CompareTimeLimit, AlignedCaseHangsBothLibccdTolerances) {
+  const auto k = compare::parseCaseHex(
+      "0x1.8p-1 0x1p+1 -0x1p+0 0x0p+0 0x0p+0 0x0p+0 0x0p+0 -0x1p+0 0x0p+0 "
+      "0x1p+0 0x0p+0 -0x1p-1 0x0p+0 0x1p+1 0x1.6p+0 0x1p-1 0x1.7p-2 -0x1p-1 "
+      "-0x1.cp-1 0x1p+1 -0x1.2p+1 0x1.ap+0 0x1.c4p+1");
+  ASSERT_TRUE(k.has_value());
+  EXPECT_EQ(compare::formatCaseHex(*k),
+            compare::formatCaseHex(
+                scenes::generate(scenes::Family::kAligned, 1, 25990)))
+      << "the aligned generator changed; update the literal";
+  const TriCase kk = *k;
+  std::vector<CaseSet> sets = {
+      {"family", "aligned25990", compare::kNaN, 1, [kk](std::uint64_t) {
+         return Case{kk, nullptr};
+       }}};
+  compare::RunOptions opt;
+  opt.methods = {Method::kFclLibccd1e6, Method::kTricyl,
+                 Method::kFclLibccdDefault, Method::kFclIndep};
+  opt.workers = 1;
+  opt.timeout_s = 0.3;
+  opt.progress = false;
+  compare::RunResult r = compare::runAll(sets, opt);
+  ASSERT_EQ(r.hangs.size(), 2u);
+  EXPECT_EQ(r.sets[0].method[int(Method::kFclLibccd1e6)].hangs, 1u);
+  EXPECT_EQ(r.sets[0].method[int(Method::kFclLibccdDefault)].hangs, 1u);
+  EXPECT_EQ(r.sets[0].method[int(Method::kFclIndep)].cases, 1u);
+  EXPECT_EQ(r.sets[0].method[int(Method::kTricyl)].wrong(), 0u);
+  EXPECT_EQ(r.worker_restarts, 2u);
+}
+
 // The statistics do not depend on the number of workers.
 TEST(CompareRunner, CountsDoNotDependOnWorkers) {
   std::vector<CaseSet> sets;
