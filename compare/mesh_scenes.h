@@ -101,10 +101,35 @@ inline V cross(V a, V b) {
 }
 inline double norm(V a) { return std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z); }
 
-/// Places a cylinder near the surface of a mesh (box `lo`..`hi`): at a random
-/// point of a random triangle, moved along its normal by up to one cylinder
-/// size either way, with a random rotation; the cylinder's size is 0.2 % ..
-/// 10 % of the box diagonal. Deterministic per (seed, index).
+/// Rotation whose third column (the cylinder's axis in the world) is `z`.
+inline Pose<double> frameWithAxis(V z, V hint) {
+  V x = cross(hint, z);
+  if (norm(x) < 1e-3) x = cross(V{1, 0, 0}, z);
+  if (norm(x) < 1e-3) x = cross(V{0, 1, 0}, z);
+  const double nx = norm(x);
+  x = {x.x / nx, x.y / nx, x.z / nx};
+  const V y = cross(z, x);
+  Pose<double> p{};
+  const V cols[3] = {x, y, z};
+  for (int j = 0; j < 3; ++j) {
+    p.R[0][j] = cols[j].x;
+    p.R[1][j] = cols[j].y;
+    p.R[2][j] = cols[j].z;
+  }
+  return p;
+}
+
+/// Places a cylinder near the surface of a mesh (box `lo`..`hi`) at a random
+/// point p of a random triangle with unit normal n; the cylinder's size is
+/// 0.2 % .. 10 % of the box diagonal. Half the cases are loose (a random
+/// rotation, centre moved along n by up to one cylinder size either way);
+/// half touch the triangle's plane at p with a cap (axis along n, centre at
+/// p + n h (1 + delta)), the side (axis across n, centre at p + n r (1 +
+/// delta)) or a rim (axis tilted by 45 degrees), pushed out or in by a
+/// relative offset delta drawn as in the near family. Other triangles of the
+/// mesh may be closer, so delta is only the intent: error sizes of mesh
+/// cases are measured by the oracle (errorSize), not taken from delta.
+/// Deterministic per (seed, index).
 inline scenes::TriCase meshCase(const std::vector<T>& tris, V lo, V hi,
                                 std::uint64_t seed, std::uint64_t index) {
   scenes::Rng g(seed * 0xd1b54a32d192ed03ULL ^ 0x6d657368ULL ^
@@ -122,11 +147,43 @@ inline scenes::TriCase meshCase(const std::vector<T>& tris, V lo, V hi,
   const double size = diag * g.logUniform(0.002, 0.1);
   scenes::TriCase k;
   k.cyl = {size * g.uniform(0.1, 0.5), size * g.uniform(0.1, 1.0)};
-  k.pose = scenes::internal::randomPose(g, 0);
-  const double off = size * g.uniform(-1, 1);
-  k.pose.t = {p.x + off * n.x, p.y + off * n.y, p.z + off * n.z};
   k.tri = {p, p, p};  // unused for mesh cases
-  k.feature = "mesh";
+  const double r = k.cyl.radius, h = k.cyl.lz / 2;
+  auto at = [&](double off) {
+    return V{p.x + off * n.x, p.y + off * n.y, p.z + off * n.z};
+  };
+  const int kind = g.integer(6);
+  if (kind < 3) {
+    k.pose = scenes::internal::randomPose(g, 0);
+    k.pose.t = at(size * g.uniform(-1, 1));
+    k.feature = "loose";
+    return k;
+  }
+  const double s = 1 + scenes::internal::nearDelta(g);
+  const V hint = scenes::internal::randomUnit(g);
+  if (kind == 3) {  // a cap on the plane
+    k.pose = frameWithAxis(n, hint);
+    k.pose.t = at(h * s);
+    k.feature = "cap_on_face";
+  } else if (kind == 4) {  // the side on the plane: axis across n
+    V axis = cross(n, hint);
+    const double na = norm(axis);
+    axis = na > 1e-3 ? V{axis.x / na, axis.y / na, axis.z / na} : V{0, 0, 1};
+    k.pose = frameWithAxis(axis, n);
+    k.pose.t = at(r * s);
+    k.feature = "side_on_face";
+  } else {  // a rim point on the plane: axis at 45 degrees to n
+    V w = cross(n, hint);
+    const double nw = norm(w);
+    w = nw > 1e-3 ? V{w.x / nw, w.y / nw, w.z / nw} : V{1, 0, 0};
+    const double c = std::sqrt(0.5);
+    const V axis = {c * (n.x + w.x), c * (n.y + w.y), c * (n.z + w.z)};
+    k.pose = frameWithAxis(axis, n);
+    // The rim point nearest the plane is at distance (h + r) cos 45 from
+    // the centre along n.
+    k.pose.t = at((h + r) * c * s);
+    k.feature = "rim_on_face";
+  }
   return k;
 }
 
