@@ -11,11 +11,20 @@
 #include <fcl/geometry/shape/cone.h>
 #include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/sphere.h>
+#include <fenv.h>
 #include <gtest/gtest.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <functional>
+#include <initializer_list>
 #include <limits>
 #include <map>
 #include <memory>
@@ -170,40 +179,124 @@ TRICYL_OBJ_TEST(RobObjMatchesOracle, "rob.obj")
 // ------------------------------------------------- the stock solver's count
 // ---
 
+/// Runs `fn` in a forked child under a time limit (issue 9: libccd can
+/// hang, and a hang must cost a bounded time and count as a wrong answer).
+/// The child sends the ids back through a pipe. Returns false if the child
+/// timed out (it is killed) or died.
+bool idsWithTimeLimit(const std::function<std::set<std::size_t>()>& fn,
+                      double seconds, std::set<std::size_t>* out) {
+  int fd[2];
+  if (pipe(fd) != 0) return false;
+  const pid_t pid = fork();
+  if (pid < 0) return false;
+  if (pid == 0) {
+    close(fd[0]);
+    fedisableexcept(FE_ALL_EXCEPT);  // FCL's own code, not under test here
+    const std::set<std::size_t> ids = fn();
+    std::vector<std::uint64_t> buf(ids.begin(), ids.end());
+    const char* p = reinterpret_cast<const char*>(buf.data());
+    std::size_t left = buf.size() * sizeof(std::uint64_t);
+    while (left > 0) {
+      const ssize_t w = write(fd[1], p, left);
+      if (w <= 0) _exit(2);
+      p += w;
+      left -= std::size_t(w);
+    }
+    _exit(0);
+  }
+  close(fd[1]);
+  std::string bytes;
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  bool eof = false, timed_out = false;
+  while (!eof) {
+    const double left = std::chrono::duration<double>(
+                            deadline - std::chrono::steady_clock::now())
+                            .count();
+    if (left <= 0) {
+      timed_out = true;
+      break;
+    }
+    pollfd pfd{fd[0], POLLIN, 0};
+    if (poll(&pfd, 1, int(left * 1000) + 1) <= 0) continue;
+    char chunk[4096];
+    const ssize_t n = read(fd[0], chunk, sizeof chunk);
+    if (n <= 0)
+      eof = true;
+    else
+      bytes.append(chunk, std::size_t(n));
+  }
+  close(fd[0]);
+  if (timed_out) kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (timed_out || !WIFEXITED(status) || WEXITSTATUS(status) != 0) return false;
+  out->clear();
+  for (std::size_t i = 0; i + sizeof(std::uint64_t) <= bytes.size();
+       i += sizeof(std::uint64_t)) {
+    std::uint64_t v;
+    std::memcpy(&v, bytes.data() + i, sizeof v);
+    out->insert(std::size_t(v));
+  }
+  return true;
+}
+
 /// Not a pass/fail check: how many triangles FCL's stock libccd path gets
-/// wrong on the same scenes (exhaustive, Boolean only), printed per mesh
-/// and scene kind. The tricyl solver gets 0 of them wrong (tests above).
+/// wrong on the same scenes (fcl::collide, exhaustive, Boolean only; each
+/// call in a forked child with a 2 s limit, a hang or crash counts every
+/// oracle triangle as missed), printed per mesh and scene kind. The tricyl
+/// solver gets 0 of them wrong (tests above).
 template <class BV>
 void countStock(const MeshCase& mc) {
   auto model = fcltest::makeModel<BV>(mc.mesh);
-  std::map<std::string, std::array<long, 3>> by_kind;  // hits, missed, false
+  struct Count {
+    long hits = 0, missed = 0, extra = 0, hangs = 0;
+  };
+  std::map<std::string, Count> by_kind;
   for (std::size_t k = 0; k < mc.scenes.size(); ++k) {
     const Scene& s = mc.scenes[k];
     auto cyl = std::make_shared<fcl::Cylinderd>(s.r, s.lz);
-    fcl::CollisionObjectd o_mesh(model, s.mesh_tf), o_cyl(cyl, s.cyl_tf);
-    fcl::CollisionRequestd req(kMany, false);
-    fcl::CollisionResultd res;
-    fcl::collide(&o_mesh, &o_cyl, req, res);
-    const std::set<std::size_t> got = contactIds(res, cyl.get());
-    auto& c = by_kind[s.kind];
-    c[0] += long(mc.oracle[k].size());
-    for (std::size_t id : mc.oracle[k]) c[1] += got.count(id) == 0;
-    for (std::size_t id : got) c[2] += mc.oracle[k].count(id) == 0;
+    std::set<std::size_t> got;
+    const bool returned = idsWithTimeLimit(
+        [&] {
+          fcl::CollisionObjectd o_mesh(model, s.mesh_tf), o_cyl(cyl, s.cyl_tf);
+          fcl::CollisionRequestd req(kMany, false);
+          fcl::CollisionResultd res;
+          fcl::collide(&o_mesh, &o_cyl, req, res);
+          return contactIds(res, cyl.get());
+        },
+        2.0, &got);
+    Count& c = by_kind[s.kind];
+    c.hits += long(mc.oracle[k].size());
+    if (!returned) {
+      ++c.hangs;
+      c.missed += long(mc.oracle[k].size());
+      std::printf("[     stock] %s %s scene %zu: no answer within 2 s\n%s\n",
+                  BvName<BV>::k, mc.mesh.name.c_str(), k,
+                  fcltest::describe(s).c_str());
+      continue;
+    }
+    for (std::size_t id : mc.oracle[k]) c.missed += got.count(id) == 0;
+    for (std::size_t id : got) c.extra += mc.oracle[k].count(id) == 0;
   }
-  long missed = 0, extra = 0, hits = 0;
+  Count total;
   for (const auto& [kind, c] : by_kind) {
     std::printf(
         "[     stock] %-7s %-10s %-11s oracle_hits=%ld missed=%ld "
-        "false_hits=%ld\n",
-        BvName<BV>::k, mc.mesh.name.c_str(), kind.c_str(), c[0], c[1], c[2]);
-    hits += c[0];
-    missed += c[1];
-    extra += c[2];
+        "false_hits=%ld hangs=%ld\n",
+        BvName<BV>::k, mc.mesh.name.c_str(), kind.c_str(), c.hits, c.missed,
+        c.extra, c.hangs);
+    total.hits += c.hits;
+    total.missed += c.missed;
+    total.extra += c.extra;
+    total.hangs += c.hangs;
   }
   std::printf(
       "[     stock] %-7s %-10s TOTAL       oracle_hits=%ld wrong=%ld "
-      "(missed=%ld false_hits=%ld)\n",
-      BvName<BV>::k, mc.mesh.name.c_str(), hits, missed + extra, missed, extra);
+      "(missed=%ld false_hits=%ld) hangs=%ld scenes=%zu\n",
+      BvName<BV>::k, mc.mesh.name.c_str(), total.hits,
+      total.missed + total.extra, total.missed, total.extra, total.hangs,
+      mc.scenes.size());
 }
 
 TEST(FclStockSolver, CountsWrongTrianglesOnTheSameScenes) {
@@ -625,58 +718,96 @@ TEST(FclSolverBroadphase, DefaultCollisionFunctionUsesTheSolver) {
 
 // --------------------------------------------------------------- issue 9 ---
 
+/// A hang case: cylinder (r, lz) at tf, world triangle (a, b, c).
+struct HangCase {
+  const char* name;
+  double r, lz;
+  Tf tf;
+  V3 a, b, c;
+};
+
+Tf makeTf(std::initializer_list<double> R, const V3& t) {
+  Tf tf = Tf::Identity();
+  auto it = R.begin();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) tf.linear()(i, j) = *it++;
+  tf.translation() = t;
+  return tf;
+}
+
 // Issue 9: GJKSolver_libccd<double>::shapeTriangleIntersect with its default
 // tolerance (~2e-14) never returns on this case (libccd's MPR has no
 // iteration cap); with 1e-6 (fcl::collide) it answers "no", but the
-// triangle crosses the rim of this disc (r ~ 778, lz ~ 1.06e-6). The solver
-// must answer "yes" promptly with finite contact data, by every route.
-struct Issue9 {
-  double r = 0x1.8523b2c7f16bfp+9, lz = 0x1.1d3482e4f382bp-20;
-  Tf tf = [] {
-    Tf t = Tf::Identity();
-    t.linear() << 0x1.48b62eb9de056p-2, -0x1.5f07bdb4e0192p-1,
-        -0x1.4e872644fc344p-1, 0x1.5c2a442996f94p-2, 0x1.746386dd0c053p-1,
-        -0x1.313b183115a55p-1, 0x1.c493d98a71998p-1, -0x1.f850245fded6p-6,
-        0x1.ddc88111b7d02p-2;
-    t.translation() << -0x1.51bb1180c6b4p-1, 0x1.a407417745a74p+0,
-        0x1.286f93e83346p-1;
-    return t;
-  }();
-  V3 a{-0x1.3534e5984faf4p+6, -0x1.a6f71157db70ep+8, -0x1.44a19c5402542p+9};
-  V3 b{-0x1.6fc68327e9913p+7, -0x1.4d2ce616c4b6cp+8, -0x1.55e5b744efdp+9};
-  V3 c{-0x1.5d58739ed8ec2p+6, -0x1.6c8a172168b19p+8, -0x1.3777f50c50d2cp+9};
-};
+// triangle crosses the rim of this disc (r ~ 778, lz ~ 1.06e-6).
+HangCase issue9Disc() {
+  return {
+      "issue9_thin_disc",
+      0x1.8523b2c7f16bfp+9,
+      0x1.1d3482e4f382bp-20,
+      makeTf(
+          {0x1.48b62eb9de056p-2, -0x1.5f07bdb4e0192p-1, -0x1.4e872644fc344p-1,
+           0x1.5c2a442996f94p-2, 0x1.746386dd0c053p-1, -0x1.313b183115a55p-1,
+           0x1.c493d98a71998p-1, -0x1.f850245fded6p-6, 0x1.ddc88111b7d02p-2},
+          V3(-0x1.51bb1180c6b4p-1, 0x1.a407417745a74p+0, 0x1.286f93e83346p-1)),
+      V3(-0x1.3534e5984faf4p+6, -0x1.a6f71157db70ep+8, -0x1.44a19c5402542p+9),
+      V3(-0x1.6fc68327e9913p+7, -0x1.4d2ce616c4b6cp+8, -0x1.55e5b744efdp+9),
+      V3(-0x1.5d58739ed8ec2p+6, -0x1.6c8a172168b19p+8, -0x1.3777f50c50d2cp+9)};
+}
 
-void expectSensible(const V3& p, double depth, const V3& n, const Issue9& q) {
+// Found by tricyl-compare (aligned family, seed 1, index 25990; see
+// tests/compare_test.cpp): r = 0.75, lz = 2, an axis-permutation pose, the
+// triangle's plane containing the cylinder's axis. libccd never returns on
+// it with EITHER tolerance, so stock fcl::collide hangs on it.
+HangCase alignedPlaneThroughAxis() {
+  return {"aligned_25990",
+          0x1.8p-1,
+          0x1p+1,
+          makeTf({-1, 0, 0, 0, 0, -1, 0, 1, 0}, V3(-0x1p-1, 0, 0x1p+1)),
+          V3(0x1.6p+0, 0x1p-1, 0x1.7p-2),
+          V3(-0x1p-1, -0x1.cp-1, 0x1p+1),
+          V3(-0x1.2p+1, 0x1.ap+0, 0x1.c4p+1)};
+}
+
+void expectSensible(const V3& p, double depth, const V3& n, const HangCase& q) {
   EXPECT_TRUE(p.allFinite() && n.allFinite() && std::isfinite(depth));
   EXPECT_GT(depth, 0);
   EXPECT_NEAR(n.norm(), 1, 1e-12);
-  // On the triangle, and in the disc, up to rounding at this scale (~1e3).
-  EXPECT_LE(pointTriangleDistance(p, q.a, q.b, q.c), 1e-9);
+  // On the triangle and in the cylinder, up to rounding at the scene scale.
+  const double scale =
+      std::max({q.r, q.lz, q.a.norm(), q.b.norm(), q.c.norm()});
+  EXPECT_LE(pointTriangleDistance(p, q.a, q.b, q.c), 1e-12 * scale);
   const V3 y = q.tf.linear().transpose() * (p - q.tf.translation());
-  EXPECT_LE(std::hypot(y[0], y[1]), q.r * (1 + 1e-12));
-  EXPECT_LE(std::fabs(y[2]), q.lz / 2 + 1e-9);
+  EXPECT_LE(std::hypot(y[0], y[1]), q.r + 1e-12 * scale);
+  EXPECT_LE(std::fabs(y[2]), q.lz / 2 + 1e-12 * scale);
+  // Certificate: the triangle moved by depth (+ slack) along the normal
+  // (cylinder -> triangle) no longer meets the cylinder.
+  const V3 mv = (depth + 1e-9 * scale) * n;
+  EXPECT_EQ(tryIntersect(Cylinder<double>{q.r, q.lz}, toPose(q.tf),
+                         fcltest::toTri(q.a + mv, q.b + mv, q.c + mv)),
+            Answer::kDisjoint);
 }
 
-TEST(FclSolverIssue9, ThinDiscRimCaseReturnsPromptlyWithContact) {
-  const Issue9 q;
-  ASSERT_TRUE(oracle::triangleCylinder({q.r, q.lz}, toPose(q.tf),
-                                       fcltest::toTri(q.a, q.b, q.c)));
+/// The solver directly (default tolerance: the hanging setting for
+/// libccd) with and without contact pointers, and tricyl::collide with a
+/// one-triangle mesh, enable_contact on and off, a world-frame BV (AABB)
+/// and a mesh-frame one (OBBRSS), both orders: the oracle's answer, finite
+/// sensible contact data, all within a second.
+void checkHangCase(const HangCase& q) {
+  SCOPED_TRACE(q.name);
+  const bool expect = oracle::triangleCylinder({q.r, q.lz}, toPose(q.tf),
+                                               fcltest::toTri(q.a, q.b, q.c));
   const auto start = std::chrono::steady_clock::now();
-  // The solver directly, with its default tolerance (the hanging setting
-  // for libccd), with and without contact pointers.
   const Solver<double> solver;
   fcl::Cylinderd cyl(q.r, q.lz);
-  EXPECT_TRUE(solver.shapeTriangleIntersect(cyl, q.tf, q.a, q.b, q.c));
+  EXPECT_EQ(solver.shapeTriangleIntersect(cyl, q.tf, q.a, q.b, q.c), expect);
   V3 p, n;
   double depth = -1;
-  ASSERT_TRUE(
-      solver.shapeTriangleIntersect(cyl, q.tf, q.a, q.b, q.c, &p, &depth, &n));
-  expectSensible(p, depth, n, q);
-  // Through tricyl::collide with a one-triangle mesh, enable_contact, for a
-  // world-frame BV (AABB) and a mesh-frame one (OBBRSS), both orders.
+  ASSERT_EQ(
+      solver.shapeTriangleIntersect(cyl, q.tf, q.a, q.b, q.c, &p, &depth, &n),
+      expect);
+  if (expect) expectSensible(p, depth, n, q);
   Mesh m;
-  m.name = "issue9";
+  m.name = q.name;
   m.v = {q.a, q.b, q.c};
   m.t = {fcl::Triangle(0, 1, 2)};
   auto g = std::make_shared<fcl::Cylinderd>(q.r, q.lz);
@@ -686,22 +817,38 @@ TEST(FclSolverIssue9, ThinDiscRimCaseReturnsPromptlyWithContact) {
                      std::shared_ptr<fcl::CollisionGeometryd>(
                          fcltest::makeModel<fcl::OBBRSS<double>>(m))}) {
     fcl::CollisionObjectd o_mesh(model, Tf::Identity());
-    for (int order = 0; order < 2; ++order) {
-      fcl::CollisionRequestd req(1, true);
-      fcl::CollisionResultd res;
-      if (order == 0)
-        tricyl::collide(&o_mesh, &o_cyl, req, res);
-      else
-        tricyl::collide(&o_cyl, &o_mesh, req, res);
-      ASSERT_EQ(res.numContacts(), 1u);
-      const fcl::Contactd& c = res.getContact(0);
-      expectSensible(c.pos, c.penetration_depth, c.normal, q);
-    }
+    for (int order = 0; order < 2; ++order)
+      for (bool contact : {false, true}) {
+        fcl::CollisionRequestd req(1, contact);
+        fcl::CollisionResultd res;
+        if (order == 0)
+          tricyl::collide(&o_mesh, &o_cyl, req, res);
+        else
+          tricyl::collide(&o_cyl, &o_mesh, req, res);
+        ASSERT_EQ(res.isCollision(), expect);
+        if (!expect || !contact) continue;
+        const fcl::Contactd& c = res.getContact(0);
+        // Contact::normal points mesh -> cylinder; the solver's n is the
+        // reverse (cylinder -> triangle).
+        const V3 cyl_to_tri = c.o2 == g.get() ? V3(-c.normal) : c.normal;
+        expectSensible(c.pos, c.penetration_depth, cyl_to_tri, q);
+      }
   }
   const double secs =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();
-  EXPECT_LT(secs, 1.0) << "issue 9 case took " << secs << " s";
+  EXPECT_LT(secs, 1.0) << q.name << " took " << secs << " s";
+}
+
+TEST(FclSolverIssue9, ThinDiscRimCaseReturnsPromptlyWithContact) {
+  const HangCase q = issue9Disc();
+  ASSERT_TRUE(oracle::triangleCylinder({q.r, q.lz}, toPose(q.tf),
+                                       fcltest::toTri(q.a, q.b, q.c)));
+  checkHangCase(q);
+}
+
+TEST(FclSolverIssue9, AlignedCaseHangingLibccdReturnsPromptly) {
+  checkHangCase(alignedPlaneThroughAxis());
 }
 
 // --------------------------------------------------------- invalid input ---
