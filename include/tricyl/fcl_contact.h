@@ -35,7 +35,11 @@
 //   the set: face vs cap, face vs barrel, edge vs barrel, vertex vs barrel,
 //   vertex or edge vs cap. For contacts at the rim with an oblique edge the
 //   depth may exceed the true one (it is still a valid separating
-//   translation). The first minimum wins ties, in the order listed.
+//   translation). Measured on 264 random small triangles at the rims of an
+//   r = 1, lz = 2 cylinder (tests/fcl_contact_test.cpp): depth minus a
+//   dense-sampled minimum (20000 directions + local refinement) is at the
+//   median 0, at the 95th percentile 0.7%, at most 3.4% of lz. The first
+//   minimum wins ties, in the order listed.
 // - point: the triangle is clipped to the slab |z| <= h (Sutherland-Hodgman,
 //   at most 5 vertices); the point of that polygon whose projection on the
 //   xy-plane is nearest the axis is taken (the axis/plane crossing when the
