@@ -63,7 +63,8 @@ int main(int argc, char** argv) {
       ->delimiter(',');
   app.add_option("--methods", method_names,
                  "methods to run (default: all): tricyl tricyl_fast "
-                 "tricyl_float fcl_libccd_1e-6 fcl_libccd_default fcl_indep")
+                 "tricyl_float tricyl_fcl tricyl_fcl_contact fcl_libccd_1e-6 "
+                 "fcl_libccd_default fcl_indep")
       ->delimiter(',');
   app.add_option("--mesh", mesh_files,
                  "OBJ files for the mesh family (replace the built-in "
@@ -94,12 +95,20 @@ int main(int argc, char** argv) {
     opt.timeout_s = timeout;
     opt.progress = !quiet;
     if (method_names.empty()) {
-      for (int i = 0; i < kMethodCount; ++i) opt.methods.push_back(Method(i));
+      for (int i = 0; i < kMethodCount; ++i)
+        if (methodAvailable(Method(i))) opt.methods.push_back(Method(i));
     } else {
       for (const auto& n : method_names) {
         auto m = parseMethod(n);
         if (!m) {
           std::fprintf(stderr, "tricyl-compare: unknown method '%s'\n",
+                       n.c_str());
+          return 2;
+        }
+        if (!methodAvailable(*m)) {
+          std::fprintf(stderr,
+                       "tricyl-compare: method '%s' needs tricyl::fcl, which "
+                       "this build does not have\n",
                        n.c_str());
           return 2;
         }

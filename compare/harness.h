@@ -29,6 +29,8 @@ enum class Method : int {
   kTricyl = 0,        ///< tricyl::tryIntersect: exact (filter + fallback)
   kTricylFast,        ///< diagnostic::intersectUncertified: no certificate
   kTricylFloat,       ///< the case rounded to float, then tricyl (exact)
+  kTricylFcl,         ///< tricyl::Solver<double> inside FCL (Boolean only)
+  kTricylFclContact,  ///< tricyl::Solver<double>, contact data requested
   kFclLibccd1e6,      ///< GJKSolver_libccd, collision_tolerance = 1e-6
   kFclLibccdDefault,  ///< GJKSolver_libccd, its own default (~2e-14)
   kFclIndep,          ///< GJKSolver_indep with its defaults
@@ -38,8 +40,12 @@ inline constexpr int kMethodCount = int(Method::kCount);
 
 const char* methodName(Method m);
 std::optional<Method> parseMethod(std::string_view s);
-/// True for the methods that run FCL code (and so may never return).
+/// True for the methods that run FCL code (and so may never return): they
+/// run under the per-query time limit. Includes tricyl::Solver's methods,
+/// which run inside FCL's narrow phase.
 bool isFcl(Method m);
+/// False for tricyl::Solver's methods when tricyl::fcl was not built.
+bool methodAvailable(Method m);
 /// True if the method answers the float-rounded input (its truth differs).
 inline bool usesFloatInput(Method m) { return m == Method::kTricylFloat; }
 

@@ -12,14 +12,22 @@
 #include "mesh_scenes.h"
 #include "oracle.h"
 #include "tricyl/triangle_cylinder.h"
+#ifdef TRICYL_COMPARE_HAVE_SOLVER
+#include "tricyl/fcl_solver.h"
+#endif
 
 namespace tricyl::compare {
 
 namespace {
 
-constexpr const char* kMethodNames[kMethodCount] = {
-    "tricyl",          "tricyl_fast",        "tricyl_float",
-    "fcl_libccd_1e-6", "fcl_libccd_default", "fcl_indep"};
+constexpr const char* kMethodNames[kMethodCount] = {"tricyl",
+                                                    "tricyl_fast",
+                                                    "tricyl_float",
+                                                    "tricyl_fcl",
+                                                    "tricyl_fcl_contact",
+                                                    "fcl_libccd_1e-6",
+                                                    "fcl_libccd_default",
+                                                    "fcl_indep"};
 
 using Bvh = fcl::BVHModel<fcl::OBBRSSd>;
 
@@ -103,7 +111,17 @@ std::optional<Method> parseMethod(std::string_view s) {
 
 bool isFcl(Method m) {
   return m == Method::kFclLibccd1e6 || m == Method::kFclLibccdDefault ||
-         m == Method::kFclIndep;
+         m == Method::kFclIndep || m == Method::kTricylFcl ||
+         m == Method::kTricylFclContact;
+}
+
+bool methodAvailable(Method m) {
+#ifdef TRICYL_COMPARE_HAVE_SOLVER
+  (void)m;
+  return true;
+#else
+  return m != Method::kTricylFcl && m != Method::kTricylFclContact;
+#endif
 }
 
 void prepareMesh(Mesh& mesh) {
@@ -174,7 +192,15 @@ struct Evaluator::Impl {
   fcl::detail::GJKSolver_libccd<double> ccd_1e6;
   fcl::detail::GJKSolver_libccd<double> ccd_default;
   fcl::detail::GJKSolver_indep<double> indep;
+#ifdef TRICYL_COMPARE_HAVE_SOLVER
+  tricyl::Solver<double> solver;  // collision_tolerance as fcl::collide sets
+  Impl() {
+    ccd_1e6.collision_tolerance = 1e-6;
+    solver.collision_tolerance = 1e-6;
+  }
+#else
   Impl() { ccd_1e6.collision_tolerance = 1e-6; }
+#endif
 
   bool triangle(Method m, const scenes::TriCase& k) {
     switch (m) {
@@ -202,6 +228,17 @@ struct Evaluator::Impl {
       case Method::kFclIndep:
         return indep.shapeTriangleIntersect(cyl, tf, a, b, c, nullptr, nullptr,
                                             nullptr);
+#ifdef TRICYL_COMPARE_HAVE_SOLVER
+      case Method::kTricylFcl:
+        return solver.shapeTriangleIntersect(cyl, tf, a, b, c, nullptr, nullptr,
+                                             nullptr);
+      case Method::kTricylFclContact: {
+        fcl::Vector3d point, normal;
+        double depth = 0;
+        return solver.shapeTriangleIntersect(cyl, tf, a, b, c, &point, &depth,
+                                             &normal);
+      }
+#endif
       default:
         return false;
     }
@@ -248,6 +285,15 @@ struct Evaluator::Impl {
     fcl::CollisionResultd result;
     const fcl::Cylinderd cyl(k.cyl.radius, k.cyl.lz);
     const auto* model = static_cast<const Bvh*>(c.mesh->fcl_model.get());
+#ifdef TRICYL_COMPARE_HAVE_SOLVER
+    if (m == Method::kTricylFcl || m == Method::kTricylFclContact) {
+      request.enable_contact = m == Method::kTricylFclContact;
+      tricyl::collide(static_cast<const fcl::CollisionGeometryd*>(&cyl),
+                      toFcl(k.pose), model, fcl::Transform3d::Identity(),
+                      request, result);
+      return result.isCollision();
+    }
+#endif
     fcl::collide(&cyl, toFcl(k.pose), model, fcl::Transform3d::Identity(),
                  request, result);
     return result.isCollision();

@@ -111,8 +111,8 @@ double floorFor(const std::vector<double>& rates) {
   return std::pow(10.0, std::floor(std::log10(lo)) - 1);
 }
 
-const char* kColors[] = {"#000000", "#1f77b4", "#2ca02c",
-                         "#d62728", "#ff7f0e", "#9467bd"};
+const char* kColors[] = {"#000000", "#1f77b4", "#2ca02c", "#17becf",
+                         "#8c564b", "#d62728", "#ff7f0e", "#9467bd"};
 
 /// Enhanced-text escape for gnuplot single-quoted strings: '_' and '^'
 /// would otherwise start sub/superscripts.
@@ -380,10 +380,10 @@ std::vector<std::string> writeReport(const std::string& dir,
     for (std::size_t mi = 0; mi < methods.size(); ++mi)
       g << "  $m" << mi
         << " using 1:2:3 with points pt variable ps 1.6 lc rgb '"
-        << kColors[int(methods[mi]) % 6] << "' notitle, \\\n";
+        << kColors[int(methods[mi]) % 8] << "' notitle, \\\n";
     for (std::size_t mi = 0; mi < methods.size(); ++mi)
       g << "  NaN with points pt 5 ps 1.6 lc rgb '"
-        << kColors[int(methods[mi]) % 6]
+        << kColors[int(methods[mi]) % 8]
         << "' title 'method: " << gpText(methodName(methods[mi])) << "', \\\n";
     for (std::size_t fi = 0; fi < fams.size(); ++fi)
       g << "  NaN with points pt " << (fi + 4) << " ps 1.6 lc rgb '#555555' "
@@ -431,7 +431,7 @@ std::vector<std::string> writeReport(const std::string& dir,
     g << "plot \\\n";
     for (std::size_t mi = 0; mi < methods.size(); ++mi)
       g << "  $m" << mi << " using 1:2 with linespoints pt " << (mi + 4)
-        << " lw 1.5 lc rgb '" << kColors[int(methods[mi]) % 6] << "' title '"
+        << " lw 1.5 lc rgb '" << kColors[int(methods[mi]) % 8] << "' title '"
         << gpText(methodName(methods[mi])) << "', \\\n";
     g << "  NaN with lines dt 2 lc rgb '#888888' title 'error = 0: drawn on "
          "the floor "
