@@ -30,6 +30,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <thread>
 #include <type_traits>
 #include <vector>
 
@@ -681,6 +682,32 @@ TEST(FclSolverDistance, InheritedDistanceWorks) {
       }
     }
   }
+}
+
+// ---------------------------------------------------------------- threads ---
+
+TEST(FclSolverThreads, OneSolverSharedAcrossThreads) {
+  const MeshCase& mc = meshCase("sphere");
+  auto model = fcltest::makeModel<fcl::OBBRSS<double>>(mc.mesh);
+  const Solver<double> solver;  // one instance, used by both threads
+  std::vector<std::set<std::size_t>> got(mc.scenes.size());
+  auto work = [&](std::size_t first) {
+    for (int rep = 0; rep < 5; ++rep)
+      for (std::size_t k = first; k < mc.scenes.size(); k += 2) {
+        const Scene& s = mc.scenes[k];
+        auto cyl = std::make_shared<fcl::Cylinderd>(s.r, s.lz);
+        fcl::CollisionObjectd o_mesh(model, s.mesh_tf), o_cyl(cyl, s.cyl_tf);
+        fcl::CollisionRequestd req(kMany, rep % 2 == 1);
+        fcl::CollisionResultd res;
+        fcl::collide(&o_cyl, &o_mesh, &solver, req, res);
+        got[k] = contactIds(res, cyl.get());
+      }
+  };
+  std::thread t0(work, 0), t1(work, 1);
+  t0.join();
+  t1.join();
+  for (std::size_t k = 0; k < mc.scenes.size(); ++k)
+    EXPECT_EQ(got[k], mc.oracle[k]) << "scene " << k;
 }
 
 // ------------------------------------------------------------ broadphase ---

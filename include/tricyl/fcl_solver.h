@@ -77,6 +77,7 @@
 #include <fcl/narrowphase/distance.h>
 
 #include <cstddef>
+#include <type_traits>
 #include <vector>
 
 #include "tricyl/fcl_contact.h"
@@ -88,6 +89,11 @@ namespace tricyl {
 /// triangle/cylinder. Use wherever FCL takes a NarrowPhaseSolver.
 template <class S>
 class Solver : public fcl::detail::GJKSolver_libccd<S> {
+  // The members and FCL's matrices are compiled once, for double, in
+  // src/fcl/fcl_solver.cpp. (estimateContact itself supports float.)
+  static_assert(std::is_same_v<S, double>,
+                "tricyl::Solver is built for double only");
+
  public:
   using Base = fcl::detail::GJKSolver_libccd<S>;
 
