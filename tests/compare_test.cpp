@@ -245,6 +245,9 @@ TEST(CompareTimeLimit, Issue9HangIsDetectedWithinTheLimit) {
   compare::RunOptions opt;
   opt.methods = {Method::kTricyl, Method::kFclLibccdDefault,
                  Method::kFclLibccd1e6};
+  // tricyl::Solver inside FCL must answer it (issue 9), contact path too.
+  for (Method m : {Method::kTricylFcl, Method::kTricylFclContact})
+    if (compare::methodAvailable(m)) opt.methods.push_back(m);
   opt.workers = 1;
   opt.timeout_s = 0.5;
   opt.progress = false;
@@ -265,8 +268,12 @@ TEST(CompareTimeLimit, Issue9HangIsDetectedWithinTheLimit) {
   // The methods after the hung one still ran (the worker was restarted).
   EXPECT_EQ(st.method[int(Method::kFclLibccd1e6)].cases, 1u);
   EXPECT_EQ(st.method[int(Method::kFclLibccd1e6)].hangs, 0u);
-  // tricyl answers it, correctly.
-  EXPECT_EQ(st.method[int(Method::kTricyl)].wrong(), 0u);
+  // tricyl answers it, correctly, and so does its FCL solver.
+  for (Method m : opt.methods) {
+    if (m == Method::kFclLibccdDefault || m == Method::kFclLibccd1e6) continue;
+    EXPECT_EQ(st.method[int(m)].cases, 1u) << compare::methodName(m);
+    EXPECT_EQ(st.method[int(m)].wrong(), 0u) << compare::methodName(m);
+  }
 }
 
 // Found by the default run (aligned family, seed 1, index 25990): a plain
@@ -293,6 +300,8 @@ TEST(CompareTimeLimit, AlignedCaseHangsBothLibccdTolerances) {
   compare::RunOptions opt;
   opt.methods = {Method::kFclLibccd1e6, Method::kTricyl,
                  Method::kFclLibccdDefault, Method::kFclIndep};
+  for (Method m : {Method::kTricylFcl, Method::kTricylFclContact})
+    if (compare::methodAvailable(m)) opt.methods.push_back(m);
   opt.workers = 1;
   opt.timeout_s = 0.3;
   opt.progress = false;
@@ -302,6 +311,11 @@ TEST(CompareTimeLimit, AlignedCaseHangsBothLibccdTolerances) {
   EXPECT_EQ(r.sets[0].method[int(Method::kFclLibccdDefault)].hangs, 1u);
   EXPECT_EQ(r.sets[0].method[int(Method::kFclIndep)].cases, 1u);
   EXPECT_EQ(r.sets[0].method[int(Method::kTricyl)].wrong(), 0u);
+  for (Method m : {Method::kTricylFcl, Method::kTricylFclContact})
+    if (compare::methodAvailable(m)) {
+      EXPECT_EQ(r.sets[0].method[int(m)].cases, 1u) << compare::methodName(m);
+      EXPECT_EQ(r.sets[0].method[int(m)].wrong(), 0u) << compare::methodName(m);
+    }
   EXPECT_EQ(r.worker_restarts, 2u);
 }
 
