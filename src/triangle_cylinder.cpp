@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 #include "filter.h"
 #include "triangle_cylinder_impl.h"
@@ -18,7 +19,16 @@ using detail::FilterKernel;
 using detail::NaiveKernel;
 using detail::Tri;
 
+// The double kernel works on references to the caller's values; float
+// inputs are widened first (float -> double is exact, so the double kernel
+// is exact for float inputs).
 struct Inputs {
+  const Cylinder<double>& cyl;
+  const Pose<double>& pose;
+  const Triangle<double>& tri;
+};
+
+struct Widened {
   Cylinder<double> cyl;
   Pose<double> pose;
   Triangle<double> tri;
@@ -29,40 +39,47 @@ Vec3<double> widen(const Vec3<S>& v) {
   return {double(v.x), double(v.y), double(v.z)};
 }
 
-// float -> double is exact, so the double kernel is exact for float inputs.
-template <class S>
-Inputs widen(const Cylinder<S>& cyl, const Pose<S>& pose,
-             const Triangle<S>& tri) {
-  Inputs in;
-  in.cyl = {double(cyl.radius), double(cyl.lz)};
+Widened widen(const Cylinder<float>& cyl, const Pose<float>& pose,
+              const Triangle<float>& tri) {
+  Widened w;
+  w.cyl = {double(cyl.radius), double(cyl.lz)};
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) in.pose.R[i][j] = double(pose.R[i][j]);
-  in.pose.t = widen(pose.t);
-  in.tri = {widen(tri.a), widen(tri.b), widen(tri.c)};
-  return in;
+    for (int j = 0; j < 3; ++j) w.pose.R[i][j] = double(pose.R[i][j]);
+  w.pose.t = widen(pose.t);
+  w.tri = {widen(tri.a), widen(tri.b), widen(tri.c)};
+  return w;
 }
 
-// One pass over the input bits: a double is finite iff its exponent field
-// is not all ones, and for non-negative doubles the bit pattern orders like
-// the value, so the maxima of |x| are maxima of (bits & ~sign). Returns
-// false for NaN/Inf anywhere or a negative radius or length (-0 is fine);
-// otherwise the largest magnitudes for the filter's range gate.
+static_assert(sizeof(Pose<double>) == 12 * sizeof(double) &&
+                  sizeof(Triangle<double>) == 9 * sizeof(double) &&
+                  sizeof(Cylinder<double>) == 2 * sizeof(double),
+              "the aggregates are arrays of doubles without padding");
+
+// |x| as bits. For non-negative doubles the bit pattern orders like the
+// value, and a double is finite iff (bits & ~sign) < 0x7ff0...0.
+template <size_t N>
+std::uint64_t maxAbsBits(const void* p) {
+  std::uint64_t b[N];
+  std::memcpy(b, p, sizeof b);
+  std::uint64_t m = 0;
+  for (size_t i = 0; i < N; ++i) {
+    const std::uint64_t a = b[i] & ~(std::uint64_t(1) << 63);
+    m = a > m ? a : m;
+  }
+  return m;
+}
+
+// One pass over the input bits. Returns false for NaN/Inf anywhere or a
+// negative radius or length (-0 is fine); otherwise the largest magnitudes
+// of the lengths and of the rotation entries, for the filter's range gate.
 bool validate(const Inputs& in, double* max_len, double* max_unitless) {
-  constexpr std::uint64_t kAbs = ~(std::uint64_t(1) << 63);
   constexpr std::uint64_t kInf = 0x7ff0000000000000ULL;
-  auto bits = [](double v) {
-    std::uint64_t b;
-    std::memcpy(&b, &v, sizeof b);
-    return b;
-  };
-  const double len[] = {in.cyl.radius, in.cyl.lz,  in.pose.t.x, in.pose.t.y,
-                        in.pose.t.z,   in.tri.a.x, in.tri.a.y,  in.tri.a.z,
-                        in.tri.b.x,    in.tri.b.y, in.tri.b.z,  in.tri.c.x,
-                        in.tri.c.y,    in.tri.c.z};
-  std::uint64_t ml = 0, mu = 0;
-  for (double v : len) ml = std::max(ml, bits(v) & kAbs);
-  for (const auto& row : in.pose.R)
-    for (double v : row) mu = std::max(mu, bits(v) & kAbs);
+  const std::uint64_t mu = maxAbsBits<9>(&in.pose.R[0][0]);
+  std::uint64_t ml = maxAbsBits<9>(&in.tri);
+  const std::uint64_t mt = maxAbsBits<3>(&in.pose.t);
+  const std::uint64_t mc = maxAbsBits<2>(&in.cyl);
+  ml = ml > mt ? ml : mt;
+  ml = ml > mc ? ml : mc;
   if (ml >= kInf || mu >= kInf) return false;
   std::memcpy(max_len, &ml, sizeof ml);
   std::memcpy(max_unitless, &mu, sizeof mu);
@@ -97,8 +114,17 @@ Decision decide(const Inputs& in) {
           Stage::kExact};
 }
 
-bool checked(const Inputs& in) {
-  const Decision d = decide(in);
+Decision decideAny(const Cylinder<double>& cylinder, const Pose<double>& pose,
+                   const Triangle<double>& triangle) {
+  return decide(Inputs{cylinder, pose, triangle});
+}
+Decision decideAny(const Cylinder<float>& cylinder, const Pose<float>& pose,
+                   const Triangle<float>& triangle) {
+  const Widened w = widen(cylinder, pose, triangle);
+  return decide(Inputs{w.cyl, w.pose, w.tri});
+}
+
+bool checked(Decision d) {
   if (d.answer == Answer::kInvalidInput)
     throw InvalidInput(
         "tricyl::intersect(cylinder, triangle): NaN or infinite input, or a "
@@ -111,31 +137,36 @@ bool checked(const Inputs& in) {
 template <class S>
 Decision decideIntersect(const Cylinder<S>& cylinder, const Pose<S>& pose,
                          const Triangle<S>& triangle) noexcept {
-  return decide(widen(cylinder, pose, triangle));
+  return decideAny(cylinder, pose, triangle);
 }
 
 template <class S>
 Answer tryIntersect(const Cylinder<S>& cylinder, const Pose<S>& pose,
                     const Triangle<S>& triangle) noexcept {
-  return decide(widen(cylinder, pose, triangle)).answer;
+  return decideAny(cylinder, pose, triangle).answer;
 }
 
 template <class S>
 bool intersect(const Cylinder<S>& cylinder, const Pose<S>& pose,
                const Triangle<S>& triangle) {
-  return checked(widen(cylinder, pose, triangle));
+  return checked(decideAny(cylinder, pose, triangle));
 }
 
 template <class S>
 bool intersect(const Cylinder<S>& cylinder, const Triangle<S>& triangle) {
-  return checked(widen(cylinder, identityPose<S>(), triangle));
+  return checked(decideAny(cylinder, identityPose<S>(), triangle));
 }
 
 namespace diagnostic {
 template <class S>
 bool intersectUncertified(const Cylinder<S>& cylinder, const Pose<S>& pose,
                           const Triangle<S>& triangle) noexcept {
-  const Inputs in = widen(cylinder, pose, triangle);
+  Widened in;
+  if constexpr (std::is_same_v<S, float>) {
+    in = widen(cylinder, pose, triangle);
+  } else {
+    in = {cylinder, pose, triangle};
+  }
   const auto q = detail::makeLocal<NaiveKernel>(in.cyl, in.pose, in.tri, 1.0);
   bool early = false;
   return detail::triangleCylinder<NaiveKernel>(q, &early) == Tri::kTrue;
