@@ -32,7 +32,9 @@ int main() {
     manager.setup();
     manager.collide(&data, tricyl::DefaultCollisionFunction<double>);
     std::printf("bottom at z=%s: collide %s, broadphase %s\n",
-                z == 0.5 ? "0" : z == 0.25 ? "-0.25" : "1e-12",
+                z == 0.5    ? "0"
+                : z == 0.25 ? "-0.25"
+                            : "1e-12",
                 result.isCollision() ? "collision" : "free",
                 data.result.isCollision() ? "collision" : "free");
   }
