@@ -1,0 +1,168 @@
+// libFuzzer target: tricyl::intersect / tryIntersect / decideIntersect
+// (include/tricyl/triangle_cylinder.h) on inputs decoded from raw bytes
+// (fuzz_input.h: full double or float bit patterns mixed with structured
+// values). Built with -fsanitize=fuzzer,address,undefined (TRICYL_BUILD_FUZZ).
+//
+// Properties (any violation prints the case in hex floats and aborts):
+// - no crash, no sanitizer report, and on valid input no floating-point
+//   invalid operation or division by zero (trapped around the kernel calls:
+//   the README promises no NaN is ever produced on valid input);
+// - valid input (all finite, radius and lz >= 0): tryIntersect equals the
+//   exact oracle (compare/oracle.h), and so does every reordering of the
+//   triangle's vertices and the point reflection of the whole scene
+//   (t, a, b, c negated: exact, and the cylinder is symmetric);
+// - invalid input (NaN or Inf anywhere, negative radius or lz): tryIntersect
+//   and decideIntersect return kInvalidInput (stage kInvalid) and intersect
+//   throws tricyl::InvalidInput;
+// - intersect, tryIntersect and decideIntersect agree; the local-frame
+//   overload agrees with the posed one when the pose is the identity.
+#include <fenv.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+
+#include "fuzz_input.h"
+#include "oracle.h"
+#include "tricyl/triangle_cylinder.h"
+
+namespace {
+
+using tricyl::Answer;
+using tricyl::Stage;
+using tricyl::fuzz::Case;
+
+[[noreturn]] void fail(const char* what, const char* detail) {
+  std::fprintf(stderr, "tricyl fuzz: PROPERTY VIOLATED: %s (%s)\n", what,
+               detail);
+  std::abort();
+}
+
+template <class S>
+void check(bool ok, const char* what, const Case<S>& c) {
+  if (ok) return;
+  tricyl::fuzz::print(c);
+  fail(what, sizeof(S) == 8 ? "double" : "float");
+}
+
+/// Traps FE_INVALID and FE_DIVBYZERO for its scope (valid input only).
+struct FpTraps {
+  FpTraps() {
+    feclearexcept(FE_ALL_EXCEPT);
+    feenableexcept(FE_INVALID | FE_DIVBYZERO);
+  }
+  ~FpTraps() {
+    fedisableexcept(FE_ALL_EXCEPT);
+    feclearexcept(FE_ALL_EXCEPT);
+  }
+};
+
+template <class S>
+tricyl::Pose<double> widen(const tricyl::Pose<S>& p) {
+  tricyl::Pose<double> d;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) d.R[i][j] = double(p.R[i][j]);
+  d.t = {double(p.t.x), double(p.t.y), double(p.t.z)};
+  return d;
+}
+
+template <class S>
+tricyl::Vec3<double> widen(const tricyl::Vec3<S>& v) {
+  return {double(v.x), double(v.y), double(v.z)};
+}
+
+template <class S>
+tricyl::Vec3<S> neg(const tricyl::Vec3<S>& v) {
+  return {-v.x, -v.y, -v.z};
+}
+
+template <class S>
+void run(const Case<S>& c) {
+  const bool valid = tricyl::fuzz::valid(c);
+  if (std::getenv("TRICYL_FUZZ_PRINT")) tricyl::fuzz::print(c);
+
+  if (!valid) {
+    check(tricyl::tryIntersect(c.cyl, c.pose, c.tri) == Answer::kInvalidInput,
+          "tryIntersect != kInvalidInput on invalid input", c);
+    const tricyl::Decision d = tricyl::decideIntersect(c.cyl, c.pose, c.tri);
+    check(d.answer == Answer::kInvalidInput && d.stage == Stage::kInvalid,
+          "decideIntersect != {kInvalidInput, kInvalid} on invalid input", c);
+    bool threw = false;
+    try {
+      (void)tricyl::intersect(c.cyl, c.pose, c.tri);
+    } catch (const tricyl::InvalidInput&) {
+      threw = true;
+    }
+    check(threw, "intersect did not throw InvalidInput on invalid input", c);
+    if (c.identity_pose) {
+      threw = false;
+      try {
+        (void)tricyl::intersect(c.cyl, c.tri);
+      } catch (const tricyl::InvalidInput&) {
+        threw = true;
+      }
+      check(threw, "local intersect did not throw on invalid input", c);
+    }
+    return;
+  }
+
+  Answer a;
+  tricyl::Decision d;
+  bool b = false, threw = false;
+  Answer perm[5], reflected;
+  {
+    FpTraps traps;
+    a = tricyl::tryIntersect(c.cyl, c.pose, c.tri);
+    d = tricyl::decideIntersect(c.cyl, c.pose, c.tri);
+    try {
+      b = tricyl::intersect(c.cyl, c.pose, c.tri);
+    } catch (const tricyl::InvalidInput&) {
+      threw = true;
+    }
+    const auto& t = c.tri;
+    const tricyl::Triangle<S> orders[5] = {{t.a, t.c, t.b},
+                                           {t.b, t.a, t.c},
+                                           {t.b, t.c, t.a},
+                                           {t.c, t.a, t.b},
+                                           {t.c, t.b, t.a}};
+    for (int i = 0; i < 5; ++i)
+      perm[i] = tricyl::tryIntersect(c.cyl, c.pose, orders[i]);
+    tricyl::Pose<S> p = c.pose;
+    p.t = neg(p.t);
+    reflected = tricyl::tryIntersect(c.cyl, p, {neg(t.a), neg(t.b), neg(t.c)});
+  }
+  check(!threw, "intersect threw on valid input", c);
+  check(a != Answer::kInvalidInput, "kInvalidInput on valid input", c);
+  check(d.answer == a, "decideIntersect != tryIntersect", c);
+  check(d.stage != Stage::kInvalid, "stage kInvalid on valid input", c);
+  check(b == (a == Answer::kIntersect), "intersect != tryIntersect", c);
+  if (c.identity_pose) {
+    bool local = false;
+    {
+      FpTraps traps;
+      local = tricyl::intersect(c.cyl, c.tri);
+    }
+    check(local == b, "local-frame intersect != posed intersect", c);
+  }
+
+  const bool truth = tricyl::oracle::triangleCylinder(
+      {double(c.cyl.radius), double(c.cyl.lz)}, widen(c.pose),
+      {widen(c.tri.a), widen(c.tri.b), widen(c.tri.c)});
+  check(b == truth, "kernel disagrees with the exact oracle", c);
+  for (Answer p : perm) check(p == a, "answer depends on the vertex order", c);
+  check(reflected == a, "answer changes under the point reflection", c);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data,
+                                      std::size_t size) {
+  if (size == 0) return 0;
+  // Bit 3 of the flags byte selects float inputs (decoded from 4-byte
+  // patterns, so no out-of-range double -> float conversion is involved).
+  if (data[0] & 8)
+    run(tricyl::fuzz::decode<float>(data, size));
+  else
+    run(tricyl::fuzz::decode<double>(data, size));
+  return 0;
+}
