@@ -1,0 +1,105 @@
+// Shared by the FCL examples: a tiny Wavefront OBJ reader, a procedural mesh
+// and the fcl::BVHModel they become. Not part of tricyl's API.
+#pragma once
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/math/bv/OBBRSS.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace example {
+
+struct Mesh {
+  std::vector<fcl::Vector3d> vertices;
+  std::vector<fcl::Triangle> triangles;
+};
+
+/// Reads the `v x y z` and `f i j k` lines of an OBJ file (1-based or
+/// negative indices; `f a/b/c` forms keep the vertex index; polygons are
+/// fanned into triangles). Returns false when the file cannot be read or
+/// holds no triangle.
+inline bool readObj(const std::string& path, Mesh* mesh) {
+  std::ifstream in(path);
+  if (!in) return false;
+  Mesh m;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream ls(line);
+    std::string tag;
+    ls >> tag;
+    if (tag == "v") {
+      double x, y, z;
+      if (ls >> x >> y >> z) m.vertices.emplace_back(x, y, z);
+    } else if (tag == "f") {
+      std::vector<std::size_t> idx;
+      std::string tok;
+      while (ls >> tok) {
+        const long i = std::stol(tok.substr(0, tok.find('/')));
+        const long n = static_cast<long>(m.vertices.size());
+        const long k = i > 0 ? i - 1 : n + i;
+        if (k < 0 || k >= n) return false;
+        idx.push_back(static_cast<std::size_t>(k));
+      }
+      for (std::size_t j = 2; j < idx.size(); ++j)
+        m.triangles.emplace_back(idx[0], idx[j - 1], idx[j]);
+    }
+  }
+  if (m.triangles.empty()) return false;
+  *mesh = std::move(m);
+  return true;
+}
+
+/// A square terrain on [-2, 2]^2 (0.25 spacing) with a pyramid bump
+/// z = max(0, 1 - |x| - |y|): every coordinate is a dyadic rational, so the
+/// mesh, and every answer about it, is the same on every machine.
+inline Mesh pyramidTerrain() {
+  Mesh m;
+  const int n = 16;  // cells per side
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double x = -2 + 0.25 * i, y = -2 + 0.25 * j;
+      const double h = 1 - std::abs(x) - std::abs(y);
+      m.vertices.emplace_back(x, y, h > 0 ? h : 0.0);
+    }
+  auto at = [n](int i, int j) {
+    return static_cast<std::size_t>(j * (n + 1) + i);
+  };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  return m;
+}
+
+/// An axis-aligned box of half-extents (hx, hy, hz) centred at the origin,
+/// as 12 triangles (a mesh, not fcl::Box: the pair tricyl answers is
+/// cylinder vs mesh triangle).
+inline Mesh boxMesh(double hx, double hy, double hz) {
+  Mesh m;
+  for (int k = 0; k < 8; ++k)
+    m.vertices.emplace_back(k & 1 ? hx : -hx, k & 2 ? hy : -hy,
+                            k & 4 ? hz : -hz);
+  const std::size_t f[12][3] = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6},
+                                {0, 1, 5}, {0, 5, 4}, {2, 6, 7}, {2, 7, 3},
+                                {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  for (const auto& t : f) m.triangles.emplace_back(t[0], t[1], t[2]);
+  return m;
+}
+
+/// The mesh as FCL's usual BVH (OBBRSS, what MoveIt uses for meshes).
+inline std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> toBVH(const Mesh& mesh) {
+  auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+  model->beginModel();
+  model->addSubModel(mesh.vertices, mesh.triangles);
+  model->endModel();
+  return model;
+}
+
+}  // namespace example
