@@ -19,11 +19,16 @@
 
 namespace tricyl {
 
+/// A point or vector, three coordinates.
 template <class S>
 struct Vec3 {
-  S x, y, z;
+  S x;  ///< first coordinate
+  S y;  ///< second coordinate
+  S z;  ///< third coordinate
 };
 
+/// FCL's cylinder: centred at the origin of its frame, axis +z, the closed
+/// solid { y : y0^2 + y1^2 <= radius^2, |y2| <= lz/2 }.
 template <class S>
 struct Cylinder {
   S radius;  ///< r >= 0
@@ -34,37 +39,47 @@ struct Cylinder {
 /// z = -lz/2.
 template <class S>
 struct Cone {
-  S radius;
-  S lz;
+  S radius;  ///< base radius, >= 0
+  S lz;      ///< full length (apex to base), >= 0
 };
 
+/// A rigid placement as FCL's Transform3 holds it: world = R * local + t.
+/// Every query maps a world point x to y = R^T (x - t) exactly; R is used as
+/// given, never re-orthonormalised.
 template <class S>
 struct Pose {
   S R[3][3];  ///< row-major; world = R * local + t
-  Vec3<S> t;
+  Vec3<S> t;  ///< translation
 };
 
+/// The closed convex hull of three points (collinear or coincident points
+/// are valid: a segment or a point).
 template <class S>
 struct Triangle {
-  Vec3<S> a, b, c;
+  Vec3<S> a;  ///< first vertex
+  Vec3<S> b;  ///< second vertex
+  Vec3<S> c;  ///< third vertex
 };
 
 /// The points p (1 - s) + q s for s in [0, 1].
 template <class S>
 struct Segment {
-  Vec3<S> p, q;
+  Vec3<S> p;  ///< the point at s = 0
+  Vec3<S> q;  ///< the point at s = 1
 };
 
+/// The closed ball of `radius` around `center`.
 template <class S>
 struct Sphere {
-  Vec3<S> center;
-  S radius;
+  Vec3<S> center;  ///< centre
+  S radius;        ///< >= 0
 };
 
 /// A closed parameter interval [lo, hi].
 template <class S>
 struct Interval {
-  S lo, hi;
+  S lo;  ///< lower end
+  S hi;  ///< upper end
 };
 
 /// The identity pose: local coordinates are world coordinates.
@@ -91,9 +106,10 @@ enum class Stage : unsigned char {
   kExtended = 4,  ///< the certified filter re-run in extended precision
 };
 
+/// The answer of a query and the kernel stage that decided it.
 struct Decision {
-  Answer answer;
-  Stage stage;
+  Answer answer;  ///< the answer, exactly as tryIntersect gives it
+  Stage stage;    ///< which stage decided (statistics only)
 };
 
 /// Thrown by the checked entry points (`intersect`, `contains`, `clip`) when
