@@ -1,0 +1,73 @@
+// Sphere vs cylinder: validate, then the three stages of src/filter.h.
+#include "tricyl/sphere_cylinder.h"
+
+#include "cylinder_queries_impl.h"
+
+namespace tricyl {
+namespace {
+
+Decision decide(const Cylinder<double>& cyl, const Pose<double>& pose,
+                const Sphere<double>& sph) {
+  double max_len = 0, max_unitless = 0;
+  const Vec3<double>& c = sph.center;
+  if (!detail::scanFinite({cyl.radius, cyl.lz, sph.radius, c.x, c.y, c.z}, pose,
+                          &max_len, &max_unitless) ||
+      !(cyl.radius >= 0 && cyl.lz >= 0 && sph.radius >= 0))
+    return {Answer::kInvalidInput, Stage::kInvalid};
+  return detail::runStages(
+      [&](auto tag, bool* early) {
+        using K = typename decltype(tag)::type;
+        const auto q = detail::localPoint<K>(pose, c, max_unitless);
+        return detail::sphereCylinder<K>(q, K::lift(cyl.lz),
+                                         K::lift(cyl.radius),
+                                         K::lift(sph.radius), early);
+      },
+      max_len, max_unitless);
+}
+
+template <class S>
+Decision decideAs(const Cylinder<S>& cyl, const Pose<S>& pose,
+                  const Sphere<S>& sph) {
+  return decide({double(cyl.radius), double(cyl.lz)}, detail::widen(pose),
+                {detail::widen(sph.center), double(sph.radius)});
+}
+
+}  // namespace
+
+template <class S>
+Decision decideIntersect(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                         const Sphere<S>& sphere) noexcept {
+  return decideAs(cylinder, pose, sphere);
+}
+
+template <class S>
+Answer tryIntersect(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                    const Sphere<S>& sphere) noexcept {
+  return decideAs(cylinder, pose, sphere).answer;
+}
+
+template <class S>
+bool intersect(const Cylinder<S>& cylinder, const Pose<S>& pose,
+               const Sphere<S>& sphere) {
+  const Answer a = decideAs(cylinder, pose, sphere).answer;
+  if (a == Answer::kInvalidInput)
+    throw InvalidInput(
+        "tricyl::intersect(cylinder, sphere): NaN or infinite input, or a "
+        "negative radius or length");
+  return a == Answer::kIntersect;
+}
+
+template bool intersect(const Cylinder<float>&, const Pose<float>&,
+                        const Sphere<float>&);
+template bool intersect(const Cylinder<double>&, const Pose<double>&,
+                        const Sphere<double>&);
+template Answer tryIntersect(const Cylinder<float>&, const Pose<float>&,
+                             const Sphere<float>&) noexcept;
+template Answer tryIntersect(const Cylinder<double>&, const Pose<double>&,
+                             const Sphere<double>&) noexcept;
+template Decision decideIntersect(const Cylinder<float>&, const Pose<float>&,
+                                  const Sphere<float>&) noexcept;
+template Decision decideIntersect(const Cylinder<double>&, const Pose<double>&,
+                                  const Sphere<double>&) noexcept;
+
+}  // namespace tricyl
