@@ -19,6 +19,9 @@
 #include "runner.h"
 #include "scenes.h"
 #include "sweeps.h"
+#ifdef TRICYL_COMPARE_HAVE_QUERIES
+#include "query_scenes.h"
+#endif
 
 namespace {
 
@@ -48,6 +51,8 @@ int main(int argc, char** argv) {
   int threads = int(hw ? std::min(hw, 2u) : 2u);
   double timeout = 1.0;
   std::string replay;
+  std::vector<std::string> queries;
+  long query_cases = -1;
   bool no_plots = false, quiet = false;
   app.add_option("--out,-o", out, "output folder (created)")
       ->capture_default_str();
@@ -72,6 +77,13 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   app.add_option("--mesh-cases", mesh_cases,
                  "cases of the mesh family (default: cases / 10)");
+  app.add_option("--queries", queries,
+                 "cylinder queries of issue 5 to run, each over its families "
+                 "uniform, near, far, degenerate (default: all built: "
+                 "point_cylinder point_cone sphere segment; 'none' for none)")
+      ->delimiter(',');
+  app.add_option("--query-cases", query_cases,
+                 "cases per query x family (default: cases / 10)");
   app.add_option("--sweep-cases", sweep_cases,
                  "cases per stability sweep point; 0 disables the sweeps")
       ->capture_default_str();
@@ -193,6 +205,58 @@ int main(int argc, char** argv) {
                                       m};
                         }});
       }
+      // The cylinder queries (issue 5), when built in.
+      std::vector<Query> qs;
+      if (queries.empty()) {
+        if (haveQueries() && families.empty())
+          qs = {Query::kPointCylinder, Query::kPointCone, Query::kSphere,
+                Query::kSegment};
+      } else {
+        for (const auto& name : queries) {
+          if (name == "none") continue;
+          bool found = false;
+          for (Query q : {Query::kPointCylinder, Query::kPointCone,
+                          Query::kSphere, Query::kSegment})
+            if (name == queryName(q)) {
+              qs.push_back(q);
+              found = true;
+            }
+          if (!found || !haveQueries()) {
+            std::fprintf(stderr,
+                         "tricyl-compare: unknown or unavailable query '%s'\n",
+                         name.c_str());
+            return 2;
+          }
+        }
+      }
+      info.query_cases =
+          qs.empty()
+              ? 0
+              : (query_cases >= 0 ? std::uint64_t(query_cases) : cases / 10);
+#ifdef TRICYL_COMPARE_HAVE_QUERIES
+      for (Query q : qs)
+        for (auto fam : tricyl::qscenes::kAllFamilies) {
+          const auto qq = tricyl::qscenes::Query(int(q));
+          CaseSet set{
+              "family",
+              std::string(queryName(q)) + "/" +
+                  tricyl::qscenes::familyName(fam),
+              kNaN, info.query_cases, [qq, q, fam, seed](std::uint64_t i) {
+                const auto k = tricyl::qscenes::generate(qq, fam, seed, i);
+                Case c;
+                c.query = q;
+                c.k.cyl = k.cyl;
+                c.k.pose = k.pose;
+                c.k.feature = k.feature;
+                c.p = k.p;
+                c.q = k.q;
+                c.rho = k.rho;
+                return c;
+              }};
+          set.query = q;
+          sets.push_back(set);
+        }
+#endif
       if (sweep_cases > 0) {
         for (auto& s : sweeps::deltaSweep(seed, sweep_cases)) sets.push_back(s);
         for (auto& s : sweeps::translationSweep(seed, sweep_cases))
@@ -218,6 +282,7 @@ int main(int argc, char** argv) {
       if (sets[s].kind != "family") continue;
       std::printf("  %-10s", sets[s].name.c_str());
       for (Method m : opt.methods) {
+        if (!methodApplies(sets[s].query, m)) continue;
         const MethodStats& ms = result.sets[s].method[int(m)];
         std::printf(
             "  %s %llu/%llu%s", methodName(m), (unsigned long long)ms.wrong(),

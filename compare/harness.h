@@ -61,10 +61,33 @@ struct Mesh {
 /// Builds the bounding box, the float copy and the FCL models.
 void prepareMesh(Mesh& mesh);
 
-/// One configuration. For mesh cases k.tri is unused and `mesh` is set.
+/// What a case asks: triangle vs cylinder (the default), or one of the
+/// cylinder queries of issue 5.
+enum class Query : int {
+  kTriangle = -1,
+  kPointCylinder = 0,  ///< point in cylinder: p
+  kPointCone = 1,      ///< point in cone Cone{k.cyl.radius, k.cyl.lz}: p
+  kSphere = 2,         ///< sphere {p, rho} vs cylinder
+  kSegment = 3,        ///< segment [p, q] vs cylinder
+};
+const char* queryName(Query q);
+/// True if the cylinder queries were built in (tricyl's point, cone, sphere
+/// and segment tests plus compare/query_scenes.h, query_oracles.h).
+bool haveQueries();
+/// Whether method `m` has an implementation for query `q` (triangles and
+/// meshes: every method; point/cone/segment: tricyl, tricyl_float; sphere:
+/// also fcl_libccd_1e-6, i.e. FCL's detail::sphereCylinderIntersect, to
+/// which every FCL solver dispatches Sphere-Cylinder).
+bool methodApplies(Query q, Method m);
+
+/// One configuration. For mesh cases k.tri is unused and `mesh` is set. For
+/// query cases k.cyl, k.pose and k.feature are used with p, q, rho.
 struct Case {
   scenes::TriCase k;
   const Mesh* mesh = nullptr;
+  Query query = Query::kTriangle;
+  Vec3<double> p{}, q{};
+  double rho = 0;
 };
 
 struct CaseSet {
@@ -73,6 +96,7 @@ struct CaseSet {
   double param = kNaN;  ///< sweep abscissa (|delta|, |t|, lz / 2r)
   std::uint64_t count = 0;
   std::function<Case(std::uint64_t)> make;
+  Query query = Query::kTriangle;  ///< what every case of the set asks
 };
 
 /// The case with every input rounded to float (and widened back: exact).
@@ -89,6 +113,10 @@ bool oracleTruth(const Case& c, bool float_input = false);
 /// answer flips, found by bisection in log scale to about 3 %. It is a
 /// relative clearance (disjoint) or penetration (intersecting); capped at 1e6.
 double errorSize(const Case& c, bool truth, bool float_input = false);
+
+/// tricyl's exact answer to `c` and the stage that decided it
+/// (int(tricyl::Stage); -1 for mesh cases, which are many kernel calls).
+bool tricylDecide(const Case& c, int* stage);
 
 /// Answers case `c` with method `m` once. Not thread-safe across Evaluators;
 /// each worker has its own.

@@ -15,6 +15,13 @@
 #ifdef TRICYL_COMPARE_HAVE_SOLVER
 #include "tricyl/fcl_solver.h"
 #endif
+#ifdef TRICYL_COMPARE_HAVE_QUERIES
+#include "query_oracles.h"
+#include "tricyl/point_cone.h"
+#include "tricyl/point_cylinder.h"
+#include "tricyl/segment_cylinder.h"
+#include "tricyl/sphere_cylinder.h"
+#endif
 
 namespace tricyl::compare {
 
@@ -115,6 +122,36 @@ bool isFcl(Method m) {
          m == Method::kTricylFclContact;
 }
 
+const char* queryName(Query q) {
+  switch (q) {
+    case Query::kTriangle:
+      return "triangle";
+    case Query::kPointCylinder:
+      return "point_cylinder";
+    case Query::kPointCone:
+      return "point_cone";
+    case Query::kSphere:
+      return "sphere";
+    case Query::kSegment:
+      return "segment";
+  }
+  return "?";
+}
+
+bool haveQueries() {
+#ifdef TRICYL_COMPARE_HAVE_QUERIES
+  return true;
+#else
+  return false;
+#endif
+}
+
+bool methodApplies(Query q, Method m) {
+  if (q == Query::kTriangle) return true;
+  if (m == Method::kTricyl || m == Method::kTricylFloat) return true;
+  return q == Query::kSphere && m == Method::kFclLibccd1e6;
+}
+
 bool methodAvailable(Method m) {
 #ifdef TRICYL_COMPARE_HAVE_SOLVER
   (void)m;
@@ -152,10 +189,38 @@ Case roundToFloat(const Case& c) {
   r.k.pose.t = widen(pf.t);
   const Triangle<float> tf = toFloat(c.k.tri);
   r.k.tri = {widen(tf.a), widen(tf.b), widen(tf.c)};
+  r.p = widen(toFloat(c.p));
+  r.q = widen(toFloat(c.q));
+  r.rho = f(c.rho);
   return r;
 }
 
+namespace {
+/// The exact verdict of a query case (c already float-rounded if needed).
+bool queryTruth(const Case& c, const Cylinder<double>& cyl) {
+#ifdef TRICYL_COMPARE_HAVE_QUERIES
+  switch (c.query) {
+    case Query::kPointCylinder:
+      return oracle::pointInCylinder(cyl, c.k.pose, c.p);
+    case Query::kPointCone:
+      return oracle::pointInCone({cyl.radius, cyl.lz}, c.k.pose, c.p);
+    case Query::kSphere:
+      return oracle::sphereCylinder(cyl, c.k.pose, {c.p, c.rho});
+    case Query::kSegment:
+      return oracle::segmentCylinder(cyl, c.k.pose, {c.p, c.q});
+    case Query::kTriangle:
+      break;
+  }
+#else
+  (void)c;
+  (void)cyl;
+#endif
+  throw std::logic_error("tricyl-compare: query cases are not built in");
+}
+}  // namespace
+
 bool oracleTruth(const Case& c, bool float_input) {
+  if (c.query != Query::kTriangle) return queryTruth(c, c.k.cyl);
   if (c.mesh)
     return meshOracle(c.k, float_input ? c.mesh->tris_f : c.mesh->tris);
   return oracle::triangleCylinder(c.k.cyl, c.k.pose, c.k.tri);
@@ -164,6 +229,7 @@ bool oracleTruth(const Case& c, bool float_input) {
 namespace {
 bool oracleTruthScaled(const Case& c, bool float_input, double factor) {
   const scenes::TriCase k = scaled(c.k, factor);
+  if (c.query != Query::kTriangle) return queryTruth(c, k.cyl);
   if (c.mesh) return meshOracle(k, float_input ? c.mesh->tris_f : c.mesh->tris);
   return oracle::triangleCylinder(k.cyl, k.pose, k.tri);
 }
@@ -304,8 +370,79 @@ Evaluator::Evaluator() : impl_(std::make_unique<Impl>()) {}
 Evaluator::~Evaluator() = default;
 
 bool Evaluator::run(Method m, const Case& c) {
+#ifdef TRICYL_COMPARE_HAVE_QUERIES
+  if (c.query != Query::kTriangle) {
+    const scenes::TriCase& k = c.k;
+    if (m == Method::kFclLibccd1e6) {  // Sphere-Cylinder only
+      const fcl::Sphered sph(c.rho);
+      fcl::Transform3d tfs = fcl::Transform3d::Identity();
+      tfs.translation() = toFcl(c.p);
+      return impl_->ccd_1e6.shapeIntersect(
+          sph, tfs, fcl::Cylinderd(k.cyl.radius, k.cyl.lz), toFcl(k.pose),
+          static_cast<std::vector<fcl::ContactPointd>*>(nullptr));
+    }
+    const bool fl = m == Method::kTricylFloat;
+    const Pose<float> pf = fl ? toFloat(k.pose) : Pose<float>{};
+    const Cylinder<float> cf = fl ? toFloat(k.cyl) : Cylinder<float>{};
+    switch (c.query) {
+      case Query::kPointCylinder:
+        return (fl ? tryContains(cf, pf, toFloat(c.p))
+                   : tryContains(k.cyl, k.pose, c.p)) == Answer::kIntersect;
+      case Query::kPointCone:
+        return (fl ? tryContains(Cone<float>{cf.radius, cf.lz}, pf,
+                                 toFloat(c.p))
+                   : tryContains(Cone<double>{k.cyl.radius, k.cyl.lz}, k.pose,
+                                 c.p)) == Answer::kIntersect;
+      case Query::kSphere:
+        return (fl ? tryIntersect(cf, pf, Sphere<float>{toFloat(c.p), f(c.rho)})
+                   : tryIntersect(k.cyl, k.pose, Sphere<double>{c.p, c.rho})) ==
+               Answer::kIntersect;
+      case Query::kSegment:
+        return (fl ? tryIntersect(cf, pf,
+                                  Segment<float>{toFloat(c.p), toFloat(c.q)})
+                   : tryIntersect(k.cyl, k.pose, Segment<double>{c.p, c.q})) ==
+               Answer::kIntersect;
+      case Query::kTriangle:
+        break;
+    }
+    return false;
+  }
+#endif
   if (c.mesh) return impl_->mesh(m, c);
   return impl_->triangle(m, c.k);
+}
+
+bool tricylDecide(const Case& c, int* stage) {
+  *stage = -1;
+  if (c.mesh) {
+    Evaluator ev;
+    return ev.run(Method::kTricyl, c);
+  }
+  Decision d{Answer::kInvalidInput, Stage::kInvalid};
+  switch (c.query) {
+    case Query::kTriangle:
+      d = decideIntersect(c.k.cyl, c.k.pose, c.k.tri);
+      break;
+#ifdef TRICYL_COMPARE_HAVE_QUERIES
+    case Query::kPointCylinder:
+      d = decideContains(c.k.cyl, c.k.pose, c.p);
+      break;
+    case Query::kPointCone:
+      d = decideContains(Cone<double>{c.k.cyl.radius, c.k.cyl.lz}, c.k.pose,
+                         c.p);
+      break;
+    case Query::kSphere:
+      d = decideIntersect(c.k.cyl, c.k.pose, Sphere<double>{c.p, c.rho});
+      break;
+    case Query::kSegment:
+      d = decideIntersect(c.k.cyl, c.k.pose, Segment<double>{c.p, c.q});
+      break;
+#endif
+    default:
+      throw std::logic_error("tricyl-compare: query cases are not built in");
+  }
+  *stage = int(d.stage);
+  return d.answer == Answer::kIntersect;
 }
 
 std::string formatCaseHex(const scenes::TriCase& k) {

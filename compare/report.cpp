@@ -140,19 +140,29 @@ std::vector<std::string> writeReport(const std::string& dir,
   std::vector<std::string> figures;
 
   // ---- rows: families, totals, sweeps
-  std::vector<std::size_t> family_sets, sweep_sets;
-  for (std::size_t s = 0; s < sets.size(); ++s)
+  // family_sets: every reported set (triangle families, mesh, and the
+  // query families of issue 5); tri_sets: the triangle and mesh ones, which
+  // the summary and the main figure are about.
+  std::vector<std::size_t> family_sets, sweep_sets, tri_sets;
+  for (std::size_t s = 0; s < sets.size(); ++s) {
     (sets[s].kind == "sweep" ? sweep_sets : family_sets).push_back(s);
+    if (sets[s].kind != "sweep" && sets[s].query == Query::kTriangle)
+      tri_sets.push_back(s);
+  }
+  auto applies = [&](std::size_t s, Method m) {
+    return methodApplies(sets[s].query, m);
+  };
   std::vector<Row> rows, totals;
   std::map<std::pair<std::string, int>, Row> by_key;
   for (std::size_t s : family_sets)
     for (Method m : methods) {
+      if (!applies(s, m)) continue;
       rows.push_back(makeRow(sets[s].name, m, result.sets[s].method[int(m)]));
       by_key[{sets[s].name, int(m)}] = rows.back();
     }
   for (Method m : methods) {
     MethodStats all;
-    for (std::size_t s : family_sets) {
+    for (std::size_t s : tri_sets) {
       const MethodStats& ms = result.sets[s].method[int(m)];
       all.cases += ms.cases;
       all.false_positives += ms.false_positives;
@@ -244,6 +254,7 @@ std::vector<std::string> writeReport(const std::string& dir,
     j["cases_per_family"] = info.cases;
     j["mesh_cases"] = info.mesh_cases;
     j["sweep_cases_per_point"] = info.sweep_cases;
+    j["query_cases"] = info.query_cases;
     j["timeout_s"] = info.options.timeout_s;
     j["workers"] = info.options.workers;
     j["wall_seconds"] = result.wall_seconds;
@@ -289,7 +300,8 @@ std::vector<std::string> writeReport(const std::string& dir,
       e["staged_queries"] = staged;
       js.push_back(e);
       for (Method m : methods) {
-        if (m == Method::kTricyl || usesFloatInput(m)) continue;
+        if (m == Method::kTricyl || usesFloatInput(m) || !applies(s, m))
+          continue;
         const MethodStats& ms = st.method[int(m)];
         ja.push_back({{"family", sets[s].name},
                       {"method", methodName(m)},
@@ -304,7 +316,8 @@ std::vector<std::string> writeReport(const std::string& dir,
     for (std::size_t s : family_sets)
       for (const auto& [feat, fs] : result.sets[s].features) {
         json w;
-        for (Method m : methods) w[methodName(m)] = fs.wrong[int(m)];
+        for (Method m : methods)
+          if (applies(s, m)) w[methodName(m)] = fs.wrong[int(m)];
         jf.push_back({{"family", sets[s].name},
                       {"feature", feat},
                       {"cases", fs.cases},
@@ -335,59 +348,81 @@ std::vector<std::string> writeReport(const std::string& dir,
 
   // ---- figures
   const bool gp = info.plots && haveGnuplot();
-  std::vector<std::string> fams;
-  for (std::size_t s : family_sets) fams.push_back(sets[s].name);
-  {
+  // Error rate against median time, one point per method x set in `subset`.
+  auto plotErrorVsTime = [&](const std::string& name,
+                             const std::vector<std::size_t>& subset,
+                             const std::string& what) {
+    std::vector<std::string> fams;
+    for (std::size_t s : subset) fams.push_back(sets[s].name);
+    std::vector<const Row*> sel;
+    for (const Row& r : rows)
+      if (std::find(fams.begin(), fams.end(), r.family) != fams.end())
+        sel.push_back(&r);
     std::vector<double> rates;
-    for (const Row& r : rows) rates.push_back(r.error_rate);
+    for (const Row* r : sel) rates.push_back(r->error_rate);
     const double floor = floorFor(rates);
-    std::ofstream g(dir + "/error_vs_time.gp");
-    g << "# gnuplot script written by tricyl-compare; run: gnuplot "
-         "error_vs_time.gp\n"
+    std::ofstream g(dir + "/" + name + ".gp");
+    g << "# gnuplot script written by tricyl-compare; run: gnuplot " << name
+      << ".gp\n"
       << "set terminal pngcairo size 1100,750 font ',10'\n"
-      << "set output 'error_vs_time.png'\n"
+      << "set output '" << name << ".png'\n"
       << "set logscale xy\nset format y '10^{%L}'\nset format x '10^{%L}'\n"
       << "set xlabel 'median ns per query (log)'\n"
       << "set ylabel 'error rate = (false positives + false negatives + "
          "hangs) / cases (log)'\n"
       << "set title 'Error rate against time per query: one point per method "
-         "x family'\n"
+         "x "
+      << what << "'\n"
       << "set key outside right top box\nset grid\n"
       << "set arrow from graph 0, first " << floor << " to graph 1, first "
       << floor << " nohead dt 2 lc rgb '#888888'\n"
       << "set yrange [" << floor / 4 << ":1.5]\n";
-    // Data: per method a block "ns rate pointtype family".
-    for (std::size_t mi = 0; mi < methods.size(); ++mi) {
+    // Data: per method a block "ns rate pointtype family zero?".
+    std::vector<Method> shown;
+    for (Method m : methods)
+      for (const Row* r : sel)
+        if (r->method == m) {
+          shown.push_back(m);
+          break;
+        }
+    for (std::size_t mi = 0; mi < shown.size(); ++mi) {
       g << "$m" << mi << " << EOD\n";
-      for (const Row& r : rows)
-        if (r.method == methods[mi] && std::isfinite(r.ns_median)) {
+      for (const Row* r : sel)
+        if (r->method == shown[mi] && std::isfinite(r->ns_median)) {
           const auto fi =
-              std::find(fams.begin(), fams.end(), r.family) - fams.begin();
-          g << r.ns_median << ' ' << (r.error_rate > 0 ? r.error_rate : floor)
-            << ' ' << (fi + 4) << ' ' << r.family << ' '
-            << (r.error_rate > 0 ? 1 : 0) << '\n';
+              std::find(fams.begin(), fams.end(), r->family) - fams.begin();
+          g << r->ns_median << ' '
+            << (r->error_rate > 0 ? r->error_rate : floor) << ' ' << (fi + 4)
+            << ' ' << r->family << ' ' << (r->error_rate > 0 ? 1 : 0) << '\n';
         }
       g << "EOD\n";
     }
     g << "plot \\\n";
-    for (std::size_t mi = 0; mi < methods.size(); ++mi)
+    for (std::size_t mi = 0; mi < shown.size(); ++mi)
       g << "  $m" << mi
         << " using 1:2:3 with points pt variable ps 1.6 lc rgb '"
-        << kColors[int(methods[mi]) % 8] << "' notitle, \\\n";
-    for (std::size_t mi = 0; mi < methods.size(); ++mi)
+        << kColors[int(shown[mi]) % 8] << "' notitle, \\\n";
+    for (std::size_t mi = 0; mi < shown.size(); ++mi)
       g << "  NaN with points pt 5 ps 1.6 lc rgb '"
-        << kColors[int(methods[mi]) % 8]
-        << "' title 'method: " << gpText(methodName(methods[mi])) << "', \\\n";
+        << kColors[int(shown[mi]) % 8]
+        << "' title 'method: " << gpText(methodName(shown[mi])) << "', \\\n";
     for (std::size_t fi = 0; fi < fams.size(); ++fi)
       g << "  NaN with points pt " << (fi + 4) << " ps 1.6 lc rgb '#555555' "
-        << "title 'family: " << gpText(fams[fi]) << "', \\\n";
+        << "title '" << gpText(fams[fi]) << "', \\\n";
     g << "  NaN with lines dt 2 lc rgb '#888888' title 'error = 0: drawn on "
          "the floor "
       << num(floor) << "'\n";
     g.close();
-    if (gp && runGnuplot(dir, "error_vs_time.gp"))
-      figures.push_back(dir + "/error_vs_time.png");
-  }
+    if (gp && runGnuplot(dir, name + ".gp"))
+      figures.push_back(dir + "/" + name + ".png");
+  };
+  if (!tri_sets.empty()) plotErrorVsTime("error_vs_time", tri_sets, "family");
+  std::vector<std::size_t> query_sets;
+  for (std::size_t s : family_sets)
+    if (sets[s].query != Query::kTriangle) query_sets.push_back(s);
+  if (!query_sets.empty())
+    plotErrorVsTime("error_vs_time_queries", query_sets,
+                    "query/family (issue 5)");
   std::set<std::string> sweep_names;
   for (const SRow& s : srows) sweep_names.insert(s.sweep);
   const std::map<std::string, std::string> xlabels = {
@@ -443,6 +478,9 @@ std::vector<std::string> writeReport(const std::string& dir,
   if (info.mesh_cases) md << ", " << info.mesh_cases << " mesh cases";
   if (info.sweep_cases)
     md << ", " << info.sweep_cases << " cases per stability point";
+  if (info.query_cases)
+    md << ", " << info.query_cases
+       << " cases per cylinder query x family (issue 5)";
   md << "; " << info.options.workers << " worker processes; time limit "
      << info.options.timeout_s << " s per FCL query; wall time "
      << fmt("%.1f", result.wall_seconds) << " s.  \n"
@@ -465,7 +503,7 @@ std::vector<std::string> writeReport(const std::string& dir,
       return "n/a";
     return fmt("%.2f", r.ns_median / it->second.ns_median);
   };
-  md << "## Summary over all families\n\n"
+  md << "## Summary over all triangle and mesh families\n\n"
      << "| method | cases | false pos. | false neg. | hangs | error rate | "
         "ns median | ns p99 | ns max |\n"
         "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
@@ -523,7 +561,7 @@ std::vector<std::string> writeReport(const std::string& dir,
         "|---|---|---:|---:|---:|---:|---:|---:|\n";
   for (std::size_t s : family_sets)
     for (Method m : methods) {
-      if (m == Method::kTricyl || usesFloatInput(m)) continue;
+      if (m == Method::kTricyl || usesFloatInput(m) || !applies(s, m)) continue;
       const MethodStats& ms = result.sets[s].method[int(m)];
       const double agree =
           ms.cases ? double(ms.agree[0][0] + ms.agree[1][1]) / double(ms.cases)
@@ -547,7 +585,11 @@ std::vector<std::string> writeReport(const std::string& dir,
     md << '\n';
     for (const auto& [feat, fs] : feats) {
       md << "| " << feat << " | " << fs.cases << " |";
-      for (Method m : methods) md << ' ' << fs.wrong[int(m)] << " |";
+      for (Method m : methods)
+        md << ' '
+           << (applies(s, m) ? std::to_string(fs.wrong[int(m)])
+                             : std::string("—"))
+           << " |";
       md << '\n';
     }
     md << '\n';
@@ -598,8 +640,11 @@ std::vector<std::string> writeReport(const std::string& dir,
          << result.hangs[i].index << " | " << methodName(result.hangs[i].method)
          << " |\n";
   }
-  md << "\n## Figures\n\n![error rate against time](error_vs_time.png)\n\n"
-     << "Zero error rates cannot be drawn on a log axis: they are drawn on "
+  md << "\n## Figures\n\n![error rate against time](error_vs_time.png)\n\n";
+  if (!query_sets.empty())
+    md << "![error rate against time, cylinder queries]"
+          "(error_vs_time_queries.png)\n\n";
+  md << "Zero error rates cannot be drawn on a log axis: they are drawn on "
         "the dashed floor line, as the legend says.\n";
   return figures;
 }

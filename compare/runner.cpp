@@ -63,6 +63,14 @@ struct Unit {
   std::size_t first_method;  // > 0 when resuming after a hang
 };
 
+/// The methods run on the cases of `set`, in the run's order.
+std::vector<Method> methodsFor(const CaseSet& set, const RunOptions& opt) {
+  std::vector<Method> out;
+  for (Method m : opt.methods)
+    if (methodApplies(set.query, m)) out.push_back(m);
+  return out;
+}
+
 // ----------------------------------------------------------------- child
 
 class Writer {
@@ -143,6 +151,7 @@ double timeQuery(Fn&& fn, bool* answer) {
   Writer out(fd);
   Evaluator ev;
   const CaseSet& set = sets[unit.set];
+  const std::vector<Method> methods = methodsFor(set, opt);
   const bool want_float = std::find(opt.methods.begin(), opt.methods.end(),
                                     Method::kTricylFloat) != opt.methods.end();
   for (std::uint64_t i = unit.begin; i < unit.end; ++i) {
@@ -155,19 +164,14 @@ double timeQuery(Fn&& fn, bool* answer) {
     b.set = std::uint32_t(unit.set);
     b.index = i;
     b.truth = std::uint8_t((truth ? 1 : 0) | (truth_f ? 2 : 0));
-    if (c.mesh) {
-      b.answer = ev.run(Method::kTricyl, c) ? 1 : 0;
-      b.stage = kNoStage;
-    } else {
-      const Decision d = decideIntersect(c.k.cyl, c.k.pose, c.k.tri);
-      b.answer = d.answer == Answer::kIntersect ? 1 : 0;
-      b.stage = std::uint8_t(d.stage);
-    }
+    int stage = -1;
+    b.answer = tricylDecide(c, &stage) ? 1 : 0;
+    b.stage = stage < 0 ? kNoStage : std::uint8_t(stage);
     out.put(b);
     double size = -1, size_f = -1;  // error sizes, computed when needed
     const std::size_t first = i == unit.begin ? unit.first_method : 0;
-    for (std::size_t p = first; p < opt.methods.size(); ++p) {
-      const Method m = opt.methods[p];
+    for (std::size_t p = first; p < methods.size(); ++p) {
+      const Method m = methods[p];
       Msg r{};
       r.set = b.set;
       r.index = i;
@@ -446,12 +450,12 @@ RunResult runAll(const std::vector<CaseSet>& sets, const RunOptions& opt) {
         ++ms.hangs;
         if (feature[i]) ++feature[i]->wrong[s.method];
         res.hangs.push_back({s.set, s.index, Method(s.method)});
-        // Resume just after the hung query, on this worker slot.
+        // Resume just after the hung query.
+        const std::vector<Method> ms_set = methodsFor(sets[u.set], opt);
         std::size_t pos = 0;
-        while (pos < opt.methods.size() && opt.methods[pos] != Method(s.method))
-          ++pos;
+        while (pos < ms_set.size() && ms_set[pos] != Method(s.method)) ++pos;
         Unit r{u.set, s.index, u.end, pos + 1};
-        if (r.first_method >= opt.methods.size()) {
+        if (r.first_method >= ms_set.size()) {
           r.begin = s.index + 1;
           r.first_method = 0;
         }
