@@ -2,7 +2,12 @@
 # The whole test suite from scratch: packages, then
 #   1. a Release build with everything (FCL solver, harness) and ctest;
 #   2. the core library and its tests again under AddressSanitizer +
-#      UndefinedBehaviorSanitizer (-fno-sanitize-recover=all).
+#      UndefinedBehaviorSanitizer (-fno-sanitize-recover=all);
+#   3. ThreadSanitizer (clang-14): tests/solver_threads_test.cpp, one shared
+#      tricyl::Solver hammered from 4 threads (FCL itself is not
+#      instrumented; tests/tsan.supp lists FCL-only suppressions, if any);
+#   4. a short libFuzzer run (scripts/fuzz.sh, TRICYL_FUZZ_SECONDS per
+#      target, default 20) on the checked-in seed corpus.
 # Usage: bash scripts/test.sh        (from anywhere; as root or with sudo)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,3 +25,14 @@ cmake -S . -B build/asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTRICYL_SANITIZE=ON 
 cmake --build build/asan -j "$JOBS"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
   ctest --test-dir build/asan --output-on-failure -j "$JOBS"
+
+echo "== ThreadSanitizer: one shared tricyl::Solver from 4 threads"
+cmake -S . -B build/tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_COMPILER=clang++-14 -DTRICYL_TSAN=ON -DTRICYL_BUILD_COMPARE=OFF \
+  -DTRICYL_BUILD_BENCH=OFF -DTRICYL_BUILD_EXAMPLES=OFF -DTRICYL_INSTALL=OFF
+cmake --build build/tsan -j "$JOBS" --target solver_threads_test
+TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/tests/tsan.supp" \
+  ctest --test-dir build/tsan -R '^SolverThreads\.' --output-on-failure
+
+echo "== libFuzzer (short run; the long local run is in the README)"
+FUZZ_JOBS="$JOBS" bash scripts/fuzz.sh "${TRICYL_FUZZ_SECONDS:-20}"
