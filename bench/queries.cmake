@@ -1,0 +1,10 @@
+# bench_queries: the cylinder query family (issue 5) against the
+# straightforward formulas of the sources in double. Included from
+# bench/CMakeLists.txt.
+find_package(benchmark REQUIRED)
+
+add_executable(bench_queries ${CMAKE_CURRENT_LIST_DIR}/bench_queries.cpp)
+target_link_libraries(bench_queries PRIVATE tricyl::tricyl benchmark::benchmark_main)
+target_include_directories(bench_queries PRIVATE ${PROJECT_SOURCE_DIR}/compare)
+tricyl_set_warnings(bench_queries)
+tricyl_set_fp_flags(bench_queries)
