@@ -43,8 +43,8 @@ int main(int argc, char** argv) {
       "tricyl-compare: exact triangle-cylinder tests (tricyl) against FCL "
       "0.7's GJK/libccd paths, every answer settled by an exact GMP oracle."};
   std::string out = "report";
-  std::uint64_t cases = 50000, seed = 1;
-  std::uint64_t sweep_cases = 2000;
+  std::uint64_t cases = 40000, seed = 1;
+  std::uint64_t sweep_cases = 1500;
   long mesh_cases = -1;
   std::vector<std::string> families, method_names, mesh_files;
   unsigned hw = std::thread::hardware_concurrency();
