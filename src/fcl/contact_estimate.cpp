@@ -62,39 +62,44 @@ void fillInvalid(const Pose<S>& pose, ContactEstimate<S>* out) {
 // ---------------------------------------------------------------- depth ---
 
 /// Picks the direction of least separating-axis overlap among a fixed set.
+/// Directions are offered unnormalised, in +/- pairs that share the work:
+/// for n = v / |v|,
+///   d(+n) = (r |v_xy| + h |v_z| - min_i y_i.v) / |v|,
+///   d(-n) = (r |v_xy| + h |v_z| + max_i y_i.v) / |v|,
+/// and only the winner is normalised (a third of the cost of normalising
+/// every candidate first).
 class DirectionSearch {
  public:
   DirectionSearch(const V (&y)[3], double r, double h) : y_(y), r_(r), h_(h) {}
 
-  /// Offers +v and -v (after normalisation; a zero v is skipped).
+  /// Offers +v and -v (in that order); a zero or non-finite v is skipped.
   void offerBoth(V v) {
-    V n;
-    if (!normalize(v, &n)) return;
-    offer(n);
-    offer(-n);
-  }
-  void offerOne(V v) {
-    V n;
-    if (normalize(v, &n)) offer(n);
+    const double m = maxAbs(v);
+    if (!(m > 0) || !std::isfinite(m)) return;
+    // Keep the squares below in range (|v|^2 neither under- nor overflows).
+    if (m < 0x1p-400 || m > 0x1p400) v = (1 / m) * v;
+    const double inv_len = 1 / std::sqrt(dot(v, v));
+    const double sup_c =
+        r_ * std::sqrt(v.x * v.x + v.y * v.y) + h_ * std::fabs(v.z);
+    const double p0 = dot(y_[0], v), p1 = dot(y_[1], v), p2 = dot(y_[2], v);
+    const double lo = std::min(p0, std::min(p1, p2));
+    const double hi = std::max(p0, std::max(p1, p2));
+    consider((sup_c - lo) * inv_len, v, inv_len);
+    consider((sup_c + hi) * inv_len, -v, inv_len);
   }
 
   bool found() const { return found_; }
-  V normal() const { return best_n_; }
+  /// The winning direction, unit.
+  V normal() const { return best_inv_len_ * best_v_; }
   double depth() const { return best_d_; }
 
  private:
-  // d(n) = r |n_xy| + h |n_z| - min_i y_i.n: the support of the cylinder
-  // minus that of the triangle in -n (Minkowski overlap along n).
-  void offer(V n) {
-    const double sup_c =
-        r_ * std::sqrt(n.x * n.x + n.y * n.y) + h_ * std::fabs(n.z);
-    const double min_t =
-        std::min({dot(y_[0], n), dot(y_[1], n), dot(y_[2], n)});
-    const double d = sup_c - min_t;
+  void consider(double d, V v, double inv_len) {
     if (!found_ || d < best_d_) {  // strict: the first minimum wins ties
       found_ = true;
       best_d_ = d;
-      best_n_ = n;
+      best_v_ = v;
+      best_inv_len_ = inv_len;
     }
   }
 
@@ -102,7 +107,8 @@ class DirectionSearch {
   double r_, h_;
   bool found_ = false;
   double best_d_ = 0;
-  V best_n_{0, 0, 1};
+  V best_v_{0, 0, 1};
+  double best_inv_len_ = 1;
 };
 
 /// Point of segment [a, b] whose xy-projection is nearest the axis, and the
