@@ -273,7 +273,8 @@ int main(int argc, char** argv) {
     // A short summary on stdout.
     std::printf(
         "tricyl-compare: %.1f s, %zu hangs; wrote %s/report.md, "
-        "results.csv, results.json, stability.csv, hangs.txt",
+        "results.csv, results.json, stability.csv, hangs.txt, "
+        "worst_cases.txt",
         result.wall_seconds, result.hangs.size(), out.c_str());
     for (const auto& f : figures)
       std::printf(", %s", f.substr(f.rfind('/') + 1).c_str());

@@ -186,6 +186,48 @@ std::vector<std::string> writeReport(const std::string& dir,
           {sets[s].name, sets[s].param,
            makeRow(sets[s].name, m, result.sets[s].method[int(m)])});
 
+  // ---- the worst misclassified case per (set, method, kind)
+  struct Worst {
+    std::size_t set;
+    Method method;
+    const char* kind;  // "false_positive" / "false_negative"
+    double size;
+    std::uint64_t index;
+  };
+  std::vector<Worst> worst;
+  for (std::size_t s : family_sets)
+    for (Method m : methods) {
+      if (!applies(s, m)) continue;
+      const MethodStats& ms = result.sets[s].method[int(m)];
+      if (ms.worst_fp_index != MethodStats::kNoCase)
+        worst.push_back(
+            {s, m, "false_positive", ms.max_fp_size, ms.worst_fp_index});
+      if (ms.worst_fn_index != MethodStats::kNoCase)
+        worst.push_back(
+            {s, m, "false_negative", ms.max_fn_size, ms.worst_fn_index});
+    }
+  {
+    std::ofstream w(dir + "/worst_cases.txt");
+    w << "# tricyl-compare: per family and method, the misclassified case "
+         "with the largest error size\n"
+      << "# (relative clearance for a false positive, penetration for a "
+         "false negative; see compare/README.md).\n"
+      << "# 'case' lines (triangle families) are bit-exact hex floats: r lz "
+         "R00..R22 tx ty tz ax ay az bx by bz cx cy cz.\n"
+      << "# Replay: tricyl-compare --replay worst_cases.txt --out DIR; other "
+         "cases: the same --seed, family and index.\n";
+    if (worst.empty()) w << "# none: no method misclassified any case\n";
+    for (const Worst& x : worst) {
+      const Case c = sets[x.set].make(x.index);
+      w << "# family=" << sets[x.set].name << " method=" << methodName(x.method)
+        << ' ' << x.kind << " size=" << fmt("%.3g", x.size)
+        << " index=" << x.index << " seed=" << info.seed
+        << " feature=" << c.k.feature << '\n';
+      if (!c.mesh && c.query == Query::kTriangle)
+        w << "case " << formatCaseHex(c.k) << '\n';
+    }
+  }
+
   // ---- results.csv
   {
     std::ofstream csv(dir + "/results.csv");
@@ -343,6 +385,20 @@ std::vector<std::string> writeReport(const std::string& dir,
            {"method", methodName(hr.method)},
            {"case_hex", formatCaseHex(sets[hr.set].make(hr.index).k)}});
     j["hangs"] = jh;
+    json jw = json::array();
+    for (const Worst& x : worst) {
+      const Case c = sets[x.set].make(x.index);
+      json e{{"family", sets[x.set].name},
+             {"method", methodName(x.method)},
+             {"kind", x.kind},
+             {"size", x.size},
+             {"index", x.index},
+             {"feature", c.k.feature}};
+      if (!c.mesh && c.query == Query::kTriangle)
+        e["case_hex"] = formatCaseHex(c.k);
+      jw.push_back(e);
+    }
+    j["worst_cases"] = jw;
     std::ofstream(dir + "/results.json") << j.dump(2) << '\n';
   }
 
@@ -624,6 +680,21 @@ std::vector<std::string> writeReport(const std::string& dir,
       }
       md << "\n![" << sw << "](stability_" << sw << ".png)\n\n";
     }
+  }
+  md << "\n## Worst misclassified cases\n\n";
+  if (worst.empty()) {
+    md << "No method misclassified any case.\n";
+  } else {
+    md << "Per family and method, the false positive / false negative with "
+          "the largest error size. Replay the triangle ones from "
+          "`worst_cases.txt` (`tricyl-compare --replay worst_cases.txt`), any "
+          "of them from (seed, family, index).\n\n"
+          "| family | method | kind | size | index | feature |\n"
+          "|---|---|---|---:|---:|---|\n";
+    for (const Worst& x : worst)
+      md << "| " << sets[x.set].name << " | " << methodName(x.method) << " | "
+         << x.kind << " | " << num(x.size) << " | " << x.index << " | "
+         << sets[x.set].make(x.index).k.feature << " |\n";
   }
   md << "\n## Hangs\n\n";
   if (result.hangs.empty()) {

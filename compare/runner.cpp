@@ -349,12 +349,21 @@ RunResult runAll(const std::vector<CaseSet>& sets, const RunOptions& opt) {
         const bool truth = usesFloatInput(meth) ? (current[wi].truth & 2)
                                                 : (current[wi].truth & 1);
         ++ms.cases;
+        // The largest error and the case attaining it (smallest index on
+        // ties, so that the choice does not depend on scheduling).
+        auto worst = [&](double* size, std::uint64_t* index) {
+          if (*index == MethodStats::kNoCase || m.error_size > *size ||
+              (m.error_size == *size && m.index < *index)) {
+            *size = m.error_size;
+            *index = m.index;
+          }
+        };
         if (m.answer && !truth) {
           ++ms.false_positives;
-          ms.max_fp_size = std::max(ms.max_fp_size, m.error_size);
+          worst(&ms.max_fp_size, &ms.worst_fp_index);
         } else if (!m.answer && truth) {
           ++ms.false_negatives;
-          ms.max_fn_size = std::max(ms.max_fn_size, m.error_size);
+          worst(&ms.max_fn_size, &ms.worst_fn_index);
         }
         if (bool(m.answer) != truth) ++feature[wi]->wrong[m.method];
         ++ms.agree[current[wi].answer][m.answer];

@@ -30,6 +30,11 @@ struct MethodStats {
   /// and among false negatives (a penetration); 0 if none.
   double max_fp_size = 0;
   double max_fn_size = 0;
+  /// The case index attaining max_fp_size / max_fn_size (the smallest index
+  /// on ties, so independent of scheduling); kNoCase if none.
+  static constexpr std::uint64_t kNoCase = ~std::uint64_t(0);
+  std::uint64_t worst_fp_index = kNoCase;
+  std::uint64_t worst_fn_index = kNoCase;
   /// ns per query for every answered (not hung) query.
   std::vector<float> ns;
   /// Agreement with tricyl's exact answer: [tricyl][this], index 1 = hit.

@@ -401,6 +401,11 @@ TEST(CompareEndToEnd, SmallRunWritesParsableReports) {
   EXPECT_FALSE(j["stability"].empty());
   EXPECT_FALSE(j["stages"].empty());
   EXPECT_FALSE(j["agreement"].empty());
+  ASSERT_TRUE(j.contains("worst_cases"));
+  for (const auto& w : j["worst_cases"])
+    EXPECT_NE(w["method"], "tricyl") << "tricyl has no misclassified case";
+  EXPECT_NE(slurp(dir + "/worst_cases.txt").find("# tricyl-compare"),
+            std::string::npos);
   for (const auto& row : j["results"]) {
     if (row["method"] == "tricyl") {
       EXPECT_EQ(row["false_positives"], 0) << row["family"];
