@@ -347,6 +347,8 @@ TEST(CompareRunner, CountsDoNotDependOnWorkers) {
       EXPECT_EQ(x.false_negatives, y.false_negatives) << compare::methodName(m);
       EXPECT_EQ(x.hangs, y.hangs);
       EXPECT_EQ(x.max_fp_size, y.max_fp_size);
+      EXPECT_EQ(x.worst_fp_index, y.worst_fp_index) << compare::methodName(m);
+      EXPECT_EQ(x.worst_fn_index, y.worst_fn_index) << compare::methodName(m);
     }
     EXPECT_EQ(a.sets[s].method[0].wrong(), 0u) << "tricyl must be exact";
   }
