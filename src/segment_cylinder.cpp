@@ -21,18 +21,20 @@
 //   result:    [max(0, slab_lo, root_lo), min(1, slab_hi, root_hi)].
 // Emptiness is NOT read from these numbers: it is the exact Boolean.
 //
-// ERROR BOUND. Stage 1 evaluates every candidate in long double with the
-// running error bound of ExtendedKernel (src/filter.h), extended here by
-// division and square root (derivations at flDiv and flSqrt), which gives
+// ERROR BOUND. Stage 1 evaluates every candidate with the running error
+// bound of ExtendedKernel (src/filter.h), first in double (with an explicit
+// underflow allowance, see Rd), then, if that is not accurate enough, in
+// long double (filter.h's Fl), extended here by division and square root
+// (derivations at flDiv and flSqrt), which gives
 // each candidate an enclosure [v - e, v + e] of its exact value. The exact
 // max (min) of the candidates lies between the max (min) of the enclosures'
 // lower ends and the max (min) of their upper ends; the result is the
 // midpoint of that range and its half-width bounds the error. It is
-// accepted when the half-width is <= 2^-49 for both ends; rounding to
-// double adds <= 2^-54, so the double endpoints are within 1.9e-15 of the
-// exact ones. Otherwise (grazing lines, where Delta cancels and sqrt
-// amplifies its error to ~sqrt(e); segments exactly parallel to the axis in
-// a general pose, whose A = 0 cannot be certified; inputs outside the range
+// accepted when the half-width is <= 2^-49 for both ends; forming and
+// rounding the midpoint adds <= 2^-53, so the double endpoints are within
+// 1.9e-15 of the exact ones. Otherwise (grazing lines, where Delta cancels and
+// sqrt amplifies its error to ~sqrt(e); segments exactly parallel to the axis
+// in a general pose, whose A = 0 cannot be certified; inputs outside the range
 // gate) stage 2 computes A, b, C, Delta, Z0, DZ EXACTLY (GMP dyadics from
 // ExactKernel) and the candidates in GMP mpf with (bits of the exact
 // values + 128) bits, then truncates to double: error < 1 ulp <= 2^-52.
@@ -42,6 +44,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "cylinder_queries_impl.h"
 
@@ -97,23 +100,79 @@ Decision decide(SegInputs& in) {
 // ---------------------------------------------------------------------------
 // Stage 1 of the interval: long double with running error bounds.
 
-constexpr long double kInfl = 1 + detail::pow2neg(40);  // slack for the
-// rounding of the bound computations themselves (a few roundings each)
+// The running error bound of ExtendedKernel (src/filter.h) in plain double,
+// for a cheaper first attempt: the same rules with u = 2^-53, plus an
+// absolute 2^-1074 on every product and quotient for a possible underflow
+// (sums of doubles are exact in the subnormal range), so no range argument
+// is needed for it. The long double stage (filter.h's Fl, covered there by
+// the range gate) runs only when this one cannot reach the accuracy.
+struct Rd {
+  double v, e;
+};
+constexpr double kU1d = 0x1p-53 * (1 + 0x1p-52);  // u' for double
+inline Rd operator+(Rd a, Rd b) {
+  const double v = a.v + b.v;
+  return {v, a.e + b.e + kU1d * std::fabs(v)};
+}
+inline Rd operator-(Rd a, Rd b) {
+  const double v = a.v - b.v;
+  return {v, a.e + b.e + kU1d * std::fabs(v)};
+}
+inline Rd operator-(Rd a) { return {-a.v, a.e}; }
+inline Rd operator*(Rd a, Rd b) {
+  const double v = a.v * b.v;
+  return {v, std::fabs(a.v) * b.e + std::fabs(b.v) * a.e + a.e * b.e +
+                 kU1d * std::fabs(v) + 0x1p-1074};
+}
+struct RunningDoubleKernel {
+  using Num = Rd;
+  static constexpr bool kExact = false;
+  static Num lift(double x) { return {x, 0}; }
+  static Num inputDiff(double a, double b) {
+    const double d = a - b;
+    return {d, kU1d * std::fabs(d)};
+  }
+};
+
+/// Per running type: u', the absolute underflow allowance of a product or
+/// quotient, and the floating type.
+template <class N>
+struct Run;
+template <>
+struct Run<Fl> {
+  using T = long double;
+  static constexpr T kU1 = detail::kUL1;
+  static constexpr T kTiny = 0;  // range gate: docs/exactness.md
+};
+template <>
+struct Run<Rd> {
+  using T = double;
+  static constexpr T kU1 = kU1d;
+  static constexpr T kTiny = 0x1p-1074;
+};
+
+// Slack for the rounding of the bound computations themselves (each bound
+// is a sum of non-negative rounded terms, short by at most (1 - u)^k).
+constexpr double kInfl = 1 + 0x1p-40;
 
 /// a / b for |B - b.v| <= b.e < |b.v|: with Q = A / B,
 ///   |Q - a.v/b.v| = |A b.v - a.v B| / (|B| |b.v|)
 ///                <= (a.e |b.v| + |a.v| b.e) / ((|b.v| - b.e) |b.v|)
 ///                 = (a.e + |a.v / b.v| b.e) / (|b.v| - b.e),
-/// plus the rounding of the division, u' |v|. Returns false if |b.v| <= b.e
-/// (the divisor's sign is not certain).
-bool flDiv(const Fl& a, const Fl& b, Fl* out) {
-  const long double bv = detail::absl(b.v);
-  const long double be = b.e * kInfl;
+/// plus the rounding of the division, u' |v| (+ the underflow allowance).
+/// Returns false if |b.v| <= b.e (the divisor's sign is not certain) or the
+/// bound is not finite.
+template <class N>
+bool flDiv(const N& a, const N& b, N* out) {
+  using T = typename Run<N>::T;
+  const T bv = std::fabs(b.v);
+  const T be = b.e * T(kInfl);
   if (!(bv > be)) return false;
-  const long double v = a.v / b.v;
-  const long double e =
-      (a.e + detail::absl(v) * be) / (bv - be) + detail::kUL1 * detail::absl(v);
-  *out = {v, e * kInfl};
+  const T v = a.v / b.v;
+  const T e = (a.e + std::fabs(v) * be) / (bv - be) +
+              Run<N>::kU1 * std::fabs(v) + Run<N>::kTiny;
+  if (!(e <= std::numeric_limits<T>::max() / 4)) return false;
+  *out = {v, e * T(kInfl)};
   return true;
 }
 
@@ -121,22 +180,25 @@ bool flDiv(const Fl& a, const Fl& b, Fl* out) {
 /// |A - a.v| <= a.e: sqrt(A) lies in [sqrt(max(0, v - e)), sqrt(v + e)];
 /// v = sqrt(max(v, 0)), e = the larger distance to those ends, plus
 /// 3 u' sqrt(v + e) for the three correctly rounded square roots.
-Fl flSqrt(const Fl& a) {
-  const long double e = a.e * kInfl;
-  const long double lo = std::sqrt(std::max(a.v - e, 0.0L));
-  const long double hi = std::sqrt(std::max(a.v + e, 0.0L));
-  const long double v = std::sqrt(std::max(a.v, 0.0L));
-  const long double err = std::max(v - lo, hi - v) + 3 * detail::kUL1 * hi;
-  return {v, err * kInfl};
+template <class N>
+N flSqrt(const N& a) {
+  using T = typename Run<N>::T;
+  const T e = a.e * T(kInfl);
+  const T lo = std::sqrt(std::max(a.v - e, T(0)));
+  const T hi = std::sqrt(std::max(a.v + e, T(0)));
+  const T v = std::sqrt(std::max(a.v, T(0)));
+  const T err = std::max(v - lo, hi - v) + 3 * Run<N>::kU1 * hi;
+  return {v, err * T(kInfl)};
 }
 
 /// Lower and upper ends of an enclosure of the exact max (or min) of the
 /// candidates added so far.
+template <class T>
 struct Extremum {
-  long double lo, hi;
+  T lo, hi;
   bool is_max;
-  void add(long double v, long double e) {
-    const long double a = v - e, b = v + e;
+  void add(T v, T e) {
+    const T a = v - e, b = v + e;
     if (is_max) {
       lo = std::max(lo, a);
       hi = std::max(hi, b);
@@ -147,56 +209,62 @@ struct Extremum {
   }
 };
 
-constexpr long double kAccept = 0x1p-49L;
+constexpr double kAccept = 0x1p-49;
 
-bool intervalExtended(const SegInputs& in, Interval<double>* out) {
-  using K = ExtendedKernel;
-  Fl x0, y0, Z0, Dx, Dy, DZ;
+/// Stage 1 in the running type of kernel K (RunningDoubleKernel first,
+/// then ExtendedKernel). False when the bound exceeds kAccept.
+template <class K>
+bool intervalRunning(const SegInputs& in, Interval<double>* out) {
+  using N = typename K::Num;
+  using T = typename Run<N>::T;
+  N x0, y0, Z0, Dx, Dy, DZ;
   detail::toLocal<K>(in.pose, in.seg.p, 1.0, x0, y0, Z0);
   Pose<double> at_p = in.pose;
   at_p.t = in.seg.p;  // R^T (q - p)
   detail::toLocal<K>(at_p, in.seg.q, 1.0, Dx, Dy, DZ);
-  const Fl H = K::lift(in.cyl.lz);
-  const Fl r = K::lift(in.cyl.radius);
+  const N H = K::lift(in.cyl.lz);
+  const N r = K::lift(in.cyl.radius);
 
-  Extremum lo{0, 0, true};   // candidate 0
-  Extremum hi{1, 1, false};  // candidate 1
+  Extremum<T> lo{0, 0, true};   // candidate 0
+  Extremum<T> hi{1, 1, false};  // candidate 1
 
   // Slab. DZ exactly zero is recognised when its bound is zero too.
   if (!(DZ.v == 0 && DZ.e == 0)) {
-    Fl s_bot, s_top;  // parameters of Z = -H and Z = +H
+    N s_bot, s_top;  // parameters of Z = -H and Z = +H
     if (!flDiv(-H - Z0, DZ, &s_bot) || !flDiv(H - Z0, DZ, &s_top)) return false;
     const bool up = DZ.v > 0;
-    const Fl& a = up ? s_bot : s_top;
-    const Fl& b = up ? s_top : s_bot;
+    const N& a = up ? s_bot : s_top;
+    const N& b = up ? s_top : s_bot;
     lo.add(a.v, a.e);
     hi.add(b.v, b.e);
   }
   // Infinite cylinder.
-  const Fl A = Dx * Dx + Dy * Dy;
+  const N A = Dx * Dx + Dy * Dy;
   if (!(A.v == 0 && A.e == 0)) {
-    if (!(A.v > A.e * kInfl)) return false;  // A > 0 not certain
-    const Fl b = x0 * Dx + y0 * Dy;
-    const Fl C = x0 * x0 + y0 * y0 - r * r;
-    const Fl c = x0 * Dy - y0 * Dx;
-    const Fl delta = r * r * A - c * c;
-    const Fl sq = flSqrt(delta);
-    const Fl q = b.v >= 0 ? -(b + sq) : sq - b;
-    Fl r1, r2;
+    if (!(A.v > A.e * T(kInfl))) return false;  // A > 0 not certain
+    const N b = x0 * Dx + y0 * Dy;
+    const N C = x0 * x0 + y0 * y0 - r * r;
+    const N c = x0 * Dy - y0 * Dx;
+    const N delta = r * r * A - c * c;
+    const N sq = flSqrt(delta);
+    const N q = b.v >= 0 ? N(-(b + sq)) : N(sq - b);
+    N r1, r2;
     if (!flDiv(q, A, &r1) || !flDiv(C, q, &r2)) return false;
     // The exact lower root is min(r1, r2), the upper max(r1, r2); both are
     // 1-Lipschitz, so enclosures of min/max come from the enclosures.
-    const long double l_lo = std::min(r1.v - r1.e, r2.v - r2.e);
-    const long double l_hi = std::min(r1.v + r1.e, r2.v + r2.e);
-    const long double u_lo = std::max(r1.v - r1.e, r2.v - r2.e);
-    const long double u_hi = std::max(r1.v + r1.e, r2.v + r2.e);
-    lo.add((l_lo + l_hi) / 2, (l_hi - l_lo) / 2 * kInfl);
-    hi.add((u_lo + u_hi) / 2, (u_hi - u_lo) / 2 * kInfl);
+    const T l_lo = std::min(r1.v - r1.e, r2.v - r2.e);
+    const T l_hi = std::min(r1.v + r1.e, r2.v + r2.e);
+    const T u_lo = std::max(r1.v - r1.e, r2.v - r2.e);
+    const T u_hi = std::max(r1.v + r1.e, r2.v + r2.e);
+    lo.add((l_lo + l_hi) / 2, (l_hi - l_lo) / 2 * T(kInfl));
+    hi.add((u_lo + u_hi) / 2, (u_hi - u_lo) / 2 * T(kInfl));
   }
-  if (!(lo.hi - lo.lo <= 2 * kAccept && hi.hi - hi.lo <= 2 * kAccept))
+  if (!(lo.hi - lo.lo <= T(2 * kAccept) && hi.hi - hi.lo <= T(2 * kAccept)))
     return false;
-  out->lo = double((lo.lo + lo.hi) / 2);
-  out->hi = double((hi.lo + hi.hi) / 2);
+  // The midpoint of an enclosure of width <= 2^-48 in [-2^-48, 1 + 2^-48]:
+  // rounding it (to double, in either type) adds <= 2^-53.
+  out->lo = double(lo.lo / 2 + lo.hi / 2);
+  out->hi = double(hi.lo / 2 + hi.hi / 2);
   return true;
 }
 
@@ -264,8 +332,9 @@ Interval<double> intervalExact(const SegInputs& in) {
 
 Interval<double> interval(const SegInputs& in) {
   Interval<double> iv{0, 1};
-  if (!(detail::rangeGateOk(in.max_len, in.max_unitless) &&
-        intervalExtended(in, &iv)))
+  const bool gate = detail::rangeGateOk(in.max_len, in.max_unitless);
+  if (!(gate && (intervalRunning<RunningDoubleKernel>(in, &iv) ||
+                 intervalRunning<ExtendedKernel>(in, &iv))))
     iv = intervalExact(in);
   // The exact interval is non-empty (the Boolean said so), so a crossing of
   // the two approximations is a rounding artefact of at most the bound:
