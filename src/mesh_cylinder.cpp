@@ -1,0 +1,589 @@
+// Batch triangle-cylinder test (mesh_cylinder.h): a vectorised vertex pass,
+// a triangle pass over outcodes, and the scalar exact kernel for the rest.
+// The bounds are derived next to the code that relies on them; docs/batch.md
+// has the overview and the measured figures.
+#include "tricyl/mesh_cylinder.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <type_traits>
+
+#include "filter.h"
+#include "tricyl/triangle_cylinder.h"
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define TRICYL_AVX2_DISPATCH 1
+#define TRICYL_TARGET_AVX2 __attribute__((target("avx2")))
+#define TRICYL_ALWAYS_INLINE __attribute__((always_inline)) inline
+#else
+#define TRICYL_AVX2_DISPATCH 0
+#define TRICYL_ALWAYS_INLINE inline
+#endif
+
+namespace tricyl {
+namespace {
+
+using detail::FilterKernel;
+
+/// Per-batch constants, all in double (float inputs widen exactly).
+struct Setup {
+  bool valid = false;     // cylinder and pose pass the kernel's validation
+  bool local_ok = false;  // ... and its range gate: local outcodes usable
+  bool box_ok = false;    // the certified world box exists
+  double R[3][3] = {};
+  double t[3] = {};
+  double rho = 0;  // max |R_ij|, the filter's magnitude factor
+  double H = 0;    // lz: the slab in doubled coordinates is |Z| <= H
+  double r = 0;
+  double E[3] = {};  // world box half extents, margins included
+};
+
+template <class S>
+Setup makeSetup(const Cylinder<S>& cyl, const Pose<S>& pose, bool want_box) {
+  Setup s;
+  bool finite = true;  // std::isfinite raises no FP exception, even on NaN
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      s.R[i][j] = double(pose.R[i][j]);
+      finite = finite && std::isfinite(s.R[i][j]);
+    }
+  s.t[0] = double(pose.t.x);
+  s.t[1] = double(pose.t.y);
+  s.t[2] = double(pose.t.z);
+  s.r = double(cyl.radius);
+  s.H = double(cyl.lz);
+  for (double v : {s.t[0], s.t[1], s.t[2], s.r, s.H})
+    finite = finite && std::isfinite(v);
+  // Same rule as the kernel's validate(): -0 is a valid size. Nothing is
+  // compared before finiteness is known (a NaN comparison raises FE_INVALID).
+  s.valid = finite && s.r >= 0 && s.H >= 0;
+  if (!s.valid) return s;
+  double max_len = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) s.rho = std::max(s.rho, std::fabs(s.R[i][j]));
+  for (double v : {s.t[0], s.t[1], s.t[2], s.r, s.H})
+    max_len = std::max(max_len, std::fabs(v));
+  s.local_ok = detail::rangeGateOk(max_len, s.rho);
+  if (want_box) {
+    // World box. The cylinder is {x : R^T (x - t) in C}. With
+    // E = R^T R - I and |E|_2 <= eps < 1, R is invertible and
+    //   x - t = R^-T y = R (I + E)^-1 y = R y + R F y,
+    //   F = (I + E)^-1 - I,  |F|_2 <= eps / (1 - eps) <= 2 eps (eps <= 1/2).
+    // For y in C (|y_xy| <= r, |y_2| <= h = lz/2, |y|_2 <= r + h):
+    //   |(R y)_i|   <= r (|R_i0| + |R_i1|) + h |R_i2|,
+    //   |(R F y)_i| <= |R_i|_2 |F|_2 |y|_2 <= |R_i|_1 2 eps (r + h).
+    // eps: |E|_2 <= |E|_F <= sum_jk |E_jk|. Each E_jk is computed with three
+    // products, two sums and one difference: its rounding error is at most
+    // gamma_4 (S_jk + delta_jk) < 2^-50 (S_jk + 1), S_jk = sum_i |R_ij R_ik|
+    // (a product's underflow, <= 2^-1074, is far inside the "+1").
+    double eps = 0;
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) {
+        double e = 0, m = 0;
+        for (int i = 0; i < 3; ++i) {
+          e += s.R[i][j] * s.R[i][k];
+          m += std::fabs(s.R[i][j] * s.R[i][k]);
+        }
+        e -= j == k ? 1.0 : 0.0;
+        eps += std::fabs(e) + 0x1p-50 * (m + 1);
+      }
+    // Every sum above and below is of non-negative terms, computed with at
+    // most ~12 roundings to nearest: a factor (1 + 2^-40) covers
+    // (1 - 2^-53)^-12 many times over. The absolute 2^-1060 covers the
+    // underflow of r |R_i0| and friends (each loses <= 2^-1074) and of
+    // h = lz / 2.
+    eps *= 1 + 0x1p-40;
+    if (eps <= 0.5) {
+      const double h = s.H * 0.5;
+      s.box_ok = true;
+      for (int i = 0; i < 3; ++i) {
+        const double a0 = std::fabs(s.R[i][0]), a1 = std::fabs(s.R[i][1]),
+                     a2 = std::fabs(s.R[i][2]);
+        const double e =
+            s.r * (a0 + a1) + h * a2 + (a0 + a1 + a2) * (2 * eps) * (s.r + h);
+        s.E[i] = e * (1 + 0x1p-40) + 0x1p-1060;
+        // Overflow leaves no usable box (the local pass still runs).
+        s.box_ok = s.box_ok && s.E[i] <= DBL_MAX;
+      }
+    }
+  }
+  return s;
+}
+
+// ------------------------------------------------------------ vertex pass ---
+// Code bits. World box (cull on): bit 2k is "x_k - t_k > E_k", bit 2k+1 is
+// "t_k - x_k > E_k". Local (cull off): bit 0 Z > H, 1 Z < -H, 2 x > r,
+// 3 x < -r, 4 y > r, 5 y < -r, each certified.
+
+/// A coordinate as a double, and whether it is finite, decided on its bits:
+/// a NaN or infinite value becomes 0 before any arithmetic touches it, so
+/// the pass raises no FP exception on any input (a NaN in an ordered
+/// comparison would raise FE_INVALID) and stays branch-free (an integer
+/// select). `ok` is 1 or 0.
+template <class S>
+TRICYL_ALWAYS_INLINE double sanitized(S v, unsigned& ok) {
+  static_assert(sizeof(S) == 4 || sizeof(S) == 8, "float or double");
+  using Bits = std::conditional_t<sizeof(S) == 8, std::uint64_t, std::uint32_t>;
+  constexpr Bits kExp =
+      sizeof(S) == 8 ? Bits(0x7ff0000000000000ULL) : Bits(0x7f800000U);
+  constexpr Bits kAbsMask =
+      sizeof(S) == 8 ? Bits(0x7fffffffffffffffULL) : Bits(0x7fffffffU);
+  Bits b;
+  std::memcpy(&b, &v, sizeof b);
+  const Bits fin = Bits((b & kAbsMask) < kExp);
+  ok &= unsigned(fin);
+  b &= Bits(0) - fin;  // all ones if finite, else 0 (+0.0)
+  std::memcpy(&v, &b, sizeof b);
+  return double(v);
+}
+
+/// World code of one vertex. fl(d) = (x - t)(1 + delta), |delta| <= u, and
+/// a subnormal difference is exact, so fl(d) > E implies x - t > E / (1 + u)
+/// >= the true half extent (E carries a relative margin of 2^-40). A vertex
+/// with a NaN or infinite coordinate gets code 0 (never rejected: the
+/// kernel reports it; `fin` is 0 for it). An overflowing difference is +-Inf
+/// with the sign of the true value, which does exceed E.
+TRICYL_ALWAYS_INLINE std::uint8_t worldCode(double px, double py, double pz,
+                                            unsigned fin, const double (&t)[3],
+                                            const double (&E)[3]) {
+  const double d0 = px - t[0], d1 = py - t[1], d2 = pz - t[2];
+  const unsigned c = unsigned(d0 > E[0]) | unsigned(-d0 > E[0]) << 1 |
+                     unsigned(d1 > E[1]) << 2 | unsigned(-d1 > E[1]) << 3 |
+                     unsigned(d2 > E[2]) << 4 | unsigned(-d2 > E[2]) << 5;
+  return static_cast<std::uint8_t>(c & (0u - fin));
+}
+
+/// Local code of one vertex: the scalar kernel's early-out signs
+/// (triangle_cylinder_impl.h, cases 0a/0b and the bounding square) with the
+/// same values and the same FilterKernel bound: a value v with magnitude m
+/// has a certified positive sign iff v > m 2^-47 + 2^-600 (filter.h). The
+/// magnitudes are those the kernel's Fd arithmetic carries:
+///   x, y: m = rho (|d0| + |d1| + |d2|);  Z = 2z: 2m;  lifted r, H: r, H;
+///   Z - H, Z + H: 2m + H;  x - r, -x - r, y - r, -y - r: m + r.
+/// The bound holds under the range gate, which the vertex must pass too
+/// (finite, |coordinate| <= 2^40): otherwise code 0, and the vertex is
+/// replaced by 0 first, so that nothing overflows (an overflowed difference
+/// times a zero rotation entry would make a NaN and raise FE_INVALID).
+TRICYL_ALWAYS_INLINE std::uint8_t localCode(double px, double py, double pz,
+                                            unsigned fin, const Setup& s) {
+  constexpr double kRel = FilterKernel::kRel, kAbs = FilterKernel::kAbs;
+  // Bitwise, not &&: no branch in the loop, so that it vectorises.
+  const unsigned gate = fin & unsigned(std::fabs(px) <= 0x1p40) &
+                        unsigned(std::fabs(py) <= 0x1p40) &
+                        unsigned(std::fabs(pz) <= 0x1p40);
+  px = gate ? px : 0.0;
+  py = gate ? py : 0.0;
+  pz = gate ? pz : 0.0;
+  const double d0 = px - s.t[0], d1 = py - s.t[1], d2 = pz - s.t[2];
+  const double m = s.rho * (std::fabs(d0) + std::fabs(d1) + std::fabs(d2));
+  const double x = s.R[0][0] * d0 + s.R[1][0] * d1 + s.R[2][0] * d2;
+  const double y = s.R[0][1] * d0 + s.R[1][1] * d1 + s.R[2][1] * d2;
+  const double z = s.R[0][2] * d0 + s.R[1][2] * d1 + s.R[2][2] * d2;
+  const double Z = z + z;
+  const double bz = ((m + m) + s.H) * kRel + kAbs;
+  const double bxy = (m + s.r) * kRel + kAbs;
+  const unsigned c =
+      unsigned(Z - s.H > bz) | unsigned(Z + s.H < -bz) << 1 |
+      unsigned(x - s.r > bxy) << 2 | unsigned(-x - s.r > bxy) << 3 |
+      unsigned(y - s.r > bxy) << 4 | unsigned(-y - s.r > bxy) << 5;
+  return static_cast<std::uint8_t>(c & (0u - gate));
+}
+
+/// Codes of n vertices whose coordinates are x[i k], y[i k], z[i k]
+/// (k = kStride: 3 for interleaved xyz, 1 for separate arrays). Written
+/// without branches or cross-iteration state so that the compiler
+/// vectorises it; the Setup is copied to a local so that the stores through
+/// `out` (a char type, which may alias anything) cannot be assumed to
+/// change it.
+template <class S, int kStride, bool kWorld>
+TRICYL_ALWAYS_INLINE void codesBody(const Setup& setup, const S* x, const S* y,
+                                    const S* z, std::size_t n,
+                                    std::uint8_t* __restrict out) {
+  const Setup s = setup;
+  for (std::size_t i = 0; i < n; ++i) {
+    unsigned fin = 1;
+    const double px = sanitized(x[i * kStride], fin);
+    const double py = sanitized(y[i * kStride], fin);
+    const double pz = sanitized(z[i * kStride], fin);
+    if constexpr (kWorld)
+      out[i] = worldCode(px, py, pz, fin, s.t, s.E);
+    else
+      out[i] = localCode(px, py, pz, fin, s);
+  }
+}
+
+template <class S, int kStride, bool kWorld>
+void codesPortable(const Setup& s, const S* x, const S* y, const S* z,
+                   std::size_t n, std::uint8_t* out) {
+  codesBody<S, kStride, kWorld>(s, x, y, z, n, out);
+}
+
+#if TRICYL_AVX2_DISPATCH
+// The same body compiled for AVX2. No FMA target: every operation rounds as
+// in the portable build (tricyl also builds with -ffp-contract=off), so the
+// codes, and hence everything downstream, are bit-identical.
+template <class S, int kStride, bool kWorld>
+TRICYL_TARGET_AVX2 void codesAvx2(const Setup& s, const S* x, const S* y,
+                                  const S* z, std::size_t n,
+                                  std::uint8_t* out) {
+  codesBody<S, kStride, kWorld>(s, x, y, z, n, out);
+}
+#endif
+
+Isa resolveIsa(Isa requested) {
+  if (requested == Isa::kPortable) return Isa::kPortable;
+  return detectedIsa();  // kAuto and kAvx2 alike: AVX2 only if present
+}
+
+template <class S, int kStride>
+void vertexCodes(const Setup& s, bool world, Isa isa, const S* x, const S* y,
+                 const S* z, std::size_t n, std::uint8_t* out) {
+#if TRICYL_AVX2_DISPATCH
+  if (isa == Isa::kAvx2) {
+    if (world)
+      codesAvx2<S, kStride, true>(s, x, y, z, n, out);
+    else
+      codesAvx2<S, kStride, false>(s, x, y, z, n, out);
+    return;
+  }
+#else
+  (void)isa;
+#endif
+  if (world)
+    codesPortable<S, kStride, true>(s, x, y, z, n, out);
+  else
+    codesPortable<S, kStride, false>(s, x, y, z, n, out);
+}
+
+// ---------------------------------------------------------- triangle pass ---
+
+enum class Verdict : unsigned char { kMiss, kHit, kInvalid };
+
+/// A triangle the outcodes could not reject: the scalar kernel decides.
+template <class S>
+Verdict kernelVerdict(const Cylinder<S>& cyl, const Pose<S>& pose,
+                      const Triangle<S>& tri, BatchStats* st) {
+  ++st->kernel;
+  switch (tryIntersect(cyl, pose, tri)) {
+    case Answer::kIntersect:
+      return Verdict::kHit;
+    case Answer::kDisjoint:
+      return Verdict::kMiss;
+    default:
+      return Verdict::kInvalid;
+  }
+}
+
+/// Scans the triangles of `mesh` in index order, calling visit(i, verdict)
+/// for each until it returns false. Requires s.valid.
+template <class S, class Visit>
+void scanMesh(const Setup& s, const Cylinder<S>& cyl, const Pose<S>& pose,
+              const MeshView<S>& mesh, const BatchOptions& opt, BatchStats* st,
+              Visit&& visit) {
+  const bool world = opt.cull && s.box_ok;
+  const std::size_t nv = mesh.num_vertices;
+  // (nv == 0: no pointer arithmetic on a possibly null `vertices`.)
+  const bool use_codes = (world || s.local_ok) && nv > 0;
+  st->cull_used = world;
+  st->isa = resolveIsa(opt.isa);
+  // Codes: on the stack for small meshes, else one allocation per call.
+  constexpr std::size_t kStack = 2048;
+  std::uint8_t stack_codes[kStack];
+  std::vector<std::uint8_t> heap_codes;
+  std::uint8_t* codes = stack_codes;
+  if (use_codes && nv > kStack) {
+    heap_codes.resize(nv);
+    codes = heap_codes.data();
+  }
+  if (use_codes)
+    vertexCodes<S, 3>(s, world, st->isa, mesh.vertices, mesh.vertices + 1,
+                      mesh.vertices + 2, nv, codes);
+  const S* v = mesh.vertices;
+  for (std::size_t i = 0; i < mesh.num_triangles; ++i) {
+    ++st->triangles;
+    const std::uint32_t* f = mesh.indices + 3 * i;
+    Verdict verdict;
+    if (f[0] >= nv || f[1] >= nv || f[2] >= nv) {
+      verdict = Verdict::kInvalid;  // never read out of bounds
+    } else if (use_codes && (codes[f[0]] & codes[f[1]] & codes[f[2]]) != 0) {
+      ++(world ? st->culled : st->early_out);
+      verdict = Verdict::kMiss;
+    } else {
+      auto at = [v](std::uint32_t k) {
+        return Vec3<S>{v[3 * std::size_t(k)], v[3 * std::size_t(k) + 1],
+                       v[3 * std::size_t(k) + 2]};
+      };
+      verdict = kernelVerdict(cyl, pose,
+                              Triangle<S>{at(f[0]), at(f[1]), at(f[2])}, st);
+    }
+    if (verdict == Verdict::kHit) ++st->hits;
+    if (!visit(i, verdict)) return;
+  }
+}
+
+/// The same over a structure of arrays, in chunks (codes on the stack; the
+/// "any" form stops within the chunk of its first hit).
+template <class S, class Visit>
+void scanArrays(const Setup& s, const Cylinder<S>& cyl, const Pose<S>& pose,
+                const TriangleArrays<S>& tris, const BatchOptions& opt,
+                BatchStats* st, Visit&& visit) {
+  const bool world = opt.cull && s.box_ok;
+  const bool use_codes = world || s.local_ok;
+  st->cull_used = world;
+  st->isa = resolveIsa(opt.isa);
+  constexpr std::size_t kChunk = 512;
+  std::uint8_t ca[kChunk], cb[kChunk], cc[kChunk];
+  for (std::size_t base = 0; base < tris.num_triangles; base += kChunk) {
+    const std::size_t n = std::min(kChunk, tris.num_triangles - base);
+    if (use_codes) {
+      vertexCodes<S, 1>(s, world, st->isa, tris.ax + base, tris.ay + base,
+                        tris.az + base, n, ca);
+      vertexCodes<S, 1>(s, world, st->isa, tris.bx + base, tris.by + base,
+                        tris.bz + base, n, cb);
+      vertexCodes<S, 1>(s, world, st->isa, tris.cx + base, tris.cy + base,
+                        tris.cz + base, n, cc);
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = base + k;
+      ++st->triangles;
+      Verdict verdict;
+      if (use_codes && (ca[k] & cb[k] & cc[k]) != 0) {
+        ++(world ? st->culled : st->early_out);
+        verdict = Verdict::kMiss;
+      } else {
+        const Triangle<S> tri{{tris.ax[i], tris.ay[i], tris.az[i]},
+                              {tris.bx[i], tris.by[i], tris.bz[i]},
+                              {tris.cx[i], tris.cy[i], tris.cz[i]}};
+        verdict = kernelVerdict(cyl, pose, tri, st);
+      }
+      if (verdict == Verdict::kHit) ++st->hits;
+      if (!visit(i, verdict)) return;
+    }
+  }
+}
+
+[[noreturn]] void throwInvalid(const char* what) {
+  throw InvalidInput(std::string("tricyl::") + what +
+                     ": NaN or infinite input, a negative radius or length, "
+                     "or a vertex index out of range");
+}
+
+std::size_t maskWords(std::size_t n) { return (n + 63) / 64; }
+
+void setBit(std::uint64_t* mask, std::size_t i) {
+  mask[i / 64] |= std::uint64_t(1) << (i % 64);
+}
+
+/// Mask scan over either source; returns the answer, *hits the set bits.
+template <class S, class Source, class Scan>
+Answer maskImpl(const Cylinder<S>& cyl, const Pose<S>& pose, const Source& src,
+                std::size_t n, std::uint64_t* mask, std::size_t* hits,
+                const BatchOptions& opt, BatchStats* stats, Scan scan) {
+  BatchStats local;
+  BatchStats* st = stats != nullptr ? stats : &local;
+  *st = BatchStats{};
+  std::fill(mask, mask + maskWords(n), std::uint64_t(0));
+  const Setup s = makeSetup(cyl, pose, opt.cull);
+  std::size_t count = 0;
+  if (!s.valid) {
+    for (std::size_t i = 0; i < n; ++i) setBit(mask, i);
+    if (hits != nullptr) *hits = n;
+    return Answer::kInvalidInput;
+  }
+  bool invalid = false;
+  scan(s, cyl, pose, src, opt, st, [&](std::size_t i, Verdict v) {
+    if (v != Verdict::kMiss) {
+      setBit(mask, i);
+      ++count;
+      invalid = invalid || v == Verdict::kInvalid;
+    }
+    return true;
+  });
+  if (hits != nullptr) *hits = count;
+  if (invalid) return Answer::kInvalidInput;
+  return count > 0 ? Answer::kIntersect : Answer::kDisjoint;
+}
+
+template <class S, class Source, class Scan>
+Answer anyImpl(const Cylinder<S>& cyl, const Pose<S>& pose, const Source& src,
+               std::size_t* first, const BatchOptions& opt, BatchStats* stats,
+               Scan scan) {
+  BatchStats local;
+  BatchStats* st = stats != nullptr ? stats : &local;
+  *st = BatchStats{};
+  const Setup s = makeSetup(cyl, pose, opt.cull);
+  if (!s.valid) {
+    if (first != nullptr) *first = 0;
+    return Answer::kInvalidInput;
+  }
+  Answer answer = Answer::kDisjoint;
+  scan(s, cyl, pose, src, opt, st, [&](std::size_t i, Verdict v) {
+    if (v == Verdict::kMiss) return true;
+    answer = v == Verdict::kHit ? Answer::kIntersect : Answer::kInvalidInput;
+    if (first != nullptr) *first = i;
+    return false;
+  });
+  return answer;
+}
+
+struct MeshScan {
+  template <class S, class Visit>
+  void operator()(const Setup& s, const Cylinder<S>& cyl, const Pose<S>& pose,
+                  const MeshView<S>& mesh, const BatchOptions& opt,
+                  BatchStats* st, Visit&& visit) const {
+    scanMesh(s, cyl, pose, mesh, opt, st, visit);
+  }
+};
+
+struct ArrayScan {
+  template <class S, class Visit>
+  void operator()(const Setup& s, const Cylinder<S>& cyl, const Pose<S>& pose,
+                  const TriangleArrays<S>& tris, const BatchOptions& opt,
+                  BatchStats* st, Visit&& visit) const {
+    scanArrays(s, cyl, pose, tris, opt, st, visit);
+  }
+};
+
+}  // namespace
+
+Isa detectedIsa() noexcept {
+#if TRICYL_AVX2_DISPATCH
+  static const bool has_avx2 = __builtin_cpu_supports("avx2") != 0;
+  return has_avx2 ? Isa::kAvx2 : Isa::kPortable;
+#else
+  return Isa::kPortable;
+#endif
+}
+
+template <class S>
+Answer tryIntersectMask(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                        const MeshView<S>& mesh, std::uint64_t* mask,
+                        std::size_t* hits, const BatchOptions& options,
+                        BatchStats* stats) noexcept {
+  return maskImpl(cylinder, pose, mesh, mesh.num_triangles, mask, hits, options,
+                  stats, MeshScan{});
+}
+
+template <class S>
+Answer tryIntersectAny(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                       const MeshView<S>& mesh, std::size_t* first,
+                       const BatchOptions& options,
+                       BatchStats* stats) noexcept {
+  return anyImpl(cylinder, pose, mesh, first, options, stats, MeshScan{});
+}
+
+template <class S>
+std::size_t intersectMask(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                          const MeshView<S>& mesh, std::uint64_t* mask,
+                          const BatchOptions& options, BatchStats* stats) {
+  std::size_t hits = 0;
+  if (maskImpl(cylinder, pose, mesh, mesh.num_triangles, mask, &hits, options,
+               stats, MeshScan{}) == Answer::kInvalidInput)
+    throwInvalid("intersectMask");
+  return hits;
+}
+
+template <class S>
+std::size_t intersectMask(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                          const TriangleArrays<S>& triangles,
+                          std::uint64_t* mask, const BatchOptions& options,
+                          BatchStats* stats) {
+  std::size_t hits = 0;
+  if (maskImpl(cylinder, pose, triangles, triangles.num_triangles, mask, &hits,
+               options, stats, ArrayScan{}) == Answer::kInvalidInput)
+    throwInvalid("intersectMask");
+  return hits;
+}
+
+template <class S>
+std::size_t intersectIndices(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                             const MeshView<S>& mesh,
+                             std::vector<std::uint32_t>* out,
+                             const BatchOptions& options, BatchStats* stats) {
+  BatchStats local;
+  BatchStats* st = stats != nullptr ? stats : &local;
+  *st = BatchStats{};
+  const Setup s = makeSetup(cylinder, pose, options.cull);
+  if (!s.valid) throwInvalid("intersectIndices");
+  const std::size_t before = out->size();
+  bool invalid = false;
+  scanMesh(s, cylinder, pose, mesh, options, st, [&](std::size_t i, Verdict v) {
+    if (v == Verdict::kInvalid) {
+      invalid = true;
+      return false;
+    }
+    if (v == Verdict::kHit) out->push_back(std::uint32_t(i));
+    return true;
+  });
+  if (invalid) {
+    out->resize(before);
+    throwInvalid("intersectIndices");
+  }
+  return out->size() - before;
+}
+
+template <class S>
+std::optional<std::size_t> intersectAny(const Cylinder<S>& cylinder,
+                                        const Pose<S>& pose,
+                                        const MeshView<S>& mesh,
+                                        const BatchOptions& options,
+                                        BatchStats* stats) {
+  std::size_t first = 0;
+  switch (anyImpl(cylinder, pose, mesh, &first, options, stats, MeshScan{})) {
+    case Answer::kIntersect:
+      return first;
+    case Answer::kDisjoint:
+      return std::nullopt;
+    default:
+      throwInvalid("intersectAny");
+  }
+}
+
+template <class S>
+std::optional<std::size_t> intersectAny(const Cylinder<S>& cylinder,
+                                        const Pose<S>& pose,
+                                        const TriangleArrays<S>& triangles,
+                                        const BatchOptions& options,
+                                        BatchStats* stats) {
+  std::size_t first = 0;
+  switch (
+      anyImpl(cylinder, pose, triangles, &first, options, stats, ArrayScan{})) {
+    case Answer::kIntersect:
+      return first;
+    case Answer::kDisjoint:
+      return std::nullopt;
+    default:
+      throwInvalid("intersectAny");
+  }
+}
+
+#define TRICYL_MESH_CYLINDER_INSTANTIATE(S)                                    \
+  template std::size_t intersectMask(const Cylinder<S>&, const Pose<S>&,       \
+                                     const MeshView<S>&, std::uint64_t*,       \
+                                     const BatchOptions&, BatchStats*);        \
+  template std::size_t intersectMask(const Cylinder<S>&, const Pose<S>&,       \
+                                     const TriangleArrays<S>&, std::uint64_t*, \
+                                     const BatchOptions&, BatchStats*);        \
+  template std::size_t intersectIndices(                                       \
+      const Cylinder<S>&, const Pose<S>&, const MeshView<S>&,                  \
+      std::vector<std::uint32_t>*, const BatchOptions&, BatchStats*);          \
+  template std::optional<std::size_t> intersectAny(                            \
+      const Cylinder<S>&, const Pose<S>&, const MeshView<S>&,                  \
+      const BatchOptions&, BatchStats*);                                       \
+  template std::optional<std::size_t> intersectAny(                            \
+      const Cylinder<S>&, const Pose<S>&, const TriangleArrays<S>&,            \
+      const BatchOptions&, BatchStats*);                                       \
+  template Answer tryIntersectMask(                                            \
+      const Cylinder<S>&, const Pose<S>&, const MeshView<S>&, std::uint64_t*,  \
+      std::size_t*, const BatchOptions&, BatchStats*) noexcept;                \
+  template Answer tryIntersectAny(const Cylinder<S>&, const Pose<S>&,          \
+                                  const MeshView<S>&, std::size_t*,            \
+                                  const BatchOptions&, BatchStats*) noexcept;
+TRICYL_MESH_CYLINDER_INSTANTIATE(float)
+TRICYL_MESH_CYLINDER_INSTANTIATE(double)
+#undef TRICYL_MESH_CYLINDER_INSTANTIATE
+
+}  // namespace tricyl
