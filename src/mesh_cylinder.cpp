@@ -265,8 +265,7 @@ enum class Verdict : unsigned char { kMiss, kHit, kInvalid };
 /// A triangle the outcodes could not reject: the scalar kernel decides.
 template <class S>
 Verdict kernelVerdict(const Cylinder<S>& cyl, const Pose<S>& pose,
-                      const Triangle<S>& tri, BatchStats* st) {
-  ++st->kernel;
+                      const Triangle<S>& tri) {
   switch (tryIntersect(cyl, pose, tri)) {
     case Answer::kIntersect:
       return Verdict::kHit;
@@ -277,8 +276,27 @@ Verdict kernelVerdict(const Cylinder<S>& cyl, const Pose<S>& pose,
   }
 }
 
-/// Scans the triangles of `mesh` in index order, calling visit(i, verdict)
-/// for each until it returns false. Requires s.valid.
+/// Triangles are taken in blocks: a branch-free pass over the block's codes
+/// writes the indices of the survivors (triangles the codes cannot reject,
+/// and triangles with a bad index) into a buffer, then only the survivors
+/// are visited, in index order. The counters live in locals (a store
+/// through BatchStats* could alias the caller's mask words, which are also
+/// unsigned long) and are written once at the end.
+constexpr std::size_t kBlock = 1024;
+
+struct Counters {
+  std::size_t triangles = 0, rejected = 0, kernel = 0, hits = 0;
+  void store(BatchStats* st, bool world) const {
+    st->triangles = triangles;
+    (world ? st->culled : st->early_out) = rejected;
+    st->kernel = kernel;
+    st->hits = hits;
+  }
+};
+
+/// Scans the triangles of `mesh` in index order and calls visit(i, verdict)
+/// for every hit or invalid triangle (never for a miss) until it returns
+/// false. Requires s.valid.
 template <class S, class Visit>
 void scanMesh(const Setup& s, const Cylinder<S>& cyl, const Pose<S>& pose,
               const MeshView<S>& mesh, const BatchOptions& opt, BatchStats* st,
@@ -302,30 +320,59 @@ void scanMesh(const Setup& s, const Cylinder<S>& cyl, const Pose<S>& pose,
     vertexCodes<S, 3>(s, world, st->isa, mesh.vertices, mesh.vertices + 1,
                       mesh.vertices + 2, nv, codes);
   const S* v = mesh.vertices;
-  for (std::size_t i = 0; i < mesh.num_triangles; ++i) {
-    ++st->triangles;
-    const std::uint32_t* f = mesh.indices + 3 * i;
-    Verdict verdict;
-    if (f[0] >= nv || f[1] >= nv || f[2] >= nv) {
-      verdict = Verdict::kInvalid;  // never read out of bounds
-    } else if (use_codes && (codes[f[0]] & codes[f[1]] & codes[f[2]]) != 0) {
-      ++(world ? st->culled : st->early_out);
-      verdict = Verdict::kMiss;
+  const std::uint32_t* idx = mesh.indices;
+  Counters n;
+  std::uint32_t survivors[kBlock];
+  for (std::size_t base = 0; base < mesh.num_triangles; base += kBlock) {
+    const std::size_t len = std::min(kBlock, mesh.num_triangles - base);
+    n.triangles += len;
+    std::size_t m = 0;
+    const std::uint32_t* fb = idx + 3 * base;
+    if (use_codes) {
+      for (std::size_t k = 0; k < len; ++k) {
+        const std::uint32_t* f = fb + 3 * k;
+        const std::uint32_t f0 = f[0], f1 = f[1], f2 = f[2];
+        // f0 | f1 | f2 >= max(f0, f1, f2): below nv, all three are in
+        // range (one compare for the common case). Otherwise check each; a
+        // bad index survives, to be reported below, and is never read.
+        if ((f0 | f1 | f2) >= nv && (f0 >= nv || f1 >= nv || f2 >= nv)) {
+          survivors[m++] = std::uint32_t(k);
+          continue;
+        }
+        if ((codes[f0] & codes[f1] & codes[f2]) == 0)
+          survivors[m++] = std::uint32_t(k);
+      }
     } else {
-      auto at = [v](std::uint32_t k) {
-        return Vec3<S>{v[3 * std::size_t(k)], v[3 * std::size_t(k) + 1],
-                       v[3 * std::size_t(k) + 2]};
-      };
-      verdict = kernelVerdict(cyl, pose,
-                              Triangle<S>{at(f[0]), at(f[1]), at(f[2])}, st);
+      for (std::size_t k = 0; k < len; ++k) survivors[k] = std::uint32_t(k);
+      m = len;
     }
-    if (verdict == Verdict::kHit) ++st->hits;
-    if (!visit(i, verdict)) return;
+    n.rejected += len - m;
+    for (std::size_t j = 0; j < m; ++j) {
+      const std::size_t i = base + survivors[j];
+      const std::uint32_t* f = idx + 3 * i;
+      Verdict verdict = Verdict::kInvalid;  // never read out of bounds
+      if (f[0] < nv && f[1] < nv && f[2] < nv) {
+        auto at = [v](std::uint32_t k) {
+          return Vec3<S>{v[3 * std::size_t(k)], v[3 * std::size_t(k) + 1],
+                         v[3 * std::size_t(k) + 2]};
+        };
+        ++n.kernel;
+        verdict =
+            kernelVerdict(cyl, pose, Triangle<S>{at(f[0]), at(f[1]), at(f[2])});
+      }
+      if (verdict == Verdict::kMiss) continue;
+      n.hits += verdict == Verdict::kHit;
+      if (!visit(i, verdict)) {
+        n.store(st, world);
+        return;
+      }
+    }
   }
+  n.store(st, world);
 }
 
-/// The same over a structure of arrays, in chunks (codes on the stack; the
-/// "any" form stops within the chunk of its first hit).
+/// The same over a structure of arrays: codes per block, on the stack (the
+/// "any" form stops within the block of its first hit).
 template <class S, class Visit>
 void scanArrays(const Setup& s, const Cylinder<S>& cyl, const Pose<S>& pose,
                 const TriangleArrays<S>& tris, const BatchOptions& opt,
@@ -334,35 +381,45 @@ void scanArrays(const Setup& s, const Cylinder<S>& cyl, const Pose<S>& pose,
   const bool use_codes = world || s.local_ok;
   st->cull_used = world;
   st->isa = resolveIsa(opt.isa);
-  constexpr std::size_t kChunk = 512;
-  std::uint8_t ca[kChunk], cb[kChunk], cc[kChunk];
-  for (std::size_t base = 0; base < tris.num_triangles; base += kChunk) {
-    const std::size_t n = std::min(kChunk, tris.num_triangles - base);
+  std::uint8_t ca[kBlock], cb[kBlock], cc[kBlock];
+  std::uint32_t survivors[kBlock];
+  Counters n;
+  for (std::size_t base = 0; base < tris.num_triangles; base += kBlock) {
+    const std::size_t len = std::min(kBlock, tris.num_triangles - base);
+    n.triangles += len;
+    std::size_t m = 0;
     if (use_codes) {
       vertexCodes<S, 1>(s, world, st->isa, tris.ax + base, tris.ay + base,
-                        tris.az + base, n, ca);
+                        tris.az + base, len, ca);
       vertexCodes<S, 1>(s, world, st->isa, tris.bx + base, tris.by + base,
-                        tris.bz + base, n, cb);
+                        tris.bz + base, len, cb);
       vertexCodes<S, 1>(s, world, st->isa, tris.cx + base, tris.cy + base,
-                        tris.cz + base, n, cc);
-    }
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t i = base + k;
-      ++st->triangles;
-      Verdict verdict;
-      if (use_codes && (ca[k] & cb[k] & cc[k]) != 0) {
-        ++(world ? st->culled : st->early_out);
-        verdict = Verdict::kMiss;
-      } else {
-        const Triangle<S> tri{{tris.ax[i], tris.ay[i], tris.az[i]},
-                              {tris.bx[i], tris.by[i], tris.bz[i]},
-                              {tris.cx[i], tris.cy[i], tris.cz[i]}};
-        verdict = kernelVerdict(cyl, pose, tri, st);
+                        tris.cz + base, len, cc);
+      for (std::size_t k = 0; k < len; ++k) {
+        survivors[m] = std::uint32_t(k);
+        m += std::size_t((ca[k] & cb[k] & cc[k]) == 0);
       }
-      if (verdict == Verdict::kHit) ++st->hits;
-      if (!visit(i, verdict)) return;
+    } else {
+      for (std::size_t k = 0; k < len; ++k) survivors[k] = std::uint32_t(k);
+      m = len;
+    }
+    n.rejected += len - m;
+    for (std::size_t j = 0; j < m; ++j) {
+      const std::size_t i = base + survivors[j];
+      const Triangle<S> tri{{tris.ax[i], tris.ay[i], tris.az[i]},
+                            {tris.bx[i], tris.by[i], tris.bz[i]},
+                            {tris.cx[i], tris.cy[i], tris.cz[i]}};
+      ++n.kernel;
+      const Verdict verdict = kernelVerdict(cyl, pose, tri);
+      if (verdict == Verdict::kMiss) continue;
+      n.hits += verdict == Verdict::kHit;
+      if (!visit(i, verdict)) {
+        n.store(st, world);
+        return;
+      }
     }
   }
+  n.store(st, world);
 }
 
 [[noreturn]] void throwInvalid(const char* what) {
@@ -395,11 +452,9 @@ Answer maskImpl(const Cylinder<S>& cyl, const Pose<S>& pose, const Source& src,
   }
   bool invalid = false;
   scan(s, cyl, pose, src, opt, st, [&](std::size_t i, Verdict v) {
-    if (v != Verdict::kMiss) {
-      setBit(mask, i);
-      ++count;
-      invalid = invalid || v == Verdict::kInvalid;
-    }
+    setBit(mask, i);  // a hit, or invalid: "in collision"
+    ++count;
+    invalid = invalid || v == Verdict::kInvalid;
     return true;
   });
   if (hits != nullptr) *hits = count;
@@ -421,7 +476,6 @@ Answer anyImpl(const Cylinder<S>& cyl, const Pose<S>& pose, const Source& src,
   }
   Answer answer = Answer::kDisjoint;
   scan(s, cyl, pose, src, opt, st, [&](std::size_t i, Verdict v) {
-    if (v == Verdict::kMiss) return true;
     answer = v == Verdict::kHit ? Answer::kIntersect : Answer::kInvalidInput;
     if (first != nullptr) *first = i;
     return false;
