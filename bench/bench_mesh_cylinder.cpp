@@ -250,9 +250,9 @@ void file(benchmark::State& state, F f) {
   f(state, s);
 }
 
-#define TRICYL_BENCH_BOTH(Name, Lambda)                                  \
-  BENCHMARK_CAPTURE(grid, Name, Lambda)->Apply(gridSizes)->MinTime(0.1); \
-  BENCHMARK_CAPTURE(file, Name, Lambda)->DenseRange(0, 1)->MinTime(0.1);
+#define TRICYL_BENCH_BOTH(Name, Lambda)                    \
+  BENCHMARK_CAPTURE(grid, Name, Lambda)->Apply(gridSizes); \
+  BENCHMARK_CAPTURE(file, Name, Lambda)->DenseRange(0, 1);
 
 auto scalar = [](benchmark::State& st, const Scene& s) { runScalar(st, s); };
 auto cull_portable = [](benchmark::State& st, const Scene& s) {

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite from scratch: packages, then
-#   1. a Release build with everything (FCL solver, harness) and ctest;
+#   1. a Release build with everything (FCL solver, harness, benchmarks) and
+#      ctest (including a one-iteration smoke run of every benchmark);
 #   2. the core library and its tests again under AddressSanitizer +
 #      UndefinedBehaviorSanitizer (-fno-sanitize-recover=all);
 #   3. ThreadSanitizer (clang-14): tests/solver_threads_test.cpp, one shared
@@ -15,7 +16,7 @@ bash scripts/deps.sh
 JOBS=$(nproc)
 
 echo "== Release build and tests"
-cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DTRICYL_BUILD_BENCH=OFF
+cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DTRICYL_BUILD_BENCH=ON
 cmake --build build/release -j "$JOBS"
 ctest --test-dir build/release --output-on-failure -j "$JOBS"
 
