@@ -22,11 +22,10 @@
 // Run: ./build/bench/bench_mesh_cylinder --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
 
-#include <array>
 #include <cmath>
 #include <cstdint>
-#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mesh_scenes.h"
@@ -99,19 +98,13 @@ Scene fileScene(int k) {
   } catch (const std::exception&) {
     return s;
   }
-  // Shared vertices merged again (readObj expands faces into triangles),
-  // as the file has them: the vertex pass runs once per vertex.
-  V lo = soup[0].a, hi = soup[0].a;
-  std::map<std::array<double, 3>, std::uint32_t> ids;
-  for (const auto& t : soup)
-    for (const V& p : {t.a, t.b, t.c}) {
-      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-      const auto [it, added] = ids.emplace(std::array<double, 3>{p.x, p.y, p.z},
-                                           std::uint32_t(s.v.size() / 3));
-      if (added) s.v.insert(s.v.end(), {p.x, p.y, p.z});
-      s.f.push_back(it->second);
-    }
+  // Shared vertices merged again, as the file has them: the vertex pass
+  // runs once per vertex.
+  auto m = tricyl::compare::meshes::indexed(soup);
+  s.v = std::move(m.v);
+  s.f = std::move(m.f);
+  V lo, hi;
+  tricyl::compare::meshes::bounds(soup, &lo, &hi);
   const auto c = tricyl::compare::meshes::meshCase(soup, lo, hi, 20261122, 3);
   s.cyl = c.cyl;
   s.pose = c.pose;

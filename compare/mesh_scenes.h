@@ -4,9 +4,11 @@
 // cull shared by the oracle and the brute-force tricyl mesh scan.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -54,6 +56,39 @@ inline std::vector<T> readObj(const std::string& path) {
   }
   if (tris.empty()) throw std::runtime_error("no triangles in " + path);
   return tris;
+}
+
+/// The axis-aligned bounding box of a triangle soup (non-empty).
+inline void bounds(const std::vector<T>& tris, V* lo, V* hi) {
+  *lo = *hi = tris.at(0).a;
+  for (const T& t : tris)
+    for (const V& p : {t.a, t.b, t.c}) {
+      *lo = {std::fmin(lo->x, p.x), std::fmin(lo->y, p.y),
+             std::fmin(lo->z, p.z)};
+      *hi = {std::fmax(hi->x, p.x), std::fmax(hi->y, p.y),
+             std::fmax(hi->z, p.z)};
+    }
+}
+
+/// A triangle soup as an indexed mesh, equal vertices merged (as a mesh file
+/// has them: readObj expands faces into triangles): `v` holds xyz per
+/// vertex, `f` three vertex numbers per triangle, in the soup's order.
+struct IndexedMesh {
+  std::vector<double> v;
+  std::vector<std::uint32_t> f;
+};
+
+inline IndexedMesh indexed(const std::vector<T>& tris) {
+  IndexedMesh m;
+  std::map<std::array<double, 3>, std::uint32_t> ids;
+  for (const T& t : tris)
+    for (const V& p : {t.a, t.b, t.c}) {
+      const auto [it, added] = ids.emplace(std::array<double, 3>{p.x, p.y, p.z},
+                                           std::uint32_t(m.v.size() / 3));
+      if (added) m.v.insert(m.v.end(), {p.x, p.y, p.z});
+      m.f.push_back(it->second);
+    }
+  return m;
 }
 
 /// A grid surface (u, v) -> point, split into two triangles per cell.

@@ -294,6 +294,30 @@ struct Counters {
   }
 };
 
+/// Decides one block's survivors in index order with the scalar kernel.
+/// triangleAt(i, &tri) fills triangle i and returns false when it cannot
+/// (an index out of range: reported as invalid, never read). Calls visit for
+/// every hit or invalid triangle; returns false when visit asks to stop.
+template <class S, class TriangleAt, class Visit>
+bool decideSurvivors(const Cylinder<S>& cyl, const Pose<S>& pose,
+                     std::size_t base, const std::uint32_t* survivors,
+                     std::size_t m, TriangleAt&& triangleAt, Counters* n,
+                     Visit& visit) {
+  for (std::size_t j = 0; j < m; ++j) {
+    const std::size_t i = base + survivors[j];
+    Triangle<S> tri;
+    Verdict verdict = Verdict::kInvalid;
+    if (triangleAt(i, &tri)) {
+      ++n->kernel;
+      verdict = kernelVerdict(cyl, pose, tri);
+    }
+    if (verdict == Verdict::kMiss) continue;
+    n->hits += verdict == Verdict::kHit;
+    if (!visit(i, verdict)) return false;
+  }
+  return true;
+}
+
 /// Scans the triangles of `mesh` in index order and calls visit(i, verdict)
 /// for every hit or invalid triangle (never for a miss) until it returns
 /// false. Requires s.valid.
@@ -347,26 +371,18 @@ void scanMesh(const Setup& s, const Cylinder<S>& cyl, const Pose<S>& pose,
       m = len;
     }
     n.rejected += len - m;
-    for (std::size_t j = 0; j < m; ++j) {
-      const std::size_t i = base + survivors[j];
+    auto at = [&](std::size_t i, Triangle<S>* tri) {
       const std::uint32_t* f = idx + 3 * i;
-      Verdict verdict = Verdict::kInvalid;  // never read out of bounds
-      if (f[0] < nv && f[1] < nv && f[2] < nv) {
-        auto at = [v](std::uint32_t k) {
-          return Vec3<S>{v[3 * std::size_t(k)], v[3 * std::size_t(k) + 1],
-                         v[3 * std::size_t(k) + 2]};
-        };
-        ++n.kernel;
-        verdict =
-            kernelVerdict(cyl, pose, Triangle<S>{at(f[0]), at(f[1]), at(f[2])});
-      }
-      if (verdict == Verdict::kMiss) continue;
-      n.hits += verdict == Verdict::kHit;
-      if (!visit(i, verdict)) {
-        n.store(st, world);
-        return;
-      }
-    }
+      if (f[0] >= nv || f[1] >= nv || f[2] >= nv) return false;
+      auto vertex = [v](std::uint32_t k) {
+        return Vec3<S>{v[3 * std::size_t(k)], v[3 * std::size_t(k) + 1],
+                       v[3 * std::size_t(k) + 2]};
+      };
+      *tri = {vertex(f[0]), vertex(f[1]), vertex(f[2])};
+      return true;
+    };
+    if (!decideSurvivors<S>(cyl, pose, base, survivors, m, at, &n, visit))
+      break;
   }
   n.store(st, world);
 }
@@ -404,20 +420,14 @@ void scanArrays(const Setup& s, const Cylinder<S>& cyl, const Pose<S>& pose,
       m = len;
     }
     n.rejected += len - m;
-    for (std::size_t j = 0; j < m; ++j) {
-      const std::size_t i = base + survivors[j];
-      const Triangle<S> tri{{tris.ax[i], tris.ay[i], tris.az[i]},
-                            {tris.bx[i], tris.by[i], tris.bz[i]},
-                            {tris.cx[i], tris.cy[i], tris.cz[i]}};
-      ++n.kernel;
-      const Verdict verdict = kernelVerdict(cyl, pose, tri);
-      if (verdict == Verdict::kMiss) continue;
-      n.hits += verdict == Verdict::kHit;
-      if (!visit(i, verdict)) {
-        n.store(st, world);
-        return;
-      }
-    }
+    auto at = [&tris](std::size_t i, Triangle<S>* tri) {
+      *tri = {{tris.ax[i], tris.ay[i], tris.az[i]},
+              {tris.bx[i], tris.by[i], tris.bz[i]},
+              {tris.cx[i], tris.cy[i], tris.cz[i]}};
+      return true;
+    };
+    if (!decideSurvivors<S>(cyl, pose, base, survivors, m, at, &n, visit))
+      break;
   }
   n.store(st, world);
 }
@@ -481,6 +491,13 @@ Answer anyImpl(const Cylinder<S>& cyl, const Pose<S>& pose, const Source& src,
     return false;
   });
   return answer;
+}
+
+/// The checked "any": the lowest hit, nothing, or InvalidInput.
+std::optional<std::size_t> checkedAny(Answer answer, std::size_t first) {
+  if (answer == Answer::kInvalidInput) throwInvalid("intersectAny");
+  if (answer == Answer::kIntersect) return first;
+  return std::nullopt;
 }
 
 struct MeshScan {
@@ -586,14 +603,8 @@ std::optional<std::size_t> intersectAny(const Cylinder<S>& cylinder,
                                         const BatchOptions& options,
                                         BatchStats* stats) {
   std::size_t first = 0;
-  switch (anyImpl(cylinder, pose, mesh, &first, options, stats, MeshScan{})) {
-    case Answer::kIntersect:
-      return first;
-    case Answer::kDisjoint:
-      return std::nullopt;
-    default:
-      throwInvalid("intersectAny");
-  }
+  return checkedAny(
+      anyImpl(cylinder, pose, mesh, &first, options, stats, MeshScan{}), first);
 }
 
 template <class S>
@@ -603,15 +614,9 @@ std::optional<std::size_t> intersectAny(const Cylinder<S>& cylinder,
                                         const BatchOptions& options,
                                         BatchStats* stats) {
   std::size_t first = 0;
-  switch (
-      anyImpl(cylinder, pose, triangles, &first, options, stats, ArrayScan{})) {
-    case Answer::kIntersect:
-      return first;
-    case Answer::kDisjoint:
-      return std::nullopt;
-    default:
-      throwInvalid("intersectAny");
-  }
+  return checkedAny(
+      anyImpl(cylinder, pose, triangles, &first, options, stats, ArrayScan{}),
+      first);
 }
 
 #define TRICYL_MESH_CYLINDER_INSTANTIATE(S)                                    \

@@ -14,7 +14,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -28,8 +27,8 @@ namespace {
 namespace meshes = compare::meshes;
 using V = Vec3<double>;
 
-/// An indexed mesh built from a triangle soup (shared vertices merged, as
-/// a mesh file has them), in scalar type S.
+/// An indexed mesh in scalar type S: the soup's vertices merged in double
+/// (meshes::indexed, as a mesh file has them) and then narrowed.
 template <class S>
 struct Indexed {
   std::vector<S> v;
@@ -47,19 +46,8 @@ struct Indexed {
 
 template <class S>
 Indexed<S> indexed(const std::vector<Triangle<double>>& soup) {
-  Indexed<S> m;
-  std::map<std::array<S, 3>, std::uint32_t> ids;
-  for (const auto& t : soup)
-    for (const V& p : {t.a, t.b, t.c}) {
-      const std::array<S, 3> key{S(p.x), S(p.y), S(p.z)};
-      auto it = ids.find(key);
-      if (it == ids.end()) {
-        it = ids.emplace(key, std::uint32_t(m.v.size() / 3)).first;
-        m.v.insert(m.v.end(), key.begin(), key.end());
-      }
-      m.f.push_back(it->second);
-    }
-  return m;
+  const meshes::IndexedMesh m = meshes::indexed(soup);
+  return {std::vector<S>(m.v.begin(), m.v.end()), m.f};
 }
 
 /// The same triangles as a structure of arrays (owning storage).
@@ -200,12 +188,8 @@ TYPED_TEST(MeshCylinderTyped, BuiltinMeshesMatchKernel) {
     SCOPED_TRACE(name);
     const Indexed<S> mesh = indexed<S>(soup);
     const Arrays<S> arr = arrays(mesh);
-    V lo = soup[0].a, hi = soup[0].a;
-    for (const auto& t : soup)
-      for (const V& p : {t.a, t.b, t.c}) {
-        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-      }
+    V lo, hi;
+    meshes::bounds(soup, &lo, &hi);
     for (std::uint64_t k = 0; k < 60; ++k) {
       SCOPED_TRACE("placement " + std::to_string(k));
       const auto c = meshes::meshCase(soup, lo, hi, seed, k);
@@ -240,12 +224,8 @@ TEST(MeshCylinder, RealMeshesMatchKernel) {
     SCOPED_TRACE(file);
     const Indexed<double> mesh = indexed<double>(soup);
     const Arrays<double> arr = arrays(mesh);
-    V lo = soup[0].a, hi = soup[0].a;
-    for (const auto& t : soup)
-      for (const V& p : {t.a, t.b, t.c}) {
-        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-      }
+    V lo, hi;
+    meshes::bounds(soup, &lo, &hi);
     for (std::uint64_t k = 0; k < 12; ++k) {
       SCOPED_TRACE("placement " + std::to_string(k));
       const auto c = meshes::meshCase(soup, lo, hi, seed, k);
