@@ -602,9 +602,12 @@ std::optional<std::size_t> intersectAny(const Cylinder<S>& cylinder,
                                         const MeshView<S>& mesh,
                                         const BatchOptions& options,
                                         BatchStats* stats) {
+  // Two statements: anyImpl must write `first` before it is read (the
+  // order in which a call's arguments are evaluated is unspecified).
   std::size_t first = 0;
-  return checkedAny(
-      anyImpl(cylinder, pose, mesh, &first, options, stats, MeshScan{}), first);
+  const Answer answer =
+      anyImpl(cylinder, pose, mesh, &first, options, stats, MeshScan{});
+  return checkedAny(answer, first);
 }
 
 template <class S>
@@ -613,10 +616,12 @@ std::optional<std::size_t> intersectAny(const Cylinder<S>& cylinder,
                                         const TriangleArrays<S>& triangles,
                                         const BatchOptions& options,
                                         BatchStats* stats) {
+  // Two statements: anyImpl must write `first` before it is read (the
+  // order in which a call's arguments are evaluated is unspecified).
   std::size_t first = 0;
-  return checkedAny(
-      anyImpl(cylinder, pose, triangles, &first, options, stats, ArrayScan{}),
-      first);
+  const Answer answer =
+      anyImpl(cylinder, pose, triangles, &first, options, stats, ArrayScan{});
+  return checkedAny(answer, first);
 }
 
 #define TRICYL_MESH_CYLINDER_INSTANTIATE(S)                                    \
