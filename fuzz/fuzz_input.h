@@ -14,6 +14,11 @@
 //            6       an earlier scalar negated;
 //            7       int16 / 256 (moderate values).
 // A missing byte reads as 0, so every byte string decodes to some input.
+//
+// Two layouts share this scalar coding: decode() for the triangle target
+// (unchanged, its corpus stays valid) and QueryInput + the per-query
+// decoders (decodePoint, decodeSphere, decodeSegment) for the cylinder query
+// targets, documented at QueryInput.
 #pragma once
 
 #include <cfloat>
@@ -25,6 +30,7 @@
 #include <limits>
 #include <vector>
 
+#include "tricyl/endpoint_form.h"
 #include "tricyl/types.h"
 
 namespace tricyl::fuzz {
@@ -135,6 +141,7 @@ class ScalarDecoder {
 /// One decoded query.
 template <class S>
 struct Case {
+  using Scalar = S;
   Cylinder<S> cyl{};
   Pose<S> pose{};
   Triangle<S> tri{};
@@ -154,6 +161,44 @@ void signedPermutation(std::uint8_t k, S R[3][3]) {
       R[i][j] = (p[i] == j) ? ((signs >> i) & 1 ? S(-1) : S(1)) : S(0);
 }
 
+/// Reads the pose of mode `mode` (flags & 3, see decode()) after the sizes:
+/// 0 or 3 = R as 9 free scalars then t; 1 = a signed axis permutation (one
+/// byte) then t; 2 = the identity (nothing read).
+template <class S>
+Pose<S> readPose(ByteReader* in, ScalarDecoder<S>* dec, std::uint8_t mode,
+                 bool* identity) {
+  Pose<S> pose{};
+  *identity = false;
+  switch (mode & 3) {
+    case 1:
+      signedPermutation(in->byte(), pose.R);
+      break;
+    case 2:
+      pose = identityPose<S>();
+      *identity = true;
+      break;
+    default:
+      for (auto& row : pose.R)
+        for (S& v : row) v = dec->next();
+  }
+  if (!*identity) pose.t = {dec->next(), dec->next(), dec->next()};
+  return pose;
+}
+
+/// R y + t in S arithmetic (rounded; may overflow): a point given in the
+/// shape's frame, placed near the shape under any pose.
+template <class S>
+Vec3<S> toWorld(const Pose<S>& pose, const Vec3<S>& v) {
+  const S y[3] = {v.x, v.y, v.z};
+  S w[3];
+  for (int i = 0; i < 3; ++i) {
+    w[i] = pose.R[i][0] * y[0];
+    w[i] += pose.R[i][1] * y[1];
+    w[i] += pose.R[i][2] * y[2];
+  }
+  return {w[0] + pose.t.x, w[1] + pose.t.y, w[2] + pose.t.z};
+}
+
 /// Layout: a flags byte, then the scalars.
 ///   flags & 3: 0 or 3 = R as 9 free scalars; 1 = a signed axis permutation
 ///              (one byte); 2 = the identity pose (R = I, t = 0; no t is
@@ -170,33 +215,11 @@ Case<S> decode(const std::uint8_t* data, std::size_t size) {
   const std::uint8_t flags = in.byte();
   c.cyl.radius = dec.next();
   c.cyl.lz = dec.next();
-  switch (flags & 3) {
-    case 1:
-      signedPermutation(in.byte(), c.pose.R);
-      break;
-    case 2:
-      c.pose = identityPose<S>();
-      c.identity_pose = true;
-      break;
-    default:
-      for (auto& row : c.pose.R)
-        for (S& v : row) v = dec.next();
-  }
-  if (!c.identity_pose) c.pose.t = {dec.next(), dec.next(), dec.next()};
+  c.pose = readPose(&in, &dec, flags, &c.identity_pose);
   Vec3<S>* verts[3] = {&c.tri.a, &c.tri.b, &c.tri.c};
   for (Vec3<S>* v : verts) *v = {dec.next(), dec.next(), dec.next()};
-  if ((flags & 4) && !c.identity_pose) {
-    for (Vec3<S>* v : verts) {
-      const S y[3] = {v->x, v->y, v->z};
-      S w[3];
-      for (int i = 0; i < 3; ++i) {
-        w[i] = c.pose.R[i][0] * y[0];
-        w[i] += c.pose.R[i][1] * y[1];
-        w[i] += c.pose.R[i][2] * y[2];
-      }
-      *v = {w[0] + c.pose.t.x, w[1] + c.pose.t.y, w[2] + c.pose.t.z};
-    }
-  }
+  if ((flags & 4) && !c.identity_pose)
+    for (Vec3<S>* v : verts) *v = toWorld(c.pose, *v);
   return c;
 }
 
@@ -236,6 +259,260 @@ void print(const Case<S>& c) {
   for (int k = 0; k < 4; ++k)
     std::fprintf(stderr, "%s = %a %a %a\n", names[k], double(vs[k].x),
                  double(vs[k].y), double(vs[k].z));
+}
+
+// ---------------------------------------------------------------------------
+// The cylinder query targets (fuzz_point_cylinder, fuzz_point_cone,
+// fuzz_sphere_cylinder, fuzz_segment_cylinder).
+
+/// How the shape and its pose are given (flags bits 4-5).
+enum class Form : std::uint8_t {
+  kDirect = 0,     ///< radius, lz, pose as decode() reads them
+  kAxis = 1,       ///< cylinderFromAxis(O, N, L, R) / coneFromApex(O, N, L, R)
+  kEndpoints = 2,  ///< cylinderFromEndpoints(a, b, R)
+};
+
+enum class ShapeKind { kCylinder, kCone };
+
+/// A shape's sizes and pose exactly as the query receives them, plus the
+/// endpoint-form inputs they were built from (form != kDirect).
+template <class S>
+struct Placed {
+  ShapeKind kind = ShapeKind::kCylinder;
+  S radius{}, lz{};
+  Pose<S> pose{};
+  bool identity_pose = false;
+  bool local_points = false;
+  Form form = Form::kDirect;
+  Vec3<S> O{}, N{};  ///< axis form: O, N; endpoints form: a, b
+  S L{}, R{};        ///< L (axis form only), R
+};
+
+/// The query targets' layout: a flags byte, then the scalars.
+///   flags & 3:        pose mode as in decode() (direct form only);
+///   flags & 4:        the query's points (point, sphere centre, segment
+///                     ends) are given in the shape's frame and mapped to
+///                     the world by the pose in S arithmetic (toWorld);
+///   flags & 8:        float (4-byte patterns), else double;
+///   (flags >> 4) & 3: the form: 0 or 3 direct (radius, lz, then R and t
+///                     as decode() reads them); 1 axis form: O, N, L, R
+///                     (cylinderFromAxis, or coneFromApex for the cone);
+///                     2 endpoints form: a, b, R (cylinderFromEndpoints;
+///                     the cone reads the axis form instead);
+///   flags & 0xc0:     free for the targets;
+/// then the query's own scalars (decodePoint, decodeSphere, decodeSegment).
+template <class S>
+class QueryInput {
+ public:
+  QueryInput(const std::uint8_t* data, std::size_t size)
+      : in_(data, size), dec_(&in_), flags_(in_.byte()) {}
+  std::uint8_t flags() const { return flags_; }
+  S scalar() { return dec_.next(); }
+  Vec3<S> vec3() { return {dec_.next(), dec_.next(), dec_.next()}; }
+
+  Placed<S> placed(ShapeKind kind) {
+    Placed<S> p;
+    p.kind = kind;
+    p.local_points = flags_ & 4;
+    int form = (flags_ >> 4) & 3;
+    if (form == 3) form = 0;
+    if (kind == ShapeKind::kCone && form == 2) form = 1;
+    p.form = Form(form);
+    switch (p.form) {
+      case Form::kDirect:
+        p.radius = scalar();
+        p.lz = scalar();
+        p.pose = readPose(&in_, &dec_, flags_, &p.identity_pose);
+        // As decode(): an identity pose takes the points as given (R y + t
+        // would turn an infinite coordinate into NaN through 0 * Inf).
+        if (p.identity_pose) p.local_points = false;
+        break;
+      case Form::kAxis:
+        p.O = vec3();
+        p.N = vec3();
+        p.L = scalar();
+        p.R = scalar();
+        if (kind == ShapeKind::kCone) {
+          const PosedCone<S> pc = coneFromApex(p.O, p.N, p.L, p.R);
+          p.radius = pc.cone.radius;
+          p.lz = pc.cone.lz;
+          p.pose = pc.pose;
+        } else {
+          const PosedCylinder<S> pc = cylinderFromAxis(p.O, p.N, p.L, p.R);
+          p.radius = pc.cylinder.radius;
+          p.lz = pc.cylinder.lz;
+          p.pose = pc.pose;
+        }
+        break;
+      case Form::kEndpoints: {
+        p.O = vec3();
+        p.N = vec3();
+        p.R = scalar();
+        const PosedCylinder<S> pc = cylinderFromEndpoints(p.O, p.N, p.R);
+        p.radius = pc.cylinder.radius;
+        p.lz = pc.cylinder.lz;
+        p.pose = pc.pose;
+        break;
+      }
+    }
+    return p;
+  }
+
+  /// A point of the query, mapped to the world if the flags say so.
+  Vec3<S> point(const Placed<S>& p) {
+    const Vec3<S> v = vec3();
+    return p.local_points ? toWorld(p.pose, v) : v;
+  }
+
+ private:
+  ByteReader in_;
+  ScalarDecoder<S> dec_;
+  std::uint8_t flags_;
+};
+
+template <class S>
+bool finite(const Vec3<S>& v) {
+  return finite(v.x) && finite(v.y) && finite(v.z);
+}
+
+/// The documented validity rule of every query for the shape and pose:
+/// sizes finite and >= 0 (-0 is zero, valid), R and t finite.
+template <class S>
+bool valid(const Placed<S>& p) {
+  bool ok = finite(p.radius) && finite(p.lz) && !(p.radius < 0) &&
+            !(p.lz < 0) && finite(p.pose.t);
+  for (const auto& row : p.pose.R)
+    for (S v : row) ok = ok && finite(v);
+  return ok;
+}
+
+inline void printVec(const char* name, const Vec3<double>& v) {
+  std::fprintf(stderr, "%s = %a %a %a\n", name, v.x, v.y, v.z);
+}
+template <class S>
+void printVec(const char* name, const Vec3<S>& v) {
+  printVec(name, Vec3<double>{double(v.x), double(v.y), double(v.z)});
+}
+
+/// Prints the shape and pose bit-exactly, with the endpoint-form inputs.
+template <class S>
+void print(const Placed<S>& p) {
+  std::fprintf(stderr, "scalar = %s, shape = %s\n",
+               sizeof(S) == 8 ? "double" : "float",
+               p.kind == ShapeKind::kCone ? "cone" : "cylinder");
+  if (p.form == Form::kAxis) {
+    std::fprintf(
+        stderr, "form = %s(O, N, L, R)\n",
+        p.kind == ShapeKind::kCone ? "coneFromApex" : "cylinderFromAxis");
+    printVec("O", p.O);
+    printVec("N", p.N);
+    printScalar("L", double(p.L));
+    printScalar("R", double(p.R));
+  } else if (p.form == Form::kEndpoints) {
+    std::fprintf(stderr, "form = cylinderFromEndpoints(a, b, R)\n");
+    printVec("a", p.O);
+    printVec("b", p.N);
+    printScalar("R", double(p.R));
+  }
+  printScalar("r ", double(p.radius));
+  printScalar("lz", double(p.lz));
+  for (int i = 0; i < 3; ++i)
+    std::fprintf(stderr, "R[%d] = %a %a %a\n", i, double(p.pose.R[i][0]),
+                 double(p.pose.R[i][1]), double(p.pose.R[i][2]));
+  printVec("t", p.pose.t);
+}
+
+/// A point query (point in cylinder or cone).
+template <class S>
+struct PointCase {
+  using Scalar = S;
+  Placed<S> shape;
+  Vec3<S> x{};
+};
+
+/// Layout: as QueryInput, then the point x.
+template <class S>
+PointCase<S> decodePoint(const std::uint8_t* data, std::size_t size,
+                         ShapeKind kind) {
+  QueryInput<S> in(data, size);
+  PointCase<S> c;
+  c.shape = in.placed(kind);
+  c.x = in.point(c.shape);
+  return c;
+}
+
+template <class S>
+bool valid(const PointCase<S>& c) {
+  return valid(c.shape) && finite(c.x);
+}
+
+template <class S>
+void print(const PointCase<S>& c) {
+  print(c.shape);
+  printVec("x", c.x);
+}
+
+/// Sphere vs cylinder.
+template <class S>
+struct SphereCase {
+  using Scalar = S;
+  Placed<S> shape;
+  Sphere<S> sphere{};
+};
+
+/// Layout: as QueryInput, then the centre, then the sphere's radius.
+template <class S>
+SphereCase<S> decodeSphere(const std::uint8_t* data, std::size_t size) {
+  QueryInput<S> in(data, size);
+  SphereCase<S> c;
+  c.shape = in.placed(ShapeKind::kCylinder);
+  c.sphere.center = in.point(c.shape);
+  c.sphere.radius = in.scalar();
+  return c;
+}
+
+template <class S>
+bool valid(const SphereCase<S>& c) {
+  return valid(c.shape) && finite(c.sphere.center) && finite(c.sphere.radius) &&
+         !(c.sphere.radius < 0);
+}
+
+template <class S>
+void print(const SphereCase<S>& c) {
+  print(c.shape);
+  printVec("center", c.sphere.center);
+  printScalar("rho", double(c.sphere.radius));
+}
+
+/// Segment vs cylinder (and its interval).
+template <class S>
+struct SegmentCase {
+  using Scalar = S;
+  Placed<S> shape;
+  Segment<S> seg{};
+};
+
+/// Layout: as QueryInput, then p, then q.
+template <class S>
+SegmentCase<S> decodeSegment(const std::uint8_t* data, std::size_t size) {
+  QueryInput<S> in(data, size);
+  SegmentCase<S> c;
+  c.shape = in.placed(ShapeKind::kCylinder);
+  c.seg.p = in.point(c.shape);
+  c.seg.q = in.point(c.shape);
+  return c;
+}
+
+template <class S>
+bool valid(const SegmentCase<S>& c) {
+  return valid(c.shape) && finite(c.seg.p) && finite(c.seg.q);
+}
+
+template <class S>
+void print(const SegmentCase<S>& c) {
+  print(c.shape);
+  printVec("p", c.seg.p);
+  printVec("q", c.seg.q);
 }
 
 }  // namespace tricyl::fuzz

@@ -16,12 +16,10 @@
 //   throws tricyl::InvalidInput;
 // - intersect, tryIntersect and decideIntersect agree; the local-frame
 //   overload agrees with the posed one when the pose is the identity.
-#include <fenv.h>
-
+#include <cstddef>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 
+#include "fuzz_check.h"
 #include "fuzz_input.h"
 #include "oracle.h"
 #include "tricyl/triangle_cylinder.h"
@@ -31,55 +29,15 @@ namespace {
 using tricyl::Answer;
 using tricyl::Stage;
 using tricyl::fuzz::Case;
-
-[[noreturn]] void fail(const char* what, const char* detail) {
-  std::fprintf(stderr, "tricyl fuzz: PROPERTY VIOLATED: %s (%s)\n", what,
-               detail);
-  std::abort();
-}
-
-template <class S>
-void check(bool ok, const char* what, const Case<S>& c) {
-  if (ok) return;
-  tricyl::fuzz::print(c);
-  fail(what, sizeof(S) == 8 ? "double" : "float");
-}
-
-/// Traps FE_INVALID and FE_DIVBYZERO for its scope (valid input only).
-struct FpTraps {
-  FpTraps() {
-    feclearexcept(FE_ALL_EXCEPT);
-    feenableexcept(FE_INVALID | FE_DIVBYZERO);
-  }
-  ~FpTraps() {
-    fedisableexcept(FE_ALL_EXCEPT);
-    feclearexcept(FE_ALL_EXCEPT);
-  }
-};
-
-template <class S>
-tricyl::Pose<double> widen(const tricyl::Pose<S>& p) {
-  tricyl::Pose<double> d;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) d.R[i][j] = double(p.R[i][j]);
-  d.t = {double(p.t.x), double(p.t.y), double(p.t.z)};
-  return d;
-}
-
-template <class S>
-tricyl::Vec3<double> widen(const tricyl::Vec3<S>& v) {
-  return {double(v.x), double(v.y), double(v.z)};
-}
-
-template <class S>
-tricyl::Vec3<S> neg(const tricyl::Vec3<S>& v) {
-  return {-v.x, -v.y, -v.z};
-}
+using tricyl::fuzz::check;
+using tricyl::fuzz::FpTraps;
+using tricyl::fuzz::neg;
+using tricyl::fuzz::widen;
 
 template <class S>
 void run(const Case<S>& c) {
   const bool valid = tricyl::fuzz::valid(c);
-  if (std::getenv("TRICYL_FUZZ_PRINT")) tricyl::fuzz::print(c);
+  tricyl::fuzz::maybePrint(c);
 
   if (!valid) {
     check(tricyl::tryIntersect(c.cyl, c.pose, c.tri) == Answer::kInvalidInput,
