@@ -8,7 +8,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/deps.sh
 JOBS=$(nproc)
-cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DTRICYL_BUILD_COMPARE=ON \
-      -DTRICYL_BUILD_BENCH=OFF
+cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DTRICYL_BUILD_COMPARE=ON
 cmake --build build/release -j "$JOBS" --target tricyl-compare
 ./build/release/compare/tricyl-compare --out report "$@"
