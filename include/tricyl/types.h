@@ -68,6 +68,16 @@ struct Segment {
   Vec3<S> q;  ///< the point at s = 1
 };
 
+/// The unbounded line: the points p (1 - s) + q s for every real s (so
+/// s = 0 at p, s = 1 at q). p == q is valid and is the single point p; the
+/// queries of line_cylinder.h then answer for that point, and `clip`
+/// returns the whole real line [-inf, +inf] when it is inside.
+template <class S>
+struct Line {
+  Vec3<S> p;  ///< the point at s = 0
+  Vec3<S> q;  ///< the point at s = 1
+};
+
 /// The closed ball of `radius` around `center`.
 template <class S>
 struct Sphere {
@@ -75,7 +85,8 @@ struct Sphere {
   S radius;        ///< >= 0
 };
 
-/// A closed parameter interval [lo, hi].
+/// A closed parameter interval [lo, hi] (for a Line, an end may be
+/// infinite; see line_cylinder.h).
 template <class S>
 struct Interval {
   S lo;  ///< lower end

@@ -1,0 +1,111 @@
+// Shared by the segment and the line queries (src/segment_cylinder.cpp,
+// src/line_cylinder.cpp): widened and validated inputs, and the entry/exit
+// interval (src/line_cylinder_interval.cpp). A segment is the line through
+// p and q restricted to s in [0, 1]; the interval code is written once for
+// both, the restriction being two extra candidates 0 and 1.
+#pragma once
+
+#include <limits>
+
+#include "cylinder_queries_impl.h"
+#include "tricyl/types.h"
+
+namespace tricyl::detail {
+
+/// The inputs of a segment or line query, widened to double (exact for
+/// float), and the magnitudes for the range gate.
+struct LinearInputs {
+  Cylinder<double> cyl;
+  Pose<double> pose;
+  Vec3<double> p, q;
+  double max_len = 0, max_unitless = 0;
+};
+
+template <class S>
+inline LinearInputs widenLinear(const Cylinder<S>& cyl, const Pose<S>& pose,
+                                const Vec3<S>& p, const Vec3<S>& q) {
+  LinearInputs in;
+  in.cyl = {double(cyl.radius), double(cyl.lz)};
+  in.pose = widen(pose);
+  in.p = widen(p);
+  in.q = widen(q);
+  return in;
+}
+
+/// False on NaN/Inf anywhere or a negative size; sets the magnitudes.
+inline bool validateLinear(LinearInputs& in) {
+  const auto& p = in.p;
+  const auto& q = in.q;
+  return scanFinite({in.cyl.radius, in.cyl.lz, p.x, p.y, p.z, q.x, q.y, q.z},
+                    in.pose, &in.max_len, &in.max_unitless) &&
+         in.cyl.radius >= 0 && in.cyl.lz >= 0;
+}
+
+/// The segment's local data: the images of p and q.
+template <class K>
+struct SegmentPred {
+  static Tri run(const LinearInputs& in, bool* early) {
+    SegLocal<K> loc;
+    loc.p[0] = localPoint<K>(in.pose, in.p, in.max_unitless);
+    loc.p[1] = localPoint<K>(in.pose, in.q, in.max_unitless);
+    Pose<double> at_p = in.pose;
+    at_p.t = in.p;
+    loc.e = localPoint<K>(at_p, in.q, in.max_unitless);
+    loc.H = K::lift(in.cyl.lz);
+    loc.r = K::lift(in.cyl.radius);
+    return segmentCylinder<K>(loc, early);
+  }
+};
+
+/// The line's local data: the image of p and the direction R^T (q - p),
+/// the latter from the input differences q - p (toLocal with t = p).
+template <class K>
+struct LinePred {
+  static Tri run(const LinearInputs& in, bool* early) {
+    LineLocal<K> loc;
+    loc.a = localPoint<K>(in.pose, in.p, in.max_unitless);
+    Pose<double> at_p = in.pose;
+    at_p.t = in.p;
+    loc.e = localPoint<K>(at_p, in.q, in.max_unitless);
+    loc.H = K::lift(in.cyl.lz);
+    loc.r = K::lift(in.cyl.radius);
+    return lineCylinder<K>(loc, early);
+  }
+};
+
+/// The exact Boolean through the three stages: `Pred` is SegmentPred or
+/// LinePred.
+template <template <class> class Pred>
+Decision decideLinear(LinearInputs& in) {
+  if (!validateLinear(in)) return {Answer::kInvalidInput, Stage::kInvalid};
+  return runStages(
+      [&](auto tag, bool* early) {
+        using K = typename decltype(tag)::type;
+        return Pred<K>::run(in, early);
+      },
+      in.max_len, in.max_unitless);
+}
+
+/// The entry/exit interval of a query whose exact Boolean said "intersect"
+/// (its emptiness is never read from these numbers). `segment`: the
+/// interval of { s in [0, 1] : p(s) in cylinder }, clamped to [0, 1], each
+/// end within 1.9e-15 of the exact one. Otherwise the line's
+/// { s real : p(s) in cylinder }: each end within 1.9e-15 max(1, |s*|) of
+/// the exact s*; [-inf, +inf] when the local direction R^T (q - p) is zero
+/// (the line is a point, inside); an end whose exact value exceeds the
+/// largest double in magnitude is returned as the infinity of its sign.
+/// Derivation in src/line_cylinder_interval.cpp.
+Interval<double> linearInterval(const LinearInputs& in, bool segment);
+
+/// double -> S for an interval end: round to nearest, except that a value
+/// beyond the largest finite S becomes the infinity of its sign (no
+/// out-of-range conversion). Monotone, so lo <= hi is kept.
+template <class S>
+inline S narrowEnd(double x) {
+  constexpr double kMax = double(std::numeric_limits<S>::max());
+  if (x > kMax) return std::numeric_limits<S>::infinity();
+  if (x < -kMax) return -std::numeric_limits<S>::infinity();
+  return S(x);
+}
+
+}  // namespace tricyl::detail
