@@ -1,6 +1,6 @@
 // Exact GMP oracles for the cylinder query family (issue 5): point in
-// cylinder, point in cone, sphere vs cylinder, segment vs cylinder and the
-// segment's entry/exit interval. Written for clarity, with mpq_class, and
+// cylinder, point in cone, sphere vs cylinder, segment and line vs cylinder
+// and their entry/exit intervals. Written for clarity, with mpq_class, and
 // deliberately formulated DIFFERENTLY from the library's predicates
 // (src/cylinder_queries_impl.h):
 //   - true z with h = lz / 2 (the library doubles z);
@@ -10,7 +10,9 @@
 //   - the segment test is the emptiness of the interval
 //     [max(0, slab_lo, root_lo), min(1, slab_hi, root_hi)], decided by exact
 //     comparisons of quadratic surds with rationals (the library tests
-//     endpoints, cap crossings and closest approach);
+//     endpoints, cap crossings and closest approach); the line's is the
+//     same without 0 and 1 (the library's line test is (V), (X), (E)
+//     without the segment's interior conditions);
 //   - interval reference values come from integer square roots (mpz_sqrt)
 //     with an error below 2^-200, not from floating point.
 // Inputs must be finite with non-negative sizes.
@@ -112,23 +114,29 @@ inline Q approx(const Surd& a) {
 }
 
 /// The exact entry/exit interval of the segment p (1 - s) + q s, s in
-/// [0, 1], as candidate lists: the interval is [max(lower), min(upper)],
-/// empty iff `empty`.
+/// [0, 1], or of the line (every real s), as candidate lists: the interval
+/// is [max(lower), min(upper)], empty iff `empty`. For a line a list may be
+/// empty: that end is unbounded (only when the local direction is zero).
 struct SegmentInterval {
   bool empty = true;
   std::vector<Surd> lower, upper;
 };
+using LineInterval = SegmentInterval;
 
-inline SegmentInterval segmentInterval(const Cylinder<double>& cyl,
-                                       const Pose<double>& pose,
-                                       const Segment<double>& seg) {
-  const Q3 a = toLocal(pose, seg.p);
-  const Q3 b = toLocal(pose, seg.q);
+/// `bounded`: the segment (candidates 0 and 1); otherwise the line.
+inline SegmentInterval linearInterval(const Cylinder<double>& cyl,
+                                      const Pose<double>& pose,
+                                      const Vec3<double>& p,
+                                      const Vec3<double>& q, bool bounded) {
+  const Q3 a = toLocal(pose, p);
+  const Q3 b = toLocal(pose, q);
   const Q h = Q(cyl.lz) / 2, r(cyl.radius);
   const Q dx = b.x - a.x, dy = b.y - a.y, dz = b.z - a.z;
   SegmentInterval out;
-  out.lower.push_back(rational(0));
-  out.upper.push_back(rational(1));
+  if (bounded) {
+    out.lower.push_back(rational(0));
+    out.upper.push_back(rational(1));
+  }
   // Slab: -h <= a.z + s dz <= h.
   if (dz == 0) {
     if (a.z > h || a.z < -h) return out;
@@ -157,13 +165,43 @@ inline SegmentInterval segmentInterval(const Cylinder<double>& cyl,
   return out;
 }
 
+inline SegmentInterval segmentInterval(const Cylinder<double>& cyl,
+                                       const Pose<double>& pose,
+                                       const Segment<double>& seg) {
+  return linearInterval(cyl, pose, seg.p, seg.q, true);
+}
+
+/// The line's interval { s real : p(s) in cylinder }.
+inline LineInterval lineInterval(const Cylinder<double>& cyl,
+                                 const Pose<double>& pose,
+                                 const Line<double>& line) {
+  return linearInterval(cyl, pose, line.p, line.q, false);
+}
+
+inline bool lineCylinder(const Cylinder<double>& cyl, const Pose<double>& pose,
+                         const Line<double>& line) {
+  return !lineInterval(cyl, pose, line).empty;
+}
+
+/// Does the non-empty line interval meet [0, 1]? Exactly (the segment's
+/// answer, derived from the line's candidates instead of the segment's).
+inline bool lineMeetsUnit(const LineInterval& iv) {
+  if (iv.empty) return false;
+  for (const Surd& l : iv.lower)
+    if (cmp(l, Q(1)) > 0) return false;
+  for (const Surd& u : iv.upper)
+    if (cmp(u, Q(0)) < 0) return false;
+  return true;
+}
+
 inline bool segmentCylinder(const Cylinder<double>& cyl,
                             const Pose<double>& pose,
                             const Segment<double>& seg) {
   return !segmentInterval(cyl, pose, seg).empty;
 }
 
-/// Reference endpoints within 2^-200 of the exact ones (non-empty only).
+/// Reference endpoints within 2^-200 of the exact ones (non-empty, both
+/// ends bounded only).
 inline void referenceEndpoints(const SegmentInterval& iv, Q* lo, Q* hi) {
   *lo = approx(iv.lower[0]);
   for (const Surd& l : iv.lower) *lo = std::max(*lo, approx(l));

@@ -1,5 +1,6 @@
 // Seeded case generators for the cylinder query family (issue 5): point in
-// cylinder, point in cone, sphere vs cylinder, segment vs cylinder. Shared
+// cylinder, point in cone, sphere vs cylinder, segment and line vs cylinder.
+// Shared
 // by the tests and the benchmarks (and available to tricyl-compare).
 // Header-only; reuses the Rng and pose helpers of scenes.h.
 //
@@ -20,6 +21,12 @@
 //               axis-crossing segments, exactly touching configurations with
 //               exact poses (Pythagorean triples on dyadic sizes), tiny and
 //               huge sizes (outside the filter's range gate).
+// Lines (Query::kLine) are built as the segments, then re-parametrised:
+// the two defining points are moved along the line (lineParams), so that
+// the touching or crossing feature sits anywhere in s (inside or outside
+// [0, 1], up to |s| ~ 1e7) and p, q are sometimes very close together (a
+// relative separation down to 1e-9); the degenerate family does it with
+// exact dyadic factors (exact touching stays exact), p == q included.
 #pragma once
 
 #include <cmath>
@@ -30,7 +37,7 @@
 
 namespace tricyl::qscenes {
 
-enum class Query { kPointCylinder, kPointCone, kSphere, kSegment };
+enum class Query { kPointCylinder, kPointCone, kSphere, kSegment, kLine };
 enum class Family { kUniform, kNear, kFar, kDegenerate };
 inline constexpr Family kAllFamilies[] = {Family::kUniform, Family::kNear,
                                           Family::kFar, Family::kDegenerate};
@@ -50,7 +57,7 @@ inline const char* familyName(Family f) {
 }
 
 /// One case. Point queries use p; the cone query reads cyl as Cone{radius,
-/// lz}; the sphere is {p, rho}; the segment is {p, q}.
+/// lz}; the sphere is {p, rho}; the segment and the line are {p, q}.
 struct QueryCase {
   Cylinder<double> cyl{0, 0};
   Pose<double> pose = identityPose<double>();
@@ -93,6 +100,43 @@ inline QueryCase pose(Rng& g, QueryCase k, bool exact_ok, bool nudge_ok) {
 
 inline double angle(Rng& g) { return g.uniform(0, 2 * M_PI); }
 
+/// A line's defining points at at + a dir and at + b dir (a != b), where
+/// the feature of interest is at `at`, given the segment's choice
+/// (a, b) = (-t0 len, (1 - t0) len): kept (feature inside [p, q]), both
+/// within 4 len of the feature, both far on one side (|s| of the feature up
+/// to ~1e7), or very close together (relative separation 1e-9 .. 1e-2).
+inline void lineParams(Rng& g, double len, double t0, double* a, double* b) {
+  const double sa = g.coin() ? 1.0 : -1.0, sb = g.coin() ? 1.0 : -1.0;
+  switch (g.integer(4)) {
+    case 0:
+      *a = -t0 * len;
+      *b = (1 - t0) * len;
+      break;
+    case 1:
+      *a = g.uniform(-4, 4) * len;
+      *b = g.uniform(-4, 4) * len;
+      break;
+    case 2:
+      *a = sa * g.logUniform(1, 1e6) * len;
+      *b = *a + sb * g.logUniform(0.1, 10) * len;
+      break;
+    default:
+      *a = g.uniform(-2, 2) * len;
+      *b = *a + sb * g.logUniform(1e-9, 1e-2) * len;
+  }
+  if (*a == *b) *b = *a + len;
+}
+
+/// Moves p and q along their line (uniform family).
+inline void reparamLine(Rng& g, QueryCase& k) {
+  const V d = sub(k.q, k.p);
+  double a = 0, b = 1;
+  lineParams(g, 1, 0, &a, &b);
+  const V p = k.p;
+  k.p = add(p, scale(d, a));
+  k.q = add(p, scale(d, b));
+}
+
 /// Uniform: everything within ~1.5x of the solid.
 inline QueryCase uniformLocal(Query qy, Rng& g) {
   QueryCase k;
@@ -104,6 +148,7 @@ inline QueryCase uniformLocal(Query qy, Rng& g) {
   k.p = pt();
   k.q = pt();
   if (qy == Query::kSphere) k.rho = g.logUniform(0.01, ext);
+  if (qy == Query::kLine) reparamLine(g, k);
   k.feature = "uniform";
   return k;
 }
@@ -182,10 +227,18 @@ inline QueryCase nearLocal(Query qy, Rng& g, double d) {
       }
       break;
     }
-    case Query::kSegment: {
+    case Query::kSegment:
+    case Query::kLine: {
       const double len = g.logUniform(0.01, 4);
       const double t0 = g.uniform(0, 1);  // where the touching point sits
       auto around = [&](V at, V dir) {
+        if (qy == Query::kLine) {
+          double a = 0, b = 0;
+          lineParams(g, len, t0, &a, &b);
+          k.p = add(at, scale(dir, a));
+          k.q = add(at, scale(dir, b));
+          return;
+        }
         k.p = sub(at, scale(dir, t0 * len));
         k.q = add(at, scale(dir, (1 - t0) * len));
       };
@@ -213,6 +266,11 @@ inline QueryCase nearLocal(Query qy, Rng& g, double d) {
           const V at{r * (1 + d) * c, r * (1 + d) * s, g.uniform(-h, h)};
           V dir = scenes::internal::randomUnit(g);
           if (dir.x * c + dir.y * s < 0) dir = scale(dir, -1);
+          if (qy == Query::kLine) {  // through a side point, outward
+            around(at, dir);
+            k.feature = "through a side point";
+            break;
+          }
           k.p = at;
           k.q = add(at, scale(dir, len));
           if (g.coin()) std::swap(k.p, k.q);
@@ -326,6 +384,7 @@ inline QueryCase degenerateLocal(Query qy, Rng& g) {
       break;
     }
     case Query::kSegment:
+    case Query::kLine:
       switch (g.integer(7)) {
         case 0:  // a point
           k.p = k.q = {side_s.x, side_s.y, zs * hz};
@@ -353,6 +412,19 @@ inline QueryCase degenerateLocal(Query qy, Rng& g) {
         default:  // entirely inside
           k.p = {side_s.x / 2, side_s.y / 2, hz / 2};
           k.q = {-side_s.x / 2, 0, -hz / 2};
+      }
+      if (qy == Query::kLine && g.coin()) {
+        // Move p and q along the line by dyadic factors (exact for these
+        // few-bit coordinates, except in the subnormal scale): the feature
+        // then sits outside [0, 1], or p and q are 2^-30 apart.
+        static constexpr double kF[] = {-3, -1,  0,       1,      2,
+                                        4,  0.5, -0x1p20, 0x1p20, 1 + 0x1p-30};
+        const int i = g.integer(10);
+        int j = g.integer(9);
+        if (j >= i) ++j;
+        const V d = sub(k.q, k.p), p = k.p;
+        k.p = add(p, scale(d, kF[i]));
+        k.q = add(p, scale(d, kF[j]));
       }
       if (g.integer(3) == 0) {
         k.p = nudge(g, k.p);
