@@ -4,10 +4,18 @@
 Each seed uses the plainest encoding of fuzz/fuzz_input.h: a flags byte, then
 every scalar as tag 0 + its raw little-endian bit pattern (8 bytes for double,
 4 for float). Flags: 0 = free R (9 scalars), 1 = signed axis permutation (one
-byte), 2 = identity pose; +4 = triangle given in the cylinder frame; +8 =
-float. Scalar order: radius, lz, R (if free), t (not in mode 2), a, b, c.
+byte), 2 = identity pose; +4 = points given in the shape's frame; +8 =
+float.
+  triangle_cylinder (decode): radius, lz, R (if free), t (not in mode 2),
+    a, b, c.
+  point_cylinder, point_cone, sphere_cylinder, segment_cylinder
+    (QueryInput + decodePoint / decodeSphere / decodeSegment): the shape
+    as radius, lz, R, t (as above), or with flags +0x10 the axis form O, N,
+    L, R (cylinderFromAxis / coneFromApex), or with +0x20 the endpoints form
+    a, b, R (cylinderFromEndpoints); then the point x / the centre and rho /
+    the segment's p and q.
 
-Usage: python3 scripts/make_fuzz_corpus.py   (rewrites the directory)
+Usage: python3 scripts/make_fuzz_corpus.py   (rewrites the directories)
 """
 import math
 import os
@@ -15,7 +23,7 @@ import shutil
 import struct
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-OUT = os.path.join(ROOT, "fuzz", "corpus", "triangle_cylinder")
+CORPUS = os.path.join(ROOT, "fuzz", "corpus")
 NAN = float("nan")
 INF = float("inf")
 I3 = [1, 0, 0, 0, 1, 0, 0, 0, 1]
@@ -130,10 +138,336 @@ seeds["structured_ties"] = bytes([2]) + b"\x03\x02" + b"\x03\x05" + \
     b"\x04\x00" + b"\x03\x03" + b"\x03\x00" + b"\x05\x07\x00" + b"\x03\x02" + b"\x03\x00" + \
     b"\x04\x00" + b"\x03\x00" + b"\x03\x04"
 
-if os.path.isdir(OUT):
-    shutil.rmtree(OUT)
-os.makedirs(OUT)
-for name, data in sorted(seeds.items()):
-    with open(os.path.join(OUT, name), "wb") as f:
-        f.write(data)
-print(f"{len(seeds)} seeds in {os.path.relpath(OUT, ROOT)}")
+
+# ---------------------------------------------------------------------------
+# The cylinder query targets.
+FLOAT = 8
+LOCAL = 4
+AXIS = 0x10
+ENDPOINTS = 0x20
+
+
+def qenc(flags, parts):
+    """flags byte, then each part: a number as tag 0 + its bits, bytes raw."""
+    fmt = "<f" if flags & FLOAT else "<d"
+    out = bytes([flags])
+    for v in parts:
+        out += v if isinstance(v, bytes) else b"\x00" + struct.pack(fmt, v)
+    return out
+
+
+def flat(points):
+    return [x for v in points for x in v]
+
+
+def q_ident(size, points, flags=0):
+    """Identity pose (mode 2): radius, lz, then the query's scalars."""
+    return qenc(flags | 2, list(size) + flat(points))
+
+
+def q_posed(size, R, t, points, flags=0):
+    return qenc(flags, list(size) + list(R) + list(t) + flat(points))
+
+
+def q_perm(size, k, t, points, flags=0):
+    return qenc(flags | 1, list(size) + [bytes([k])] + list(t) + flat(points))
+
+
+def q_axis(O, N, L, R, points, flags=0):
+    return qenc(flags | AXIS, list(O) + list(N) + [L, R] + flat(points))
+
+
+def q_endpoints(a, b, R, points, flags=0):
+    return qenc(flags | ENDPOINTS, list(a) + list(b) + [R] + flat(points))
+
+
+def sph(center, rho):
+    """The sphere's scalars: the centre's three, then rho (a 4-vector)."""
+    return list(center) + [rho]
+
+
+DMAX = 1.7976931348623157e308
+# Pose of point_cylinder_test's ExactBoundaryPosed: local z -> world x,
+# local x -> world -y, local y -> world z, t = (1, 0, 0.5).
+RPERM = [0, 0, 1, -1, 0, 0, 0, 1, 0]
+
+# point_cylinder: r = 1, lz = 4 unless stated (tests/point_cylinder_test.cpp).
+pc = {}
+for name, x in [("centre", (0, 0, 0)), ("top_cap_centre", (0, 0, 2)),
+                ("on_side", (1, 0, 0)), ("rounded_0.6_0.8", (0.6, 0.8, -1)),
+                ("on_top_cap", (0.75, 0.5, 2)), ("top_rim", (1, 0, 2)),
+                ("bottom_rim", (0, -1, -2)), ("beyond_side", (1.0625, 0, 0)),
+                ("beyond_top_cap", (0, 0, 2.0625)),
+                ("beyond_rim", (1, 0, 2.0625)),
+                ("side_one_ulp_out", (up(1), 0, 0)),
+                ("cap_one_ulp_out", (0, 0, up(2)))]:
+    pc[name] = q_ident((1, 4), [x])
+pc["posed_rim"] = q_posed((0.625, 2), RPERM, (1, 0, 0.5), [(2, -0.375, 1)])
+pc["posed_side_one_ulp_out"] = q_posed((0.625, 2), RPERM, (1, 0, 0.5),
+                                       [(1, -up(0.375), 1)])
+pc["perm_rim"] = q_perm((1, 4), 13, (3, -2, 1), [(3, -1, 3)])
+pc["local_frame_rim_rot345"] = q_posed((1, 4), R345, (0.5, -0.25, 3),
+                                       [(1, 0, 2)], flags=LOCAL)
+pc["r_zero_axis"] = q_ident((0, 2), [(0, 0, -0.5)])
+pc["r_zero_denorm_off"] = q_ident((0, 2), [(5e-324, 0, 0)])
+pc["lz_zero_disk_edge"] = q_ident((1, 0), [(0, 1, -0.0)])
+pc["lz_zero_denorm_off"] = q_ident((1, 0), [(0, 0, 5e-324)])
+pc["both_zero_origin"] = q_ident((0, 0), [(0, 0, 0)])
+pc["minus_zero_sizes"] = q_ident((-0.0, -0.0), [(0, 0, 0)])
+pc["huge_on_side"] = q_ident((1e300, 2e300), [(1e300, 0, 1e300)])
+pc["max_coordinates"] = q_ident((DMAX, DMAX), [(DMAX, 0, 0)])
+pc["subnormal_side"] = q_ident((5e-324, 1e-323), [(0, 5e-324, 5e-324)])
+pc["huge_translation"] = q_posed((1, 2), I3, (1e300, -1e300, 1e300),
+                                 [(1e300, -1e300, up(1e300))])
+pc["near_singular_R"] = q_posed((1, 2), [1, 1, 0, 1, up(1), 0, 0, 0, 1e-300],
+                                (0, 0, 0), [(1, 1, 1)])
+pc["nan_radius"] = q_ident((NAN, 2), [(0, 0, 0)])
+pc["neg_radius"] = q_ident((-1, 2), [(0, 0, 0)])
+pc["inf_lz"] = q_ident((1, INF), [(0, 0, 0)])
+pc["neg_denorm_lz"] = q_ident((1, -5e-324), [(0, 0, 0)])
+pc["nan_point"] = q_ident((1, 2), [(NAN, 0, 0)])
+pc["inf_in_R"] = q_posed((1, 2), [1, 0, 0, 0, 1, 0, 0, 0, INF], (0, 0, 0),
+                         [(0, 0, 0)])
+pc["neg_inf_t"] = q_posed((1, 2), I3, (0, -INF, 0), [(0, 0, 0)])
+# The endpoint forms (tests' EndpointFormExactCases), and directions the
+# header's "a few ulps" does not cover (|N| overflows / underflows).
+pc["axis_rim"] = q_axis((1, 2, 3), (0, 0, 1), 4, 0.5, [(1.5, 2, 7)])
+pc["axis_rim_one_ulp_out"] = q_axis((1, 2, 3), (0, 0, 1), 4, 0.5,
+                                    [(1.5, 2, up(7))])
+pc["axis_origin"] = q_axis((1, 2, 3), (0, 0, 1), 4, 0.5, [(1, 2, 3)])
+pc["axis_nonunit_345"] = q_axis((0, 0, 0), (0, 3, 4), 5, 1, [(1, 1.8, 2.4)])
+pc["axis_minus_z"] = q_axis((0, 0, 0), (0, 0, -1), 2, 1, [(1, 0, -2)])
+pc["axis_N_zero"] = q_axis((0, 0, 0), (0, 0, 0), 2, 1, [(1, 0, 1)])
+pc["axis_N_huge"] = q_axis((0, 0, 0), (1e200, 0, 0), 2, 1, [(1, 0, 0)])
+pc["axis_N_tiny"] = q_axis((0, 0, 0), (1e-200, 0, 0), 2, 1, [(1, 0, 0)])
+pc["axis_overflowing_t"] = q_axis((DMAX, 0, 0), (1, 0, 0), DMAX, 1,
+                                  [(DMAX, 0, 0)])
+pc["endpoints_rim"] = q_endpoints((0, 0, 0), (-2, 0, 0), 1, [(-2, 0, 1)])
+pc["endpoints_outside"] = q_endpoints((0, 0, 0), (-2, 0, 0), 1,
+                                      [(0.25, 0, 0)])
+pc["endpoints_disk"] = q_endpoints((1, 1, 1), (1, 1, 1), 1, [(2, 1, 1)])
+pc["endpoints_disk_above"] = q_endpoints((1, 1, 1), (1, 1, 1), 1,
+                                         [(1, 1, 1.5)])
+pc["endpoints_diagonal"] = q_endpoints((0, 0, 0), (1, 1, 1), 0.5,
+                                       [(0.5, 0.5, 0.5)])
+pc["endpoints_overflowing_d"] = q_endpoints((-DMAX, 0, 0), (DMAX, 0, 0), 1,
+                                            [(0, 0, 0)])
+pc["axis_local_point"] = q_axis((1, 2, 3), (1, 1, 1), 2, 0.5, [(0.5, 0, 1)],
+                                flags=LOCAL)
+pc["float_top_rim"] = q_ident((1, 4), [(1, 0, 2)], flags=FLOAT)
+pc["float_side_one_ulp_out"] = q_ident((1, 4), [(1.0000001192092896, 0, 0)],
+                                       flags=FLOAT)
+pc["float_nan"] = q_ident((1, 4), [(NAN, 0, 0)], flags=FLOAT)
+pc["float_huge"] = q_ident((3e38, 3e38), [(3e38, 0, 1e38)], flags=FLOAT)
+pc["float_axis_rim"] = q_axis((1, 2, 3), (0, 0, 1), 4, 0.5, [(1.5, 2, 7)],
+                              flags=FLOAT)
+pc["float_endpoints_disk"] = q_endpoints((1, 1, 1), (1, 1, 1), 1, [(2, 1, 1)],
+                                         flags=FLOAT)
+# Structured tags: r = 1, lz = 2 (specials), identity; x = (r moved by one
+# ulp up, -0, lz/2 as a copy scaled by 2^-1).
+pc["structured_ulp_tie"] = bytes([2]) + b"\x03\x02" + b"\x03\x05" + \
+    b"\x05\x18\x00" + b"\x03\x01" + b"\x05\x10\x01"
+
+# point_cone: r = 1, lz = 2 (apex (0, 0, 1), base z = -1) unless stated
+# (tests/point_cone_test.cpp).
+pk = {}
+for name, x in [("apex", (0, 0, 1)), ("above_apex", (0, 0, up(1))),
+                ("beside_apex", (5e-324, 0, 1)), ("centre", (0, 0, 0)),
+                ("base_centre", (0, 0, -1)), ("below_base", (0, 0, down(-1))),
+                ("base_rim", (1, 0, -1)), ("beyond_rim", (up(1), 0, -1)),
+                ("slant_mid", (0.5, 0, 0)), ("slant_mid_out", (up(0.5), 0, 0)),
+                ("slant_mid_in", (down(0.5), 0, 0)),
+                ("slant_high", (0, -0.25, 0.5)),
+                ("slant_high_out", (0, -0.25, up(0.5))),
+                ("in_cylinder_not_cone", (0.75, 0, 0)),
+                ("slant_pythagorean", (0.375, 0.5, -0.25)),
+                ("slant_pythagorean_out", (0.375, up(0.5), -0.25))]:
+    pk[name] = q_ident((1, 2), [x])
+pk["lz_zero_disk_edge"] = q_ident((1, 0), [(0, 1, 0)])
+pk["lz_zero_outside"] = q_ident((1, 0), [(2, 0, 0)])
+pk["lz_zero_denorm_off"] = q_ident((1, 0), [(0, 0, 5e-324)])
+pk["r_zero_axis"] = q_ident((0, 2), [(0, 0, -0.5)])
+pk["r_zero_denorm_off"] = q_ident((0, 2), [(5e-324, 0, 0)])
+pk["both_zero_origin"] = q_ident((0, 0), [(0, 0, 0)])
+pk["both_zero_denorm_off"] = q_ident((0, 0), [(0, 5e-324, 0)])
+pk["posed_slant"] = q_posed((1, 2), R345, (0.5, -0.25, 3), [(0.5, 0.25, 3)],
+                            flags=LOCAL)
+pk["perm_apex"] = q_perm((1, 2), 7, (1, 2, 3), [(1, 2, 4)])
+pk["huge_slant"] = q_ident((1e300, 2e300), [(5e299, 0, 0)])
+pk["subnormal_slant"] = q_ident((1e-323, 2e-323), [(5e-324, 0, 0)])
+pk["nan_lz"] = q_ident((1, NAN), [(0, 0, 0)])
+pk["neg_lz"] = q_ident((1, -1), [(0, 0, 0)])
+pk["inf_point"] = q_ident((1, 2), [(0, 0, INF)])
+pk["inf_in_R"] = q_posed((1, 2), [INF, 0, 0, 0, 1, 0, 0, 0, 1], (0, 0, 0),
+                         [(0, 0, 0)])
+pk["apex_form_apex"] = q_axis((0, 0, 0), (0, 0, 1), 2, 1, [(0, 0, 0)])
+pk["apex_form_base_rim"] = q_axis((0, 0, 0), (0, 0, 1), 2, 1, [(1, 0, 2)])
+pk["apex_form_behind_apex"] = q_axis((0, 0, 0), (0, 0, 1), 2, 1,
+                                     [(0, 0, down(0))])
+pk["apex_form_nonunit"] = q_axis((1, 1, 1), (0, -2, 0), 4, 2,
+                                 [(1, -1, 1)])
+pk["apex_form_N_zero"] = q_axis((0, 0, 0), (0, 0, 0), 2, 1, [(0, 0, -1)])
+pk["apex_form_diagonal"] = q_axis((0, 0, 0), (1, 1, 1), 3, 1,
+                                  [(1, 1, 1)])
+pk["float_slant_mid"] = q_ident((1, 2), [(0.5, 0, 0)], flags=FLOAT)
+pk["float_above_apex"] = q_ident((1, 2), [(0, 0, 1.0000001192092896)],
+                                 flags=FLOAT)
+pk["float_apex_form"] = q_axis((0, 0, 0), (0, 0, 1), 2, 1, [(1, 0, 2)],
+                               flags=FLOAT)
+
+# sphere_cylinder: r = 1, lz = 2 unless stated (tests/sphere_cylinder_test.cpp).
+ss = {}
+for name, c in [("centre_inside", (0, 0, 0, 0.5)),
+                ("rho_zero_inside", (0.25, 0, 0.5, 0)),
+                ("touch_side", (1.5, 0, 0, 0.5)),
+                ("miss_side_one_ulp", (1.5, 0, 0, down(0.5))),
+                ("touch_side_near_cap", (0, -1.5, 0.999, 0.5)),
+                ("touch_top_cap", (0.5, 0, 1.5, 0.5)),
+                ("miss_top_cap_one_ulp", (0.5, 0, 1.5, down(0.5))),
+                ("touch_bottom_cap", (0, 0.75, -1.25, 0.25)),
+                ("touch_rim", (1.375, 0, 1.5, 0.625)),
+                ("miss_rim_one_ulp", (1.375, 0, 1.5, down(0.625))),
+                ("touch_bottom_rim", (0, -1.375, -1.5, 0.625)),
+                ("too_high_near_rim", (1, 0, 2.5, 1.25)),
+                ("hit_near_rim", (1, 0, 2.25, 1.25)),
+                ("source_r_plus_rho_trap", (1.5, 0, 1.5, 0.5)),
+                ("rho_zero_on_rim", (0, 1, -1, 0))]:
+    ss[name] = q_ident((1, 2), [sph(c[:3], c[3])])
+ss["r_zero_touch"] = q_ident((0, 2), [sph((0.5, 0, 0), 0.5)])
+ss["r_zero_rim_point"] = q_ident((0, 2), [sph((0.375, 0, 1.5), 0.625)])
+ss["lz_zero_touch"] = q_ident((1, 0), [sph((0, 0, 0.5), 0.5)])
+ss["lz_zero_miss"] = q_ident((1, 0), [sph((0, 0, 0.5), down(0.5))])
+ss["both_zero_touch"] = q_ident((0, 0), [sph((0.375, 0.5, 0), 0.625)])
+ss["R_twice_identity"] = q_posed((1, 2), [2, 0, 0, 0, 2, 0, 0, 0, 2],
+                                 (0, 0, 0), [sph((1, 0, 0), 1)])
+ss["R_twice_identity_miss"] = q_posed((1, 2), [2, 0, 0, 0, 2, 0, 0, 0, 2],
+                                      (0, 0, 0), [sph((1, 0, 0), down(1))])
+ss["rot345_local_rim"] = q_posed((1, 2), R345, (0.5, -0.25, 3),
+                                 [sph((1.375, 0, 1.5), 0.625)], flags=LOCAL)
+ss["perm_touch_cap"] = q_perm((1, 2), 21, (0, 0, 0), [sph((0, 1.5, 0), 0.5)])
+ss["huge_touch_rim"] = q_ident((1e300, 2e300),
+                               [sph((1.375e300, 0, 1.5e300), 6.25e299)])
+ss["subnormal_touch"] = q_ident((5e-324, 1e-323),
+                                [sph((1.5e-323, 0, 0), 1e-323)])
+ss["max_rho"] = q_ident((1, 2), [sph((DMAX, 0, 0), DMAX)])
+ss["neg_rho"] = q_ident((1, 2), [sph((0, 0, 0), -1)])
+ss["neg_zero_rho"] = q_ident((1, 2), [sph((0, 0, 1), -0.0)])
+ss["nan_rho"] = q_ident((1, 2), [sph((0, 0, 0), NAN)])
+ss["inf_rho"] = q_ident((1, 2), [sph((0, 0, 0), INF)])
+ss["nan_centre"] = q_ident((1, 2), [sph((NAN, 0, 0), 1)])
+ss["neg_radius"] = q_ident((-1, 2), [sph((0, 0, 0), 1)])
+ss["inf_lz"] = q_ident((1, INF), [sph((0, 0, 0), 1)])
+ss["axis_touch_rim"] = q_axis((0, 0, -1), (0, 0, 3), 2, 1,
+                              [sph((1.375, 0, 1.5), 0.625)])
+ss["endpoints_touch_side"] = q_endpoints((-1, 0, 0), (1, 0, 0), 1,
+                                         [sph((0, 1.5, 0), 0.5)])
+ss["endpoints_point_cyl"] = q_endpoints((2, 2, 2), (2, 2, 2), 0,
+                                        [sph((2, 2, 3), 1)])
+ss["float_touch_rim"] = q_ident((1, 2), [sph((1.375, 0, 1.5), 0.625)],
+                                flags=FLOAT)
+ss["float_miss_rim"] = q_ident((1, 2), [sph((1.375, 0, 1.5), 0.62499994)],
+                               flags=FLOAT)
+ss["float_nan_rho"] = q_ident((1, 2), [sph((0, 0, 0), NAN)], flags=FLOAT)
+
+# segment_cylinder: r = 1, lz = 2 unless stated
+# (tests/segment_cylinder_test.cpp).
+sg = {}
+# The source pseudo-code's failures (issue 5).
+sg["source_fail_inside"] = q_ident((1, 2), [(0.25, 0, -0.5),
+                                            (-0.25, 0.25, 0.5)])
+sg["source_fail_root_beyond_cap"] = q_ident((1, 2), [(-2, 0, 0.5),
+                                                     (2, 0, 3.5)])
+sg["source_fail_both_caps"] = q_ident((1, 2), [(0.125, 0, -3),
+                                               (-0.125, 0, 3)])
+sg["source_fail_from_above"] = q_ident((1, 2), [(0.25, 0, 3.5),
+                                                (0.25, 0.25, 0)])
+for name, p, q in [
+        ("point_inside", (0, 0, 0), (0, 0, 0)),
+        ("point_outside", (2, 0, 0), (2, 0, 0)),
+        ("through_axis", (-2, 0, 0), (2, 0, 0)),
+        ("perpendicular_miss", (-2, 1.5, 0), (2, 1.5, 0)),
+        ("parallel_inside", (0.5, 0, -3), (0.5, 0, 3)),
+        ("along_axis", (0, 0, -2), (0, 0, 2)),
+        ("parallel_on_side", (1, 0, -2), (1, 0, 2)),
+        ("parallel_one_ulp_out", (up(1), 0, -2), (up(1), 0, 2)),
+        ("tangent_side", (1, -1, 0), (1, 1, 0)),
+        ("tangent_one_ulp_out", (up(1), -1, 0), (up(1), 1, 0)),
+        ("slanted_tangent", (-1, 1, -0.5), (1, 1, 0.5)),
+        ("out_through_rim", (0, 0, 0), (2, 0, 2)),
+        ("rim_only_freesteel_crack", (2, 0, 0), (0, 0, 2)),
+        ("grazing_rim", (1, -1, 1), (1, 1, 1)),
+        ("rim_one_ulp_above", (1, -1, up(1)), (1, 1, up(1))),
+        ("in_top_cap_plane", (-2, 0, 1), (2, 0, 1)),
+        ("in_bottom_cap_plane", (-2, 0, -1), (2, 0, -1)),
+        ("ending_on_top_cap", (0, 0, 3), (0, 0, 1)),
+        ("through_both_caps", (0.5, 0, 3), (0.5, 0, -3))]:
+    sg[name] = q_ident((1, 2), [p, q])
+sg["r_zero_crossing"] = q_ident((0, 2), [(-1, 0, 0.5), (1, 0, 0.5)])
+sg["r_zero_slanted"] = q_ident((0, 2), [(-1, 0, 0.5), (1, 0, 1)])
+sg["r_zero_miss"] = q_ident((0, 2), [(-1, 1e-3, 0), (1, 1e-3, 0)])
+sg["lz_zero_axis"] = q_ident((1, 0), [(0, 0, -1), (0, 0, 1)])
+sg["lz_zero_in_plane"] = q_ident((1, 0), [(-2, 0, 0), (2, 0, 0)])
+sg["lz_zero_miss"] = q_ident((1, 0), [(2, 0, -1), (2, 0, 1)])
+sg["near_tangent_grazing"] = q_ident((1, 2), [(down(1), -1, 0),
+                                              (down(1), 1, 0)])
+sg["long_grazing"] = q_ident((1, 2), [(1, -1e15, 0), (1, 1e15, 1e-300)])
+sg["huge_tangent"] = q_ident((1e300, 2e300), [(1e300, -1e300, 0),
+                                              (1e300, 1e300, 0)])
+sg["max_coordinates"] = q_ident((DMAX, DMAX), [(-DMAX, 0, 0), (DMAX, 0, 0)])
+sg["subnormal_tangent"] = q_ident((5e-324, 1e-323), [(5e-324, -5e-324, 0),
+                                                      (5e-324, 5e-324, 0)])
+sg["tiny_cyl_huge_segment"] = q_ident((1e-300, 1e-300), [(-1e300, 0, 0),
+                                                         (1e300, 0, 0)])
+sg["huge_cyl_tiny_segment"] = q_ident((1e300, 1e-300), [(0, 0, 0),
+                                                        (1e-300, 0, 0)])
+sg["rot345_local_rim_crack"] = q_posed((1, 2), R345, (0.5, -0.25, 3),
+                                       [(2, 0, 0), (0, 0, 2)], flags=LOCAL)
+sg["perm_parallel_side"] = q_perm((1, 2), 33, (1, 2, 3),
+                                  [(2, 2, 1), (2, 2, 5)])
+sg["huge_translation"] = q_posed((1, 2), I3, (1e300, -1e300, 1e300),
+                                 [(1e300, -1e300, 1e300),
+                                  (up(1e300), -1e300, 1e300)])
+sg["nan_endpoint"] = q_ident((1, 2), [(0, NAN, 0), (1, 0, 0)])
+sg["inf_endpoint"] = q_ident((1, 2), [(0, 0, 0), (INF, 0, 0)])
+sg["neg_radius"] = q_ident((-1, 1), [(0, 0, 0), (1, 0, 0)])
+sg["neg_lz"] = q_ident((1, -1), [(0, 0, 0), (1, 0, 0)])
+sg["nan_in_R"] = q_posed((1, 1), [1, 0, 0, 0, 1, 0, 0, 0, NAN], (0, 0, 0),
+                         [(0, 0, 0), (1, 0, 0)])
+sg["axis_through_caps"] = q_axis((0, 0, 0), (0, 0, 1), 2, 1,
+                                 [(0.5, 0, -1), (0.5, 0, 3)])
+sg["axis_diagonal_tangent"] = q_axis((0, 0, 0), (1, 1, 0), 4, 1,
+                                     [(0, 0, 1), (4, 4, 1)])
+sg["endpoints_through_axis"] = q_endpoints((0, 0, -1), (0, 0, 1), 1,
+                                           [(-2, 0, 0), (2, 0, 0)])
+sg["endpoints_disk_crossing"] = q_endpoints((1, 1, 1), (1, 1, 1), 1,
+                                            [(1, 1, 0), (1, 1, 2)])
+sg["float_tangent"] = q_ident((1, 2), [(1, -1, 0), (1, 1, 0)], flags=FLOAT)
+sg["float_through_both_caps"] = q_ident((1, 2), [(0.5, 0, 3), (0.5, 0, -3)],
+                                        flags=FLOAT)
+sg["float_rim_crack"] = q_ident((1, 2), [(2, 0, 0), (0, 0, 2)], flags=FLOAT)
+sg["float_near_tangent"] = q_ident((1, 2), [(0.99999994, -1, 0),
+                                            (0.99999994, 1, 0)], flags=FLOAT)
+sg["float_nan"] = q_ident((1, 2), [(NAN, 0, 0), (1, 0, 0)], flags=FLOAT)
+# Structured tags: r = 1, lz = 2, identity; p = (r, -1, 0) with x as a copy
+# of r, q = (x of p moved one ulp, 1, 0).
+sg["structured_tangent_ulp"] = bytes([2]) + b"\x03\x02" + b"\x03\x05" + \
+    b"\x04\x00" + b"\x03\x03" + b"\x03\x00" + \
+    b"\x05\x18\x02" + b"\x03\x02" + b"\x03\x00"
+
+
+def write_corpus(query, seeds):
+    out = os.path.join(CORPUS, query)
+    if os.path.isdir(out):
+        shutil.rmtree(out)
+    os.makedirs(out)
+    for name, data in sorted(seeds.items()):
+        with open(os.path.join(out, name), "wb") as f:
+            f.write(data)
+    print(f"{len(seeds)} seeds in {os.path.relpath(out, ROOT)}")
+
+
+write_corpus("triangle_cylinder", seeds)
+write_corpus("point_cylinder", pc)
+write_corpus("point_cone", pk)
+write_corpus("sphere_cylinder", ss)
+write_corpus("segment_cylinder", sg)
