@@ -41,16 +41,22 @@ inline bool validateLinear(LinearInputs& in) {
          in.cyl.radius >= 0 && in.cyl.lz >= 0;
 }
 
-/// The segment's local data: the images of p and q.
+/// The segment's local data: the images of p and q, and the direction
+/// R^T (q - p) (from the input differences, except in the exact kernel).
 template <class K>
 struct SegmentPred {
   static Tri run(const LinearInputs& in, bool* early) {
     SegLocal<K> loc;
     loc.p[0] = localPoint<K>(in.pose, in.p, in.max_unitless);
     loc.p[1] = localPoint<K>(in.pose, in.q, in.max_unitless);
-    Pose<double> at_p = in.pose;
-    at_p.t = in.p;
-    loc.e = localPoint<K>(at_p, in.q, in.max_unitless);
+    if constexpr (K::kExact) {  // the same value, three subtractions
+      loc.e = {loc.p[1].x - loc.p[0].x, loc.p[1].y - loc.p[0].y,
+               loc.p[1].Z - loc.p[0].Z};
+    } else {
+      Pose<double> at_p = in.pose;
+      at_p.t = in.p;
+      loc.e = localPoint<K>(at_p, in.q, in.max_unitless);
+    }
     loc.H = K::lift(in.cyl.lz);
     loc.r = K::lift(in.cyl.radius);
     return segmentCylinder<K>(loc, early);
