@@ -8,12 +8,12 @@ byte), 2 = identity pose; +4 = points given in the shape's frame; +8 =
 float.
   triangle_cylinder (decode): radius, lz, R (if free), t (not in mode 2),
     a, b, c.
-  point_cylinder, point_cone, sphere_cylinder, segment_cylinder
-    (QueryInput + decodePoint / decodeSphere / decodeSegment): the shape
-    as radius, lz, R, t (as above), or with flags +0x10 the axis form O, N,
-    L, R (cylinderFromAxis / coneFromApex), or with +0x20 the endpoints form
-    a, b, R (cylinderFromEndpoints); then the point x / the centre and rho /
-    the segment's p and q.
+  point_cylinder, point_cone, sphere_cylinder, segment_cylinder,
+  line_cylinder (QueryInput + decodePoint / decodeSphere / decodeSegment):
+    the shape as radius, lz, R, t (as above), or with flags +0x10 the axis
+    form O, N, L, R (cylinderFromAxis / coneFromApex), or with +0x20 the
+    endpoints form a, b, R (cylinderFromEndpoints); then the point x / the
+    centre and rho / the segment's (the line's) p and q.
 
 Usage: python3 scripts/make_fuzz_corpus.py   (rewrites the directories)
 """
@@ -454,6 +454,46 @@ sg["structured_tangent_ulp"] = bytes([2]) + b"\x03\x02" + b"\x03\x05" + \
     b"\x04\x00" + b"\x03\x03" + b"\x03\x00" + \
     b"\x05\x18\x02" + b"\x03\x02" + b"\x03\x00"
 
+# line_cylinder: the segment layout (p, q: the line through them), so every
+# segment seed is a line seed too; plus the line's own cases
+# (tests/line_cylinder_test.cpp): features behind p, p == q, parameters
+# beyond the float / double range.
+DMIN = 5e-324
+ln = dict(sg)
+for name, p, q in [
+        ("parallel_on_side_above", (0, 1, 5), (0, 1, 6)),
+        ("cylinder_behind_p", (2, 0, 0), (3, 0, 0)),
+        ("oblique_through_axis", (0, 0, 0), (1, 1, 4)),
+        ("through_both_rims", (0, 0, 0), (2, 0, 2)),
+        ("tangent_behind_p", (1, 1, 0), (1, 2, 0)),
+        ("rim_only_behind_p", (3, 0, -1), (4, 0, -2)),
+        ("horizontal_above", (-2, 0, 1.5), (2, 0, 1.5)),
+        ("axis_from_above", (0, 0, 3), (0, 0, 1)),
+        ("p_q_2^-40_apart", (0, 0, 0), (2.0**-40, 0, 0)),
+        ("p_eq_q_inside", (0, 0, 0), (0, 0, 0)),
+        ("p_eq_q_on_rim", (1, 0, 1), (1, 0, 1)),
+        ("p_eq_q_outside", (2, 0, 0), (2, 0, 0)),
+        ("overflow_both_ends", (0, 0, 0), (DMIN, 0, 0)),
+        ("huge_finite_end", (1, 0, 0), (1 - 2.0**-53, 0, 0)),
+        ("huge_negative_end", (0, 0, 1), (0, 0, up(1))),
+        ("tangent_at_p_subnormal_dir", (1, 0, 0), (1, DMIN, 0)),
+        ("cap_plane_subnormal_dir", (0, 0, 1), (0, DMIN, 1))]:
+    ln[name] = q_ident((1, 2), [p, q])
+ln["one_end_overflowing"] = q_posed((1, 2), I3, (0, 0, -1),
+                                    [(0, 0, 0), (0, 0, -DMIN)])
+ln["one_end_overflowing_reversed"] = q_posed((1, 2), I3, (0, 0, -1),
+                                             [(0, 0, -DMIN), (0, 0, 0)])
+ln["singular_R_inside"] = q_posed((1, 2), [0] * 9, (5, 0, 0),
+                                  [(5, 0, 0), (7, 1, 0)])
+ln["huge_cylinder_subnormal_dir"] = q_ident((DMAX / 4, DMAX / 4),
+                                            [(0, 0, 0), (0, 0, DMIN)])
+ln["float_2^-100_apart"] = q_ident((1, 2), [(0, 0, 0), (2.0**-100, 0, 0)],
+                                   flags=FLOAT)
+ln["float_2^-140_apart"] = q_ident((1, 2), [(0, 0, 0), (2.0**-140, 0, 0)],
+                                   flags=FLOAT)
+ln["float_p_eq_q_inside"] = q_ident((1, 2), [(0.5, 0, 0), (0.5, 0, 0)],
+                                    flags=FLOAT)
+
 
 def write_corpus(query, seeds):
     out = os.path.join(CORPUS, query)
@@ -471,3 +511,4 @@ write_corpus("point_cylinder", pc)
 write_corpus("point_cone", pk)
 write_corpus("sphere_cylinder", ss)
 write_corpus("segment_cylinder", sg)
+write_corpus("line_cylinder", ln)
