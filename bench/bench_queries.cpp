@@ -1,9 +1,10 @@
 // The cylinder query family (issue 5) against the straightforward formulas
 // of the sources (seeds/001 pseudo-code, Freesteel's slab-and-quadratic
-// interval) in plain double. Inputs: 4096 pre-generated cases of one family
-// (compare/query_scenes.h, fixed seed), cycled; the figure is ns per query.
-// The source formulas take the endpoint form (O, N, L, R), derived once per
-// case from the pose (N = third column of R, O = t - N L/2), outside the
+// interval for the segment and the line, and Freesteel's three-surfaces
+// method for the line) in plain double. Inputs: 4096 pre-generated cases of one
+// family (compare/query_scenes.h, fixed seed), cycled; the figure is ns per
+// query. The source formulas take the endpoint form (O, N, L, R), derived once
+// per case from the pose (N = third column of R, O = t - N L/2), outside the
 // timed loop; tricyl takes the pose as given.
 //
 //   ./bench_queries --benchmark_repetitions=5
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "query_scenes.h"
+#include "tricyl/line_cylinder.h"
 #include "tricyl/tricyl.h"
 
 namespace {
@@ -157,6 +159,77 @@ bool srcClip(const Src& c, V P0, V P1, double* lo, double* hi) {
   return a <= b;
 }
 
+// --- Freesteel, "Line intersecting a finite cylinder" (seeds/002) --------
+// The line p (1 - s) + q s, every real s. For p == q the first returns
+// [-inf, inf] or nothing, the second (no surface crossed) nothing.
+
+// "The finite cylinder expressed as an intersection of two volumes": the
+// slab interval and the infinite-cylinder interval, intersected.
+bool srcLineSlab(const Src& c, V P0, V P1, double* lo, double* hi) {
+  const V d = sub(P1, P0);
+  const V w = sub(P0, c.O);
+  const double m0 = dot(w, c.N), md = dot(d, c.N);
+  double a = -INFINITY, b = INFINITY;
+  if (md != 0) {
+    double s0 = -m0 / md, s1 = (c.L - m0) / md;
+    if (s0 > s1) std::swap(s0, s1);
+    a = s0;
+    b = s1;
+  } else if (m0 < 0 || m0 > c.L) {
+    return false;
+  }
+  const V F = axpy(w, -m0, c.N), G = axpy(d, -md, c.N);
+  const double A = dot(G, G), B = dot(F, G), C = dot(F, F) - c.R * c.R;
+  if (A > 0) {
+    const double disc = B * B - A * C;
+    if (disc < 0) return false;
+    const double sq = std::sqrt(disc);
+    a = std::max(a, (-B - sq) / A);
+    b = std::min(b, (-B + sq) / A);
+  } else if (C > 0) {
+    return false;
+  }
+  *lo = a;
+  *hi = b;
+  return a <= b;
+}
+
+// "The cylinder considered as independent surfaces": the roots on the side
+// surface with 0 <= m <= L, and the two end-disk crossings within r; the
+// interval is [min, max] of what was found. Cracks at the rims.
+bool srcLineSurfaces(const Src& c, V P0, V P1, double* lo, double* hi) {
+  const V d = sub(P1, P0);
+  const V w = sub(P0, c.O);
+  const double m0 = dot(w, c.N), md = dot(d, c.N);
+  const V F = axpy(w, -m0, c.N), G = axpy(d, -md, c.N);
+  double a = INFINITY, b = -INFINITY;
+  auto found = [&](double s) {
+    a = std::min(a, s);
+    b = std::max(b, s);
+  };
+  const double A = dot(G, G), B = dot(F, G), C = dot(F, F) - c.R * c.R;
+  if (A > 0) {
+    const double disc = B * B - A * C;
+    if (disc >= 0) {
+      const double sq = std::sqrt(disc);
+      for (double s : {(-B - sq) / A, (-B + sq) / A}) {
+        const double m = m0 + s * md;
+        if (m >= 0 && m <= c.L) found(s);
+      }
+    }
+  }
+  if (md != 0) {
+    for (double plane : {0.0, c.L}) {
+      const double s = (plane - m0) / md;
+      const V x = axpy(F, s, G);
+      if (dot(x, x) <= c.R * c.R) found(s);
+    }
+  }
+  *lo = a;
+  *hi = b;
+  return a <= b;
+}
+
 // --- Benchmarks ------------------------------------------------------------
 
 Family familyOf(const benchmark::State& st) { return Family(st.range(0)); }
@@ -235,6 +308,48 @@ void BM_Clip_source(benchmark::State& st) {
   });
 }
 
+// The line: tricyl's clip against the two formulas of the source. The
+// counter "disagree" is the fraction of the 4096 cases whose Boolean
+// differs from tricyl's exact one (computed outside the timed loop).
+template <class F>
+void lineSource(benchmark::State& st, const F& f) {
+  const auto cs = cases(Query::kLine, familyOf(st));
+  const auto ss = sources(cs, false);
+  long disagree = 0;
+  for (int i = 0; i < kCases; ++i) {
+    double lo = 0, hi = 0;
+    disagree += f(ss[i], ss[i].p, ss[i].q, &lo, &hi) !=
+                tricyl::intersect(cs[i].cyl, cs[i].pose,
+                                  tricyl::Line<double>{cs[i].p, cs[i].q});
+  }
+  run(st, [&](int i) {
+    double lo = 0, hi = 0;
+    return f(ss[i], ss[i].p, ss[i].q, &lo, &hi) ? lo + hi : -1.0;
+  });
+  st.counters["disagree"] = double(disagree) / kCases;
+}
+void BM_LineClip_tricyl(benchmark::State& st) {
+  const auto cs = cases(Query::kLine, familyOf(st));
+  run(st, [&](int i) {
+    const auto iv = tricyl::clip(cs[i].cyl, cs[i].pose,
+                                 tricyl::Line<double>{cs[i].p, cs[i].q});
+    return iv ? iv->lo + iv->hi : -1.0;
+  });
+}
+void BM_LineClip_sourceSlab(benchmark::State& st) {
+  lineSource(st, srcLineSlab);
+}
+void BM_LineClip_sourceSurfaces(benchmark::State& st) {
+  lineSource(st, srcLineSurfaces);
+}
+void BM_Line_tricyl(benchmark::State& st) {
+  const auto cs = cases(Query::kLine, familyOf(st));
+  run(st, [&](int i) {
+    return tricyl::intersect(cs[i].cyl, cs[i].pose,
+                             tricyl::Line<double>{cs[i].p, cs[i].q});
+  });
+}
+
 void families(benchmark::internal::Benchmark* b) {
   for (Family f : tricyl::qscenes::kAllFamilies) b->Arg(int(f));
 }
@@ -249,5 +364,9 @@ BENCHMARK(BM_Segment_tricyl)->Apply(families);
 BENCHMARK(BM_Segment_source)->Apply(families);
 BENCHMARK(BM_Clip_tricyl)->Apply(families);
 BENCHMARK(BM_Clip_source)->Apply(families);
+BENCHMARK(BM_Line_tricyl)->Apply(families);
+BENCHMARK(BM_LineClip_tricyl)->Apply(families);
+BENCHMARK(BM_LineClip_sourceSlab)->Apply(families);
+BENCHMARK(BM_LineClip_sourceSurfaces)->Apply(families);
 
 }  // namespace
