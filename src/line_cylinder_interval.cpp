@@ -169,14 +169,16 @@ N flSqrt(const N& a) {
 }
 
 /// The ends of [v - e, v + e], rounded OUTWARD in effect: e is widened to
-/// ee = e (1 + 2^-40) + 2 u' |v|, which exceeds e by more than the
-/// rounding of v -+ ee (at most u |v| + u ee) and of ee itself, so the
+/// ee = (e + u' |v|)(1 + 2^-40). The computed ee (three roundings) is at
+/// least (e + u' |v|)(1 + 2^-40)(1 - u)^3 >= e + u (|v| + ee), and the
+/// rounding of v -+ ee is at most u |v -+ ee| <= u (|v| + ee), so the
 /// computed ends enclose the exact [v - e, v + e]. (Sums of doubles in the
-/// subnormal range are exact, so no underflow allowance is needed.)
+/// subnormal range are exact; an underflowing u' |v| costs at most 2^-1075
+/// absolutely, far below the bound.)
 template <class N>
 void ends(const N& x, typename Run<N>::T* lo, typename Run<N>::T* hi) {
   using T = typename Run<N>::T;
-  const T ee = x.e * T(kInfl) + 2 * Run<N>::kU1 * std::fabs(x.v);
+  const T ee = (x.e + Run<N>::kU1 * std::fabs(x.v)) * T(kInfl);
   *lo = x.v - ee;
   *hi = x.v + ee;
 }
