@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
   app.add_option("--queries", queries,
                  "cylinder queries of issue 5 to run, each over its families "
                  "uniform, near, far, degenerate (default: all built: "
-                 "point_cylinder point_cone sphere segment; 'none' for none)")
+                 "point_cylinder point_cone sphere segment line; 'none' for none)")
       ->delimiter(',');
   app.add_option("--query-cases", query_cases,
                  "cases per query x family (default: cases / 10)");
@@ -210,13 +210,13 @@ int main(int argc, char** argv) {
       if (queries.empty()) {
         if (haveQueries() && families.empty())
           qs = {Query::kPointCylinder, Query::kPointCone, Query::kSphere,
-                Query::kSegment};
+                Query::kSegment, Query::kLine};
       } else {
         for (const auto& name : queries) {
           if (name == "none") continue;
           bool found = false;
           for (Query q : {Query::kPointCylinder, Query::kPointCone,
-                          Query::kSphere, Query::kSegment})
+                          Query::kSphere, Query::kSegment, Query::kLine})
             if (name == queryName(q)) {
               qs.push_back(q);
               found = true;

@@ -69,10 +69,11 @@ enum class Query : int {
   kPointCone = 1,      ///< point in cone Cone{k.cyl.radius, k.cyl.lz}: p
   kSphere = 2,         ///< sphere {p, rho} vs cylinder
   kSegment = 3,        ///< segment [p, q] vs cylinder
+  kLine = 4,           ///< the line through p and q vs cylinder
 };
 const char* queryName(Query q);
-/// True if the cylinder queries were built in (tricyl's point, cone, sphere
-/// and segment tests plus compare/query_scenes.h, query_oracles.h).
+/// True if the cylinder queries were built in (tricyl's point, cone, sphere,
+/// segment and line tests plus compare/query_scenes.h, query_oracles.h).
 bool haveQueries();
 /// Whether method `m` has an implementation for query `q` (triangles and
 /// meshes: every method; point/cone/segment: tricyl, tricyl_float; sphere:

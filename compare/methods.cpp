@@ -17,6 +17,7 @@
 #endif
 #ifdef TRICYL_COMPARE_HAVE_QUERIES
 #include "query_oracles.h"
+#include "tricyl/line_cylinder.h"
 #include "tricyl/point_cone.h"
 #include "tricyl/point_cylinder.h"
 #include "tricyl/segment_cylinder.h"
@@ -134,6 +135,8 @@ const char* queryName(Query q) {
       return "sphere";
     case Query::kSegment:
       return "segment";
+    case Query::kLine:
+      return "line";
   }
   return "?";
 }
@@ -208,6 +211,8 @@ bool queryTruth(const Case& c, const Cylinder<double>& cyl) {
       return oracle::sphereCylinder(cyl, c.k.pose, {c.p, c.rho});
     case Query::kSegment:
       return oracle::segmentCylinder(cyl, c.k.pose, {c.p, c.q});
+    case Query::kLine:
+      return oracle::lineCylinder(cyl, c.k.pose, {c.p, c.q});
     case Query::kTriangle:
       break;
   }
@@ -402,6 +407,11 @@ bool Evaluator::run(Method m, const Case& c) {
                                   Segment<float>{toFloat(c.p), toFloat(c.q)})
                    : tryIntersect(k.cyl, k.pose, Segment<double>{c.p, c.q})) ==
                Answer::kIntersect;
+      case Query::kLine:
+        return (fl ? tryIntersect(cf, pf,
+                                  Line<float>{toFloat(c.p), toFloat(c.q)})
+                   : tryIntersect(k.cyl, k.pose, Line<double>{c.p, c.q})) ==
+               Answer::kIntersect;
       case Query::kTriangle:
         break;
     }
@@ -436,6 +446,9 @@ bool tricylDecide(const Case& c, int* stage) {
       break;
     case Query::kSegment:
       d = decideIntersect(c.k.cyl, c.k.pose, Segment<double>{c.p, c.q});
+      break;
+    case Query::kLine:
+      d = decideIntersect(c.k.cyl, c.k.pose, Line<double>{c.p, c.q});
       break;
 #endif
     default:
