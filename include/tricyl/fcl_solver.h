@@ -22,9 +22,16 @@
 //   certificate. The Boolean never depends on whether contact data is
 //   requested. libccd's MPR, which has no iteration cap and can hang on thin
 //   cylinders (issue 9), is never reached for these pairs.
-// - Every other pair (Box, Sphere, Capsule, Cone, Convex, ... vs meshes and
-//   shapes, and distance queries) runs GJKSolver_libccd<S>'s own code,
-//   inherited unchanged.
+// - Sphere vs Cylinder and Cylinder vs Sphere (shape pairs), Boolean requests
+//   (no contact vector): tricyl::tryIntersect(Cylinder, Pose, Sphere), exact
+//   (sphere_cylinder.h; the sphere's centre is its Transform3's translation,
+//   its radius taken in the cylinder frame). With request.enable_contact the
+//   pair keeps FCL's own path (detail::sphereCylinderIntersect), contact data
+//   included, so the Boolean can differ from the stock one only where FCL's
+//   is wrong. Invalid input (NaN/Inf, negative sizes): "in collision".
+// - Every other pair (Box, Capsule, Cone, Convex, ... vs meshes and shapes,
+//   Sphere vs meshes, and distance queries) runs GJKSolver_libccd<S>'s own
+//   code, inherited unchanged.
 //
 // CONVENTIONS (FCL's, for the overloads FCL calls)
 // - shapeTriangleIntersect: `normal` points from the cylinder toward the
@@ -70,6 +77,7 @@
 
 #include <fcl/broadphase/default_broadphase_callbacks.h>
 #include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
 #include <fcl/geometry/shape/triangle_p.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/collision_object.h>
@@ -131,6 +139,18 @@ class Solver : public fcl::detail::GJKSolver_libccd<S> {
   bool shapeIntersect(
       const fcl::Cylinder<S>& s1, const fcl::Transform3<S>& tf1,
       const fcl::TriangleP<S>& s2, const fcl::Transform3<S>& tf2,
+      std::vector<fcl::ContactPoint<S>>* contacts = nullptr) const;
+
+  /// Sphere vs Cylinder (and the reverse): without `contacts`, the exact
+  /// Boolean; with `contacts`, FCL's own sphere/cylinder code (header
+  /// comment).
+  bool shapeIntersect(
+      const fcl::Sphere<S>& s1, const fcl::Transform3<S>& tf1,
+      const fcl::Cylinder<S>& s2, const fcl::Transform3<S>& tf2,
+      std::vector<fcl::ContactPoint<S>>* contacts = nullptr) const;
+  bool shapeIntersect(
+      const fcl::Cylinder<S>& s1, const fcl::Transform3<S>& tf1,
+      const fcl::Sphere<S>& s2, const fcl::Transform3<S>& tf2,
       std::vector<fcl::ContactPoint<S>>* contacts = nullptr) const;
 
   /// The same pairs in the pointer form (deprecated in FCL, kept so that no

@@ -4,6 +4,7 @@
 #include "tricyl/fcl_solver.h"
 
 #include "tricyl/fcl_contact.h"
+#include "tricyl/sphere_cylinder.h"
 #include "tricyl/triangle_cylinder.h"
 
 namespace tricyl {
@@ -83,6 +84,19 @@ bool cylinderVsTrianglePContacts(const fcl::Cylinder<S>& cyl,
     return false;
   contacts->emplace_back(normal, point, depth);
   return true;
+}
+
+/// Sphere at tf_sphere vs Cylinder at tf_cyl, exact (sphere_cylinder.h):
+/// the centre is the sphere's translation, as FCL uses it; invalid input
+/// counts as a collision (fcl_solver.h).
+template <class S>
+bool sphereVsCylinder(const fcl::Sphere<S>& sphere,
+                      const fcl::Transform3<S>& tf_sphere,
+                      const fcl::Cylinder<S>& cyl,
+                      const fcl::Transform3<S>& tf_cyl) {
+  const Sphere<S> ball{toVec<S>(tf_sphere.translation()), sphere.radius};
+  return tryIntersect(Cylinder<S>{cyl.radius, cyl.lz}, toPose(tf_cyl), ball) !=
+         Answer::kDisjoint;
 }
 
 /// Puts TriangleP/Cylinder (both orders) into Solver<S>'s own table. FCL's
@@ -172,6 +186,26 @@ bool Solver<S>::shapeIntersect(const fcl::Cylinder<S>& s1,
                                fcl::Vector3<S>* normal) const {
   return cylinderVsTriangleP(s1, tf1, s2, tf2, false, contact_points,
                              penetration_depth, normal);
+}
+
+template <class S>
+bool Solver<S>::shapeIntersect(
+    const fcl::Sphere<S>& s1, const fcl::Transform3<S>& tf1,
+    const fcl::Cylinder<S>& s2, const fcl::Transform3<S>& tf2,
+    std::vector<fcl::ContactPoint<S>>* contacts) const {
+  if (contacts != nullptr)  // FCL's own contact path, unchanged
+    return Base::shapeIntersect(s1, tf1, s2, tf2, contacts);
+  return sphereVsCylinder(s1, tf1, s2, tf2);
+}
+
+template <class S>
+bool Solver<S>::shapeIntersect(
+    const fcl::Cylinder<S>& s1, const fcl::Transform3<S>& tf1,
+    const fcl::Sphere<S>& s2, const fcl::Transform3<S>& tf2,
+    std::vector<fcl::ContactPoint<S>>* contacts) const {
+  if (contacts != nullptr)
+    return Base::shapeIntersect(s1, tf1, s2, tf2, contacts);
+  return sphereVsCylinder(s2, tf2, s1, tf1);
 }
 
 template class Solver<double>;
