@@ -15,7 +15,7 @@
 //   R^T R - I, cylinderFromEndpoints' L is |b - a| (b - a rounded as the
 //   helper does) within 4 eps relative, and t is O + n (L/2) (axis and apex
 //   forms, with the returned n) or a/2 + b/2 within two roundings.
-// Outside that range (|N| beyond ~1e+-150 in double, ~1e+-18 in float) the
+// Outside that range (|N| beyond ~1e+-154 in double, ~1e+-19 in float) the
 // helpers lose the direction: the squares overflow (n = 0, a singular R)
 // or underflow (n = +z, lz = 0 for cylinderFromEndpoints). The header does
 // not exempt that range, so this is reported as a finding (README, fuzzing
