@@ -98,7 +98,6 @@ inline Rd operator*(Rd a, Rd b) {
 }
 struct RunningDoubleKernel {
   using Num = Rd;
-  static constexpr bool kExact = false;
   static Num lift(double x) { return {x, 0}; }
   static Num inputDiff(double a, double b) {
     const double d = a - b;

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "query_test_support.h"
 
@@ -185,6 +186,59 @@ TYPED_TEST(PointCylinderTyped, EndpointFormExactCases) {
       cylinderFromEndpoints(Vec3<S>{1, 1, 1}, Vec3<S>{1, 1, 1}, S(1));
   EXPECT_TRUE(contains(pd.cylinder, pd.pose, Vec3<S>{2, 1, 1}));
   EXPECT_FALSE(contains(pd.cylinder, pd.pose, Vec3<S>{1, 1, S(1.5)}));
+}
+
+// Regression (found by fuzz_point_cylinder, seeds axis_N_huge and
+// axis_N_tiny). The helpers used to normalise N as N / sqrt(N.N): for
+// |N| = 0x1.4e718d7d7625ap+664 the square overflows to +Inf, N / Inf is 0,
+// and the pose's axis column was (0, 0, 0): a singular R, so every query
+// answered for a degenerate solid. For |N| = 0x1.87e92154ef7acp-665 the
+// square underflows to 0, and the "N = 0" branch silently replaced the axis
+// by +z. cylinderFromEndpoints had the same fault in L = |b - a| (lz = 0 for
+// a tiny b - a). N (and b - a) are now scaled by a power of two before they
+// are squared. Also checked: huge/tiny directions in float, and a NaN
+// direction gives a NaN axis (the query then reports invalid input).
+TYPED_TEST(PointCylinderTyped, EndpointFormHugeAndTinyDirections) {
+  using S = TypeParam;
+  const int top = std::numeric_limits<S>::max_exponent - 2;  // 1022 / 126
+  const int bottom = std::numeric_limits<S>::min_exponent -
+                     std::numeric_limits<S>::digits + 1;  // subnormal
+  const S huge = std::is_same_v<S, double> ? S(0x1.4e718d7d7625ap+664)
+                                           : S(0x1.4e718ep+100f);
+  const S tiny = std::is_same_v<S, double> ? S(0x1.87e92154ef7acp-665)
+                                           : S(0x1.87e922p-100f);
+  for (S n : {huge, tiny, std::ldexp(S(1.5), top), std::ldexp(S(1), bottom)}) {
+    SCOPED_TRACE(testing::Message() << "N.x = " << n);
+    const auto pc =
+        cylinderFromAxis(Vec3<S>{0, 0, 0}, Vec3<S>{n, 0, 0}, S(2), S(1));
+    // The axis is exactly +x (N / |N| with |N| = N.x), so the solid is
+    // 0 <= x <= 2, y^2 + z^2 <= 1.
+    EXPECT_EQ(pc.pose.R[0][2], S(1));
+    EXPECT_EQ(pc.pose.R[1][2], S(0));
+    EXPECT_EQ(pc.pose.R[2][2], S(0));
+    EXPECT_TRUE(contains(pc.cylinder, pc.pose, Vec3<S>{S(2), 0, 1}));  // rim
+    EXPECT_FALSE(contains(pc.cylinder, pc.pose, Vec3<S>{S(1), 0, S(1.25)}));
+    // Endpoints n apart along y: lz is |b - a| = n exactly.
+    const auto pe =
+        cylinderFromEndpoints(Vec3<S>{0, 0, 0}, Vec3<S>{0, n, 0}, S(1));
+    EXPECT_EQ(pe.cylinder.lz, n);
+    EXPECT_EQ(pe.pose.R[1][2], S(1));
+  }
+  // A diagonal huge direction keeps unit length to a few ulps.
+  const auto pd = cylinderFromAxis(Vec3<S>{0, 0, 0}, Vec3<S>{huge, huge, -huge},
+                                   S(2), S(1));
+  const S c = S(1) / std::sqrt(S(3));
+  const S eps = std::numeric_limits<S>::epsilon();
+  EXPECT_NEAR(pd.pose.R[0][2], c, 4 * eps);
+  EXPECT_NEAR(pd.pose.R[1][2], c, 4 * eps);
+  EXPECT_NEAR(pd.pose.R[2][2], -c, 4 * eps);
+  // Non-finite directions: a NaN axis, reported by the query.
+  test::NoFpTraps no_traps;
+  const S inf = std::numeric_limits<S>::infinity();
+  const auto pn =
+      cylinderFromAxis(Vec3<S>{0, 0, 0}, Vec3<S>{inf, 0, 0}, S(2), S(1));
+  EXPECT_TRUE(std::isnan(pn.pose.R[0][2]));
+  EXPECT_THROW(contains(pn.cylinder, pn.pose, Vec3<S>{0, 0, 0}), InvalidInput);
 }
 
 class PointCylinderFamily : public ::testing::TestWithParam<test::Family> {};

@@ -12,10 +12,15 @@
 // What is exact and what rounds (round to nearest, double or float):
 // - radius: copied, exact.
 // - lz: cylinderFromAxis / coneFromApex copy L exactly. cylinderFromEndpoints
-//   computes d = b - a (one rounding per coordinate) and L = |d| (sqrt of a
-//   rounded sum of squares: a few ulps).
+//   computes d = b - a (one rounding per coordinate) and L = |d| (a few
+//   ulps, also scaled first: +Inf only if |d| exceeds the largest finite
+//   value).
 // - axis column R[.][2] = n = N / |N| (N need not be unit; |N| and the
-//   division round: a few ulps; n has unit length to a few ulps). For
+//   division round: a few ulps; n has unit length to a few ulps). This holds
+//   for every finite non-zero N, however huge or tiny: N is scaled by a power
+//   of two before it is squared (detail::scaledLength), so no square
+//   overflows or underflows (found by fuzz_point_cylinder: unscaled, |N| >
+//   1.3e154 gave a zero axis and |N| < 2e-162 silently gave +z). For
 //   coneFromApex the column is -n (the apex is at +lz/2), negation exact.
 // - the two other columns: Duff et al., "Building an Orthonormal Basis,
 //   Revisited" (JCGT 2017), branch-free from n: orthonormal to a few ulps.
@@ -28,11 +33,13 @@
 //   t = O + n (L/2) like cylinderFromAxis.
 // Degenerate directions: N = 0 (or a == b) has no axis; the helpers then use
 // n = +z, so cylinderFromEndpoints(a, a, R) is the disk of radius R about a
-// in the plane z = a.z (lz = 0). Inputs are not validated here; the queries
-// validate what they are given.
+// in the plane z = a.z (lz = 0). A NaN or infinite N (or a, b) gives a NaN
+// axis. Inputs are not validated here; the queries validate what they are
+// given, so non-finite inputs end as InvalidInput there.
 #pragma once
 
 #include <cmath>
+#include <limits>
 
 #include "tricyl/types.h"
 
@@ -67,11 +74,53 @@ Pose<S> frameFromAxis(const Vec3<S>& n, const Vec3<S>& t) {
   return p;
 }
 
+/// |N| without overflow or underflow in the squares: N is scaled by the
+/// power of two 2^-e that brings its largest component into [1, 2) (exact,
+/// except for components below 2^-1074 of the largest, far under the
+/// result's rounding), so the sum of squares lies in [1, 12). `*scaled`
+/// receives N 2^-e; returns the length of the scaled vector (in [1, 3.5))
+/// and sets *e. Requires N finite and non-zero.
+template <class S>
+S scaledLength(const Vec3<S>& N, Vec3<S>* scaled, int* e) {
+  const S m =
+      std::fmax(std::fabs(N.x), std::fmax(std::fabs(N.y), std::fabs(N.z)));
+  *e = std::ilogb(m);
+  *scaled = {std::ldexp(N.x, -*e), std::ldexp(N.y, -*e), std::ldexp(N.z, -*e)};
+  return std::sqrt(scaled->x * scaled->x + scaled->y * scaled->y +
+                   scaled->z * scaled->z);
+}
+
+template <class S>
+bool finiteVec(const Vec3<S>& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+/// N / |N|; +z for N = 0; a NaN vector for a non-finite N (so that the
+/// queries report invalid input). Accurate to a few ulps for every finite
+/// non-zero N, huge or tiny (scaledLength).
 template <class S>
 Vec3<S> unitOrZ(const Vec3<S>& N) {
-  const S len = std::sqrt(N.x * N.x + N.y * N.y + N.z * N.z);
-  if (!(len > S(0))) return {S(0), S(0), S(1)};
-  return {N.x / len, N.y / len, N.z / len};
+  if (!finiteVec(N)) {
+    const S nan = std::numeric_limits<S>::quiet_NaN();
+    return {nan, nan, nan};
+  }
+  if (N.x == S(0) && N.y == S(0) && N.z == S(0)) return {S(0), S(0), S(1)};
+  Vec3<S> s;
+  int e = 0;
+  const S len = scaledLength(N, &s, &e);
+  return {s.x / len, s.y / len, s.z / len};
+}
+
+/// |d| without spurious overflow or underflow; +Inf only when |d| itself
+/// exceeds the largest finite S; NaN for a non-finite d.
+template <class S>
+S lengthOf(const Vec3<S>& d) {
+  if (!finiteVec(d)) return std::numeric_limits<S>::quiet_NaN();
+  if (d.x == S(0) && d.y == S(0) && d.z == S(0)) return S(0);
+  Vec3<S> s;
+  int e = 0;
+  const S len = scaledLength(d, &s, &e);  // sets e: read it only after
+  return std::ldexp(len, e);
 }
 }  // namespace detail
 
@@ -91,7 +140,7 @@ template <class S>
 PosedCylinder<S> cylinderFromEndpoints(const Vec3<S>& a, const Vec3<S>& b,
                                        S R) {
   const Vec3<S> d{b.x - a.x, b.y - a.y, b.z - a.z};
-  const S L = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+  const S L = detail::lengthOf(d);
   const Vec3<S> n = detail::unitOrZ(d);
   const Vec3<S> t{a.x / S(2) + b.x / S(2), a.y / S(2) + b.y / S(2),
                   a.z / S(2) + b.z / S(2)};
