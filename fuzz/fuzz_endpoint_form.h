@@ -140,8 +140,11 @@ void checkEndpointForm(const C& c) {
   const long double tiny =
       4 * (long double)std::numeric_limits<S>::denorm_min();
   if (p.form == Form::kEndpoints) {
-    check(!finite(p.lz) ||
-              std::fabs((long double)p.lz - m * len) <= 4 * eps * m * len,
+    // + tiny: a subnormal |b - a| is itself rounded to the subnormal grid
+    // (absolute error <= denorm_min / 2), where no relative bound holds
+    // (seed endpoints_subnormal_L).
+    check(!finite(p.lz) || std::fabs((long double)p.lz - m * len) <=
+                               4 * eps * m * len + tiny,
           "endpoint form: L is not |b - a| within 4 eps", c);
     const S a[3] = {p.O.x, p.O.y, p.O.z}, b[3] = {p.N.x, p.N.y, p.N.z};
     const S t[3] = {p.pose.t.x, p.pose.t.y, p.pose.t.z};
