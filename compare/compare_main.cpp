@@ -77,10 +77,11 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   app.add_option("--mesh-cases", mesh_cases,
                  "cases of the mesh family (default: cases / 10)");
-  app.add_option("--queries", queries,
-                 "cylinder queries of issue 5 to run, each over its families "
-                 "uniform, near, far, degenerate (default: all built: "
-                 "point_cylinder point_cone sphere segment line; 'none' for none)")
+  app.add_option(
+         "--queries", queries,
+         "cylinder queries of issue 5 to run, each over its families "
+         "uniform, near, far, degenerate (default: all built: "
+         "point_cylinder point_cone sphere segment line; 'none' for none)")
       ->delimiter(',');
   app.add_option("--query-cases", query_cases,
                  "cases per query x family (default: cases / 10)");
