@@ -7,8 +7,20 @@
 #include <cstring>
 #include <type_traits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "filter.h"
 #include "triangle_cylinder_impl.h"
+
+#if defined(__GNUC__) || defined(__clang__)
+#define TRICYL_ALWAYS_INLINE inline __attribute__((always_inline))
+#define TRICYL_NOINLINE __attribute__((noinline))
+#else
+#define TRICYL_ALWAYS_INLINE inline
+#define TRICYL_NOINLINE
+#endif
 
 namespace tricyl {
 namespace {
@@ -17,6 +29,7 @@ using detail::ExactKernel;
 using detail::ExtendedKernel;
 using detail::FilterKernel;
 using detail::NaiveKernel;
+using detail::Sign;
 using detail::Tri;
 
 // The double kernel works on references to the caller's values; float
@@ -86,12 +99,15 @@ bool validate(const Inputs& in, double* max_len, double* max_unitless) {
   return in.cyl.radius >= 0 && in.cyl.lz >= 0;  // -0 passes
 }
 
-Decision decide(const Inputs& in) {
+// The full sequence: validate, double filter (unless the fast path already
+// ran it and it could not decide), extended filter, exact. The inputs'
+// own range gate (rangeGateOk on the inputs) guards both filters here.
+Decision decide(const Inputs& in, bool filter_done) {
   double max_len = 0, max_unitless = 0;
   if (!validate(in, &max_len, &max_unitless))
     return {Answer::kInvalidInput, Stage::kInvalid};
   bool early = false;
-  if (detail::rangeGateOk(max_len, max_unitless)) {
+  if (!filter_done && detail::rangeGateOk(max_len, max_unitless)) {
     const auto q =
         detail::makeLocal<FilterKernel>(in.cyl, in.pose, in.tri, max_unitless);
     const Tri t = detail::triangleCylinder<FilterKernel>(q, &early);
@@ -114,14 +130,318 @@ Decision decide(const Inputs& in) {
           Stage::kExact};
 }
 
-Decision decideAny(const Cylinder<double>& cylinder, const Pose<double>& pose,
-                   const Triangle<double>& triangle) {
-  return decide(Inputs{cylinder, pose, triangle});
+TRICYL_NOINLINE Decision decideSlow(const Cylinder<double>& cylinder,
+                                    const Pose<double>& pose,
+                                    const Triangle<double>& triangle,
+                                    bool filter_done) {
+  return decide(Inputs{cylinder, pose, triangle}, filter_done);
 }
-Decision decideAny(const Cylinder<float>& cylinder, const Pose<float>& pose,
-                   const Triangle<float>& triangle) {
+TRICYL_NOINLINE Decision decideSlow(const Cylinder<float>& cylinder,
+                                    const Pose<float>& pose,
+                                    const Triangle<float>& triangle,
+                                    bool filter_done) {
+  // Widening a signalling NaN raises FE_INVALID: look at the bits first.
+  static_assert(sizeof(float) == sizeof(std::uint32_t), "binary32");
+  const void* parts[3] = {&cylinder, &pose, &triangle};
+  const size_t counts[3] = {2, 12, 9};
+  for (int k = 0; k < 3; ++k)
+    for (size_t i = 0; i < counts[k]; ++i) {
+      std::uint32_t b;
+      std::memcpy(&b, static_cast<const char*>(parts[k]) + 4 * i, 4);
+      if ((b & 0x7f800000u) == 0x7f800000u)
+        return {Answer::kInvalidInput, Stage::kInvalid};
+    }
   const Widened w = widen(cylinder, pose, triangle);
-  return decide(Inputs{w.cyl, w.pose, w.tri});
+  return decide(Inputs{w.cyl, w.pose, w.tri}, filter_done);
+}
+
+// ---------------------------------------------------------------------------
+// The scalar fast path: the double filter (FilterKernel) with validation and
+// range gate fused into the arithmetic, and branch-free early-outs. It
+// computes bit for bit the values and bounds that makeLocal<FilterKernel> and
+// triangleCylinder<FilterKernel> compute, so every answer it gives is one the
+// filter gives; it only reaches them with fewer instructions and branches.
+//
+// Validation and range gate of the fast path (docs/exactness.md,
+// "Validation"). Like validate(), it reads only bit patterns, so no input
+// (NaN, signalling NaN, Inf) ever reaches a floating-point instruction before
+// it is known to be finite: the library raises no floating-point exception on
+// any input. The fast path runs only if every length input (triangle,
+// translation, radius, lz) has |x| < 2^40, every rotation entry |R_jk| < 2,
+// and r >= 0, lz >= 0 (-0 passes): a subset of what validate() and
+// rangeGateOk() accept (they allow |x| = 2^40 and |R_jk| = 2), so every
+// query the fast path takes is one the filter would have run on, with the
+// same values and bounds. Everything else (invalid input, gate misses) takes
+// decideSlow, which decides exactly as before.
+enum class Fast { kGateMiss, kDecided, kUnknown };
+
+// The local frame as toLocal<FilterKernel> computes it: one magnitude
+// m_i = rho s_i per vertex (rho = max |R_jk|), z doubled; and the cylinder.
+struct Local {
+  double x[3], y[3], Z[3], m[3];
+  double r, H;
+};
+
+// Early-outs, the same certified signs as triangleCylinder: Z_i - H and
+// Z_i + H have magnitude fl(2 m_i + lz), x_i - r, -x_i - r, y_i - r and
+// -y_i - r have fl(m_i + r); a sign is certain beyond fl(m kRel) + kAbs. The
+// triangle is beyond a plane iff all three vertices are. fl(-x - r) and
+// fl(-Z - H) are the negations of fl(x + r) and fl(Z + H) (rounding is
+// symmetric), so "fl(-Z - H) > b" is "fl(Z + H) < -b", the bottom test of
+// triangleCylinder.
+constexpr double kRel = FilterKernel::kRel, kAbs = FilterKernel::kAbs;
+
+#if defined(__SSE2__)
+// SSE2 (every x86-64): lane 0 = x, lane 1 = y. Each operation below is the
+// scalar IEEE operation of the portable version, lane by lane, in the same
+// order, so the values are bit for bit those of makeLocal<FilterKernel>.
+template <class S>
+__m128d load2(const S* p);
+template <>
+TRICYL_ALWAYS_INLINE __m128d load2(const double* p) {
+  return _mm_loadu_pd(p);
+}
+template <>
+TRICYL_ALWAYS_INLINE __m128d load2(const float* p) {
+  return _mm_cvtps_pd(
+      _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p))));
+}
+template <class S>
+TRICYL_ALWAYS_INLINE __m128d load1(const S* p) {
+  return _mm_set_sd(double(*p));
+}
+
+// The top 16 bits of |x| (sign cleared) order like |x|, and a 16-bit signed
+// max (pmaxsw) of them is exact. For double, |x| < 2^40 iff the top 16 bits
+// of |x| are <= 0x426f (2^40 = 0x4270 0000 0000 0000) and |x| < 2 iff they are
+// <= 0x3fff; for float, 2^40 = 0x5380 0000 and 2 = 0x4000 0000. NaN and Inf
+// (exponent all ones: top bits >= 0x7ff0, resp. 0x7f80) exceed both.
+template <class S>
+struct GateBits;
+template <>
+struct GateBits<double> {
+  static constexpr short kLen = 0x426f, kRot = 0x3fff;
+  static __m128i mask() { return _mm_set1_epi64x(0x7fff000000000000LL); }
+};
+template <>
+struct GateBits<float> {
+  static constexpr short kLen = 0x537f, kRot = 0x3fff;
+  static __m128i mask() { return _mm_set1_epi32(0x7fff0000); }
+};
+static_assert(sizeof(Pose<float>) == 12 * sizeof(float) &&
+                  sizeof(Triangle<float>) == 9 * sizeof(float) &&
+                  sizeof(Cylinder<float>) == 2 * sizeof(float),
+              "the aggregates are arrays of floats without padding");
+
+TRICYL_ALWAYS_INLINE __m128i ld16(const char* p) {
+  return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+}
+TRICYL_ALWAYS_INLINE __m128i ld8(const char* p) {
+  return _mm_loadl_epi64(reinterpret_cast<const __m128i*>(p));
+}
+TRICYL_ALWAYS_INLINE __m128i ld4(const char* p) {
+  int v;
+  std::memcpy(&v, p, sizeof v);
+  return _mm_cvtsi32_si128(v);
+}
+
+template <class S>
+TRICYL_ALWAYS_INLINE bool gateBitsOk(const Cylinder<S>& cyl,
+                                     const Pose<S>& pose,
+                                     const Triangle<S>& tri) {
+  const char* T = reinterpret_cast<const char*>(&tri);
+  const char* P = reinterpret_cast<const char*>(&pose);
+  const char* C = reinterpret_cast<const char*>(&cyl);
+  const __m128i k = GateBits<S>::mask();
+  auto top = [k](__m128i v) { return _mm_and_si128(v, k); };
+  auto mx = [](__m128i u, __m128i v) { return _mm_max_epi16(u, v); };
+  __m128i len, rot;
+  if constexpr (sizeof(S) == 8) {  // R: bytes 0..71, t: 72..95
+    len = mx(mx(top(ld16(T)), top(ld16(T + 16))),
+             mx(top(ld16(T + 32)), top(ld16(T + 48))));
+    len =
+        mx(mx(len, top(ld8(T + 64))), mx(top(ld16(P + 72)), top(ld8(P + 88))));
+    len = mx(len, top(ld16(C)));
+    rot = mx(mx(top(ld16(P)), top(ld16(P + 16))),
+             mx(top(ld16(P + 32)), top(ld16(P + 48))));
+    rot = mx(rot, top(ld8(P + 64)));
+  } else {  // R: bytes 0..35, t: 36..47
+    len = mx(mx(top(ld16(T)), top(ld16(T + 16))), top(ld4(T + 32)));
+    len = mx(mx(len, top(ld4(P + 36))), mx(top(ld8(P + 40)), top(ld8(C))));
+    rot = mx(mx(top(ld16(P)), top(ld16(P + 16))), top(ld4(P + 32)));
+  }
+  const __m128i bad =
+      _mm_or_si128(_mm_cmpgt_epi16(len, _mm_set1_epi16(GateBits<S>::kLen)),
+                   _mm_cmpgt_epi16(rot, _mm_set1_epi16(GateBits<S>::kRot)));
+  return _mm_movemask_epi8(bad) == 0;
+}
+
+template <class S>
+TRICYL_ALWAYS_INLINE Fast prologue(const Cylinder<S>& cyl, const Pose<S>& pose,
+                                   const Triangle<S>& tri, Local* L) {
+  if (!gateBitsOk(cyl, pose, tri)) return Fast::kGateMiss;
+  const double r = double(cyl.radius), H = double(cyl.lz);
+  if (!(r >= 0) || !(H >= 0)) return Fast::kGateMiss;  // finite: no trap
+  const __m128d abs = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL));
+  // Rotation: rows 0..2, columns (0, 1) packed, column 2 as (R02, R12), R22.
+  const __m128d R0 = load2(&pose.R[0][0]), R1 = load2(&pose.R[1][0]),
+                R2 = load2(&pose.R[2][0]);
+  const __m128d R2c =
+      _mm_unpacklo_pd(load1(&pose.R[0][2]), load1(&pose.R[1][2]));
+  const __m128d R22 = load1(&pose.R[2][2]);
+  const __m128d a0 = _mm_and_pd(R0, abs), a1 = _mm_and_pd(R1, abs),
+                a2 = _mm_and_pd(R2, abs), a3 = _mm_and_pd(R2c, abs),
+                a4 = _mm_and_pd(R22, abs);
+  __m128d rho2 = _mm_max_pd(_mm_max_pd(a0, a1), _mm_max_pd(a2, a3));
+  rho2 = _mm_max_sd(_mm_max_sd(rho2, _mm_unpackhi_pd(rho2, rho2)), a4);
+  const double rho = _mm_cvtsd_f64(rho2);
+
+  const __m128d txy = load2(&pose.t.x), tz = load1(&pose.t.z);
+  const __m128d rr = _mm_set1_pd(r), HH = _mm_set1_pd(H);
+  const __m128d neg = _mm_set1_pd(-0.0);
+  const __m128d negZ = _mm_set_pd(-0.0, 0.0);  // (Z, -Z)
+  const Vec3<S>* P[3] = {&tri.a, &tri.b, &tri.c};
+  __m128d pos_all = _mm_castsi128_pd(_mm_set1_epi32(-1));
+  __m128d neg_all = pos_all, z_all = pos_all;
+  for (int i = 0; i < 3; ++i) {
+    const __m128d dxy = _mm_sub_pd(load2(&P[i]->x), txy);
+    const __m128d dz = _mm_sub_sd(load1(&P[i]->z), tz);
+    const __m128d axy = _mm_and_pd(dxy, abs);
+    const __m128d s = _mm_add_sd(_mm_add_sd(axy, _mm_unpackhi_pd(axy, axy)),
+                                 _mm_and_pd(dz, abs));
+    const __m128d bx = _mm_unpacklo_pd(dxy, dxy),
+                  by = _mm_unpackhi_pd(dxy, dxy), bz = _mm_unpacklo_pd(dz, dz);
+    const __m128d xy = _mm_add_pd(
+        _mm_add_pd(_mm_mul_pd(R0, bx), _mm_mul_pd(R1, by)), _mm_mul_pd(R2, bz));
+    const __m128d zz = _mm_mul_pd(R2c, dxy);  // (R02 d0, R12 d1)
+    const __m128d z = _mm_add_sd(_mm_add_sd(zz, _mm_unpackhi_pd(zz, zz)),
+                                 _mm_mul_sd(R22, dz));
+    const __m128d Z = _mm_add_sd(z, z);
+    const double m = rho * _mm_cvtsd_f64(s);
+    _mm_storel_pd(&L->x[i], xy);
+    _mm_storeh_pd(&L->y[i], xy);
+    L->Z[i] = _mm_cvtsd_f64(Z);
+    L->m[i] = m;
+    const __m128d bxy = _mm_set1_pd((m + r) * kRel + kAbs);
+    const __m128d bzz = _mm_set1_pd(((m + m) + H) * kRel + kAbs);
+    pos_all = _mm_and_pd(pos_all, _mm_cmplt_pd(bxy, _mm_sub_pd(xy, rr)));
+    neg_all = _mm_and_pd(
+        neg_all, _mm_cmplt_pd(bxy, _mm_sub_pd(_mm_xor_pd(xy, neg), rr)));
+    const __m128d ZnZ = _mm_xor_pd(_mm_unpacklo_pd(Z, Z), negZ);
+    z_all = _mm_and_pd(z_all, _mm_cmplt_pd(bzz, _mm_sub_pd(ZnZ, HH)));
+  }
+  L->r = r;
+  L->H = H;
+  const int beyond =
+      _mm_movemask_pd(_mm_or_pd(_mm_or_pd(pos_all, neg_all), z_all));
+  return beyond != 0 ? Fast::kDecided : Fast::kUnknown;
+}
+#else
+// Portable version: the bit-level validate() and rangeGateOk() of
+// decideSlow (float inputs widened first), then the same arithmetic.
+template <class S>
+TRICYL_ALWAYS_INLINE Fast prologue(const Cylinder<S>& cyl, const Pose<S>& pose,
+                                   const Triangle<S>& tri, Local* L) {
+  Widened w;
+  if constexpr (std::is_same_v<S, float>) {
+    w = widen(cyl, pose, tri);
+  } else {
+    w = {cyl, pose, tri};
+  }
+  double max_len = 0, rho = 0;
+  if (!validate(Inputs{w.cyl, w.pose, w.tri}, &max_len, &rho) ||
+      !detail::rangeGateOk(max_len, rho))
+    return Fast::kGateMiss;
+  const auto& R = w.pose.R;
+  const double r = w.cyl.radius, H = w.cyl.lz;
+  L->r = r;
+  L->H = H;
+  const Vec3<double>* P[3] = {&w.tri.a, &w.tri.b, &w.tri.c};
+  unsigned beyond = 63;
+  for (int i = 0; i < 3; ++i) {
+    const double d0 = P[i]->x - w.pose.t.x, d1 = P[i]->y - w.pose.t.y,
+                 d2 = P[i]->z - w.pose.t.z;
+    const double s = std::fabs(d0) + std::fabs(d1) + std::fabs(d2);
+    const double x = R[0][0] * d0 + R[1][0] * d1 + R[2][0] * d2;
+    const double y = R[0][1] * d0 + R[1][1] * d1 + R[2][1] * d2;
+    const double z = R[0][2] * d0 + R[1][2] * d1 + R[2][2] * d2;
+    const double Z = z + z, m = rho * s;
+    L->x[i] = x;
+    L->y[i] = y;
+    L->Z[i] = Z;
+    L->m[i] = m;
+    const double bz = ((m + m) + H) * kRel + kAbs;
+    const double bx = (m + r) * kRel + kAbs;
+    beyond &= unsigned(Z - H > bz) | unsigned(-Z - H > bz) << 1 |
+              unsigned(x - r > bx) << 2 | unsigned(-x - r > bx) << 3 |
+              unsigned(y - r > bx) << 4 | unsigned(-y - r > bx) << 5;
+  }
+  return beyond != 0 ? Fast::kDecided : Fast::kUnknown;
+}
+#endif
+
+// The rest of the double filter after the early-outs (not inlined: the
+// early-outs decide most queries).
+TRICYL_NOINLINE Tri filterTests(const Local& L) {
+  // FilterKernel::sign, branch-free: kPos (1), kNeg (-1) or kUnknown (2).
+  auto sgn = [](double v, double b) {
+    const int pos = v > b, neg = v < -b;
+    return Sign(2 - pos - 3 * neg);
+  };
+  Sign top[3], bot[3];
+  detail::TriCylLocal<FilterKernel> q;
+  for (int i = 0; i < 3; ++i) {
+    const double m = L.m[i], m2 = m + m;
+    const double bz = (m2 + L.H) * kRel + kAbs;
+    top[i] = sgn(L.Z[i] - L.H, bz);
+    bot[i] = sgn(L.Z[i] + L.H, bz);
+    q.x[i] = {L.x[i], m};
+    q.y[i] = {L.y[i], m};
+    q.Z[i] = {L.Z[i], m2};
+  }
+  q.H = FilterKernel::lift(L.H);
+  q.r = FilterKernel::lift(L.r);
+  return detail::triangleCylinderTests<FilterKernel>(q, top, bot);
+}
+
+// The scalar fast path: the double filter (FilterKernel) with validation and
+// range gate fused into the arithmetic, and branch-free early-outs. It
+// computes bit for bit the values and bounds that makeLocal<FilterKernel> and
+// triangleCylinder<FilterKernel> compute, so every answer it gives is one the
+// filter gives; it only reaches them with fewer instructions and branches.
+template <class S>
+TRICYL_ALWAYS_INLINE Fast decideFast(const Cylinder<S>& cyl,
+                                     const Pose<S>& pose,
+                                     const Triangle<S>& tri, Decision* out) {
+  Local L;
+  const Fast f = prologue(cyl, pose, tri, &L);
+  if (f == Fast::kDecided) {
+    *out = {Answer::kDisjoint, Stage::kEarlyOut};
+    return f;
+  }
+  if (f == Fast::kGateMiss) return f;
+  const Tri t = filterTests(L);
+  if (t == Tri::kUnknown) return Fast::kUnknown;
+  *out = {t == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
+          Stage::kFastPath};
+  return Fast::kDecided;
+}
+
+template <class S>
+TRICYL_ALWAYS_INLINE Decision decideBody(const Cylinder<S>& cylinder,
+                                         const Pose<S>& pose,
+                                         const Triangle<S>& triangle) {
+  Decision d;
+  const Fast f = decideFast(cylinder, pose, triangle, &d);
+  if (f == Fast::kDecided) return d;
+  return decideSlow(cylinder, pose, triangle, f == Fast::kUnknown);
+}
+
+template <class S>
+TRICYL_ALWAYS_INLINE Decision decideAny(const Cylinder<S>& cylinder,
+                                        const Pose<S>& pose,
+                                        const Triangle<S>& triangle) {
+  return decideBody(cylinder, pose, triangle);
 }
 
 bool checked(Decision d) {

@@ -142,6 +142,10 @@ inline Tri chordWithinR(const typename K::Num& X1, const typename K::Num& Y1,
   return kAnd(t, isNonNeg(K::sign(r2 * D2 - c * c)));
 }
 
+template <class K>
+Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
+                          const Sign* bot);
+
 /// The test itself. `early` is set when a certified early-out decided.
 template <class K>
 Tri triangleCylinder(const TriCylLocal<K>& q, bool* early) {
@@ -184,6 +188,21 @@ Tri triangleCylinder(const TriCylLocal<K>& q, bool* early) {
     }
   }
 
+  return triangleCylinderTests<K>(q, top, bot);
+}
+
+/// Everything after the early-outs: (V), (X), (E), (A), (B). `top` and
+/// `bot` are the slab signs sign(Z_i - H) and sign(Z_i + H) in kernel K
+/// (the caller computed them; the scalar fast path of
+/// src/triangle_cylinder.cpp computes them itself, branch-free).
+template <class K>
+Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
+                          const Sign* bot) {
+  using N = typename K::Num;
+  const N* x = q.x;
+  const N* y = q.y;
+  const N* Z = q.Z;
+  const N& H = q.H;
   const N r2 = q.r * q.r;
   AnyOf any;
 

@@ -2,6 +2,7 @@
 // the documented behaviour on hostile input.
 #include <gtest/gtest.h>
 
+#include <cfenv>
 #include <cmath>
 #include <limits>
 
@@ -96,6 +97,77 @@ TYPED_TEST(TriangleCylinderHostile, NonFiniteOrNegativeIsRejected) {
   EXPECT_THROW(intersect(Cylinder<S>{1, -2}, tri), InvalidInput);
   // Negative zero is zero: a valid, degenerate cylinder.
   EXPECT_TRUE(intersect(Cylinder<S>{S(-0.0), S(-0.0)}, pose, tri));
+}
+
+// The same hostile inputs, plus signalling NaN, with FE_INVALID and
+// FE_DIVBYZERO trapping (the default in these tests): validation reads bit
+// patterns, so no non-finite input ever reaches a floating-point
+// instruction, and no flag is raised.
+TYPED_TEST(TriangleCylinderHostile, NonFiniteInputRaisesNoFpException) {
+  using S = TypeParam;
+  const Cylinder<S> cyl{1, 2};
+  const Pose<S> pose = identityPose<S>();
+  const Triangle<S> tri{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  for (S bad : {std::numeric_limits<S>::quiet_NaN(),
+                std::numeric_limits<S>::signaling_NaN(),
+                std::numeric_limits<S>::infinity(),
+                -std::numeric_limits<S>::infinity()}) {
+    for (int slot = 0; slot < 23; ++slot) {
+      Cylinder<S> c = cyl;
+      Pose<S> p = pose;
+      Triangle<S> t = tri;
+      S* slots[23] = {&c.radius,  &c.lz,      &p.R[0][0], &p.R[0][1],
+                      &p.R[0][2], &p.R[1][0], &p.R[1][1], &p.R[1][2],
+                      &p.R[2][0], &p.R[2][1], &p.R[2][2], &p.t.x,
+                      &p.t.y,     &p.t.z,     &t.a.x,     &t.a.y,
+                      &t.a.z,     &t.b.x,     &t.b.y,     &t.b.z,
+                      &t.c.x,     &t.c.y,     &t.c.z};
+      *slots[slot] = bad;
+      std::feclearexcept(FE_ALL_EXCEPT);
+      EXPECT_EQ(tryIntersect(c, p, t), Answer::kInvalidInput) << slot;
+      EXPECT_EQ(std::fetestexcept(FE_INVALID | FE_DIVBYZERO), 0) << slot;
+    }
+  }
+  std::feclearexcept(FE_ALL_EXCEPT);
+  EXPECT_EQ(tryIntersect(Cylinder<S>{-1, 2}, pose, tri), Answer::kInvalidInput);
+  EXPECT_EQ(tryIntersect(Cylinder<S>{1, -2}, pose, tri), Answer::kInvalidInput);
+  EXPECT_EQ(std::fetestexcept(FE_INVALID | FE_DIVBYZERO), 0);
+}
+
+// The scalar fast path gates on |length| < 2^40 and |R_jk| < 2 by bit
+// patterns; the slow path's gate admits the boundary values themselves.
+// Inputs on and next to both boundaries: the answer is the oracle's, on
+// either side.
+TYPED_TEST(TriangleCylinderHostile, FastPathGateBoundaries) {
+  using S = TypeParam;
+  const S L = S(0x1p40);
+  const S below = std::nextafter(L, S(0));
+  const S two_below = std::nextafter(S(2), S(0));
+  auto wd = [](const Vec3<S>& v) { return Vec3<double>{v.x, v.y, v.z}; };
+  for (S big : {L, below}) {
+    for (S rot : {S(2), two_below, S(1)}) {
+      for (int variant = 0; variant < 4; ++variant) {
+        // A cylinder of radius 1 scaled by `rot` along x (R is not a
+        // rotation, which is allowed), triangles near and far.
+        const Pose<S> pose{{{rot, 0, 0}, {0, 1, 0}, {0, 0, 1}},
+                           {variant & 1 ? big : S(0), 0, 0}};
+        const S x0 = pose.t.x + S(variant & 2 ? 1 : 3);
+        const Cylinder<S> cyl{variant == 3 ? big : S(1),
+                              variant == 2 ? big : S(2)};
+        const Triangle<S> tri{{x0, 0, 0}, {x0, 1, 0}, {x0, 0, 1}};
+        Pose<double> pd;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) pd.R[i][j] = pose.R[i][j];
+        pd.t = wd(pose.t);
+        const bool truth = oracle::triangleCylinder(
+            {cyl.radius, cyl.lz}, pd,
+            Triangle<double>{wd(tri.a), wd(tri.b), wd(tri.c)});
+        EXPECT_EQ(tryIntersect(cyl, pose, tri),
+                  truth ? Answer::kIntersect : Answer::kDisjoint)
+            << double(big) << " " << double(rot) << " " << variant;
+      }
+    }
+  }
 }
 
 // Huge but finite inputs: squares of 1e300 overflow double, so the filters
