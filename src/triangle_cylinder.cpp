@@ -174,6 +174,9 @@ TRICYL_NOINLINE Decision decideSlow(const Cylinder<float>& cylinder,
 // same values and bounds. Everything else (invalid input, gate misses) takes
 // decideSlow, which decides exactly as before.
 enum class Fast { kGateMiss, kDecided, kUnknown };
+// What the prologue found: a gate miss, a certified early-out (disjoint), a
+// vertex certainly inside the solid (test (V): intersect), or nothing yet.
+enum class Pre { kGateMiss, kEarlyOut, kVertexIn, kOpen };
 
 // The local frame as toLocal<FilterKernel> computes it: one magnitude
 // m_i = rho s_i per vertex (rho = max |R_jk|), z doubled; and the cylinder.
@@ -277,11 +280,11 @@ TRICYL_ALWAYS_INLINE bool gateBitsOk(const Cylinder<S>& cyl,
 }
 
 template <class S>
-TRICYL_ALWAYS_INLINE Fast prologue(const Cylinder<S>& cyl, const Pose<S>& pose,
-                                   const Triangle<S>& tri, Local* L) {
-  if (!gateBitsOk(cyl, pose, tri)) return Fast::kGateMiss;
+TRICYL_ALWAYS_INLINE Pre prologue(const Cylinder<S>& cyl, const Pose<S>& pose,
+                                  const Triangle<S>& tri, Local* L) {
+  if (!gateBitsOk(cyl, pose, tri)) return Pre::kGateMiss;
   const double r = double(cyl.radius), H = double(cyl.lz);
-  if (!(r >= 0) || !(H >= 0)) return Fast::kGateMiss;  // finite: no trap
+  if (!(r >= 0) || !(H >= 0)) return Pre::kGateMiss;  // finite: no trap
   const __m128d abs = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL));
   // Rotation: rows 0..2, columns (0, 1) packed, column 2 as (R02, R12), R22.
   const __m128d R0 = load2(&pose.R[0][0]), R1 = load2(&pose.R[1][0]),
@@ -303,6 +306,8 @@ TRICYL_ALWAYS_INLINE Fast prologue(const Cylinder<S>& cyl, const Pose<S>& pose,
   const Vec3<S>* P[3] = {&tri.a, &tri.b, &tri.c};
   __m128d pos_all = _mm_castsi128_pd(_mm_set1_epi32(-1));
   __m128d neg_all = pos_all, z_all = pos_all;
+  __m128d vin = _mm_setzero_pd();
+  const __m128d r2 = _mm_set_sd(r * r);  // FilterKernel: r2 = {r r, r r}
   for (int i = 0; i < 3; ++i) {
     const __m128d dxy = _mm_sub_pd(load2(&P[i]->x), txy);
     const __m128d dz = _mm_sub_sd(load1(&P[i]->z), tz);
@@ -327,21 +332,34 @@ TRICYL_ALWAYS_INLINE Fast prologue(const Cylinder<S>& cyl, const Pose<S>& pose,
     pos_all = _mm_and_pd(pos_all, _mm_cmplt_pd(bxy, _mm_sub_pd(xy, rr)));
     neg_all = _mm_and_pd(
         neg_all, _mm_cmplt_pd(bxy, _mm_sub_pd(_mm_xor_pd(xy, neg), rr)));
-    const __m128d ZnZ = _mm_xor_pd(_mm_unpacklo_pd(Z, Z), negZ);
-    z_all = _mm_and_pd(z_all, _mm_cmplt_pd(bzz, _mm_sub_pd(ZnZ, HH)));
+    const __m128d ZH = _mm_sub_pd(_mm_xor_pd(_mm_unpacklo_pd(Z, Z), negZ), HH);
+    z_all = _mm_and_pd(z_all, _mm_cmplt_pd(bzz, ZH));
+    // (V): in the slab (fl(Z - H) < -b and fl(-Z - H) < -b, i.e.
+    // fl(Z + H) > b) and fl(fl(r2 - x x) - y y) > b' with the magnitude
+    // fl(fl(r2 + m m) + m m), as triangleCylinderTests evaluates it.
+    const __m128d slab = _mm_cmplt_pd(ZH, _mm_xor_pd(bzz, neg));
+    const __m128d xy2 = _mm_mul_pd(xy, xy);
+    const __m128d v =
+        _mm_sub_sd(_mm_sub_sd(r2, xy2), _mm_unpackhi_pd(xy2, xy2));
+    const double mm = m * m;
+    const __m128d bv = _mm_set_sd(((r * r + mm) + mm) * kRel + kAbs);
+    vin =
+        _mm_or_pd(vin, _mm_and_pd(_mm_and_pd(slab, _mm_unpackhi_pd(slab, slab)),
+                                  _mm_cmpgt_sd(v, bv)));
   }
   L->r = r;
   L->H = H;
   const int beyond =
       _mm_movemask_pd(_mm_or_pd(_mm_or_pd(pos_all, neg_all), z_all));
-  return beyond != 0 ? Fast::kDecided : Fast::kUnknown;
+  if (beyond != 0) return Pre::kEarlyOut;
+  return (_mm_movemask_pd(vin) & 1) != 0 ? Pre::kVertexIn : Pre::kOpen;
 }
 #else
 // Portable version: the bit-level validate() and rangeGateOk() of
 // decideSlow (float inputs widened first), then the same arithmetic.
 template <class S>
-TRICYL_ALWAYS_INLINE Fast prologue(const Cylinder<S>& cyl, const Pose<S>& pose,
-                                   const Triangle<S>& tri, Local* L) {
+TRICYL_ALWAYS_INLINE Pre prologue(const Cylinder<S>& cyl, const Pose<S>& pose,
+                                  const Triangle<S>& tri, Local* L) {
   Widened w;
   if constexpr (std::is_same_v<S, float>) {
     w = widen(cyl, pose, tri);
@@ -351,13 +369,15 @@ TRICYL_ALWAYS_INLINE Fast prologue(const Cylinder<S>& cyl, const Pose<S>& pose,
   double max_len = 0, rho = 0;
   if (!validate(Inputs{w.cyl, w.pose, w.tri}, &max_len, &rho) ||
       !detail::rangeGateOk(max_len, rho))
-    return Fast::kGateMiss;
+    return Pre::kGateMiss;
   const auto& R = w.pose.R;
   const double r = w.cyl.radius, H = w.cyl.lz;
   L->r = r;
   L->H = H;
   const Vec3<double>* P[3] = {&w.tri.a, &w.tri.b, &w.tri.c};
   unsigned beyond = 63;
+  bool vin = false;
+  const double r2 = r * r;
   for (int i = 0; i < 3; ++i) {
     const double d0 = P[i]->x - w.pose.t.x, d1 = P[i]->y - w.pose.t.y,
                  d2 = P[i]->z - w.pose.t.z;
@@ -375,8 +395,12 @@ TRICYL_ALWAYS_INLINE Fast prologue(const Cylinder<S>& cyl, const Pose<S>& pose,
     beyond &= unsigned(Z - H > bz) | unsigned(-Z - H > bz) << 1 |
               unsigned(x - r > bx) << 2 | unsigned(-x - r > bx) << 3 |
               unsigned(y - r > bx) << 4 | unsigned(-y - r > bx) << 5;
+    const double mm = m * m;
+    vin |= (Z - H < -bz) & (Z + H > bz) &
+           ((r2 - x * x) - y * y > ((r2 + mm) + mm) * kRel + kAbs);
   }
-  return beyond != 0 ? Fast::kDecided : Fast::kUnknown;
+  if (beyond != 0) return Pre::kEarlyOut;
+  return vin ? Pre::kVertexIn : Pre::kOpen;
 }
 #endif
 
@@ -414,12 +438,16 @@ TRICYL_ALWAYS_INLINE Fast decideFast(const Cylinder<S>& cyl,
                                      const Pose<S>& pose,
                                      const Triangle<S>& tri, Decision* out) {
   Local L;
-  const Fast f = prologue(cyl, pose, tri, &L);
-  if (f == Fast::kDecided) {
+  const Pre f = prologue(cyl, pose, tri, &L);
+  if (f == Pre::kEarlyOut) {
     *out = {Answer::kDisjoint, Stage::kEarlyOut};
-    return f;
+    return Fast::kDecided;
   }
-  if (f == Fast::kGateMiss) return f;
+  if (f == Pre::kVertexIn) {
+    *out = {Answer::kIntersect, Stage::kFastPath};
+    return Fast::kDecided;
+  }
+  if (f == Pre::kGateMiss) return Fast::kGateMiss;
   const Tri t = filterTests(L);
   if (t == Tri::kUnknown) return Fast::kUnknown;
   *out = {t == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
