@@ -4,11 +4,18 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <type_traits>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#endif
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define TRICYL_FAST_AVX2 1
+#include <immintrin.h>
+#else
+#define TRICYL_FAST_AVX2 0
 #endif
 
 #include "filter.h"
@@ -181,7 +188,7 @@ enum class Pre { kGateMiss, kEarlyOut, kVertexIn, kOpen };
 // The local frame as toLocal<FilterKernel> computes it: one magnitude
 // m_i = rho s_i per vertex (rho = max |R_jk|), z doubled; and the cylinder.
 struct Local {
-  double x[3], y[3], Z[3], m[3];
+  double x[4], y[4], Z[4], m[4];  // [3]: scratch (the AVX2 lane 3)
   double r, H;
 };
 
@@ -404,6 +411,123 @@ TRICYL_ALWAYS_INLINE Pre prologue(const Cylinder<S>& cyl, const Pose<S>& pose,
 }
 #endif
 
+#if TRICYL_FAST_AVX2
+// The same prologue with AVX2 (chosen at run time), lanes = the three
+// vertices (lane 3 repeats vertex 2, so "all lanes" and "any lane" are
+// "all vertices" and "any vertex"). Every lane operation is the scalar IEEE
+// operation of the portable version in the same order (no FMA: the target
+// is "avx2" only and -ffp-contract=off), so the values, bounds and
+// comparisons are those of the SSE2 and portable versions, bit for bit.
+#define TRICYL_AVX2_FN __attribute__((target("avx2"), always_inline)) inline
+template <class S>
+TRICYL_AVX2_FN __m256d lanes(const S& a, const S& b, const S& c) {
+  if constexpr (sizeof(S) == 8) {
+    return _mm256_set_pd(c, c, b, a);
+  } else {
+    return _mm256_cvtps_pd(_mm_set_ps(c, c, b, a));
+  }
+}
+template <class S>
+TRICYL_AVX2_FN __m256d bcast(const S& v) {
+  return _mm256_set1_pd(double(v));
+}
+
+template <class S>
+__attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
+                                                        const Pose<S>& pose,
+                                                        const Triangle<S>& tri,
+                                                        Local* L) {
+  if (!gateBitsOk(cyl, pose, tri)) return Pre::kGateMiss;
+  const double r = double(cyl.radius), H = double(cyl.lz);
+  if (!(r >= 0) || !(H >= 0)) return Pre::kGateMiss;  // finite: no trap
+  const __m256d abs =
+      _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffLL));
+  const __m256d neg = _mm256_set1_pd(-0.0);
+  const auto& R = pose.R;
+  // rho = max |R_jk|, the same value as the scalar max.
+  const __m256d r0 =
+      _mm256_and_pd(_mm256_set_pd(double(R[1][0]), double(R[0][2]),
+                                  double(R[0][1]), double(R[0][0])),
+                    abs);
+  const __m256d r1 =
+      _mm256_and_pd(_mm256_set_pd(double(R[2][1]), double(R[2][0]),
+                                  double(R[1][2]), double(R[1][1])),
+                    abs);
+  const __m256d rm = _mm256_max_pd(r0, r1);
+  __m128d rh =
+      _mm_max_pd(_mm256_castpd256_pd128(rm), _mm256_extractf128_pd(rm, 1));
+  rh = _mm_max_sd(
+      _mm_max_sd(rh, _mm_unpackhi_pd(rh, rh)),
+      _mm_and_pd(_mm_set_sd(double(R[2][2])), _mm256_castpd256_pd128(abs)));
+  const __m256d rho = _mm256_broadcastsd_pd(rh);
+
+  const __m256d d0 =
+      _mm256_sub_pd(lanes(tri.a.x, tri.b.x, tri.c.x), bcast(pose.t.x));
+  const __m256d d1 =
+      _mm256_sub_pd(lanes(tri.a.y, tri.b.y, tri.c.y), bcast(pose.t.y));
+  const __m256d d2 =
+      _mm256_sub_pd(lanes(tri.a.z, tri.b.z, tri.c.z), bcast(pose.t.z));
+  const __m256d s = _mm256_add_pd(
+      _mm256_add_pd(_mm256_and_pd(d0, abs), _mm256_and_pd(d1, abs)),
+      _mm256_and_pd(d2, abs));
+  const __m256d m = _mm256_mul_pd(rho, s);
+  const __m256d x =
+      _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(bcast(R[0][0]), d0),
+                                  _mm256_mul_pd(bcast(R[1][0]), d1)),
+                    _mm256_mul_pd(bcast(R[2][0]), d2));
+  const __m256d y =
+      _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(bcast(R[0][1]), d0),
+                                  _mm256_mul_pd(bcast(R[1][1]), d1)),
+                    _mm256_mul_pd(bcast(R[2][1]), d2));
+  const __m256d z =
+      _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(bcast(R[0][2]), d0),
+                                  _mm256_mul_pd(bcast(R[1][2]), d1)),
+                    _mm256_mul_pd(bcast(R[2][2]), d2));
+  const __m256d Z = _mm256_add_pd(z, z);
+  _mm256_storeu_pd(L->x, x);
+  _mm256_storeu_pd(L->y, y);
+  _mm256_storeu_pd(L->Z, Z);
+  _mm256_storeu_pd(L->m, m);
+  L->r = r;
+  L->H = H;
+
+  const __m256d rr = _mm256_set1_pd(r), HH = _mm256_set1_pd(H);
+  const __m256d kr = _mm256_set1_pd(kRel), ka = _mm256_set1_pd(kAbs);
+  const __m256d bx = _mm256_add_pd(_mm256_mul_pd(_mm256_add_pd(m, rr), kr), ka);
+  const __m256d bz = _mm256_add_pd(
+      _mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(m, m), HH), kr), ka);
+  const __m256d zt = _mm256_sub_pd(Z, HH);                      // Z - H
+  const __m256d zb = _mm256_sub_pd(_mm256_xor_pd(Z, neg), HH);  // -Z - H
+  const int m0 =
+      _mm256_movemask_pd(_mm256_cmp_pd(_mm256_sub_pd(x, rr), bx, _CMP_GT_OQ));
+  const int m1 = _mm256_movemask_pd(
+      _mm256_cmp_pd(_mm256_sub_pd(_mm256_xor_pd(x, neg), rr), bx, _CMP_GT_OQ));
+  const int m2 =
+      _mm256_movemask_pd(_mm256_cmp_pd(_mm256_sub_pd(y, rr), bx, _CMP_GT_OQ));
+  const int m3 = _mm256_movemask_pd(
+      _mm256_cmp_pd(_mm256_sub_pd(_mm256_xor_pd(y, neg), rr), bx, _CMP_GT_OQ));
+  const int m4 = _mm256_movemask_pd(_mm256_cmp_pd(zt, bz, _CMP_GT_OQ));
+  const int m5 = _mm256_movemask_pd(_mm256_cmp_pd(zb, bz, _CMP_GT_OQ));
+  if (((m0 == 15) | (m1 == 15)) | ((m2 == 15) | (m3 == 15)) |
+      ((m4 == 15) | (m5 == 15)))
+    return Pre::kEarlyOut;
+  // (V), as in the SSE2 version.
+  const __m256d nbz = _mm256_xor_pd(bz, neg);
+  const __m256d slab = _mm256_and_pd(_mm256_cmp_pd(zt, nbz, _CMP_LT_OQ),
+                                     _mm256_cmp_pd(zb, nbz, _CMP_LT_OQ));
+  const __m256d r2 = _mm256_set1_pd(r * r);
+  const __m256d mm = _mm256_mul_pd(m, m);
+  const __m256d v = _mm256_sub_pd(_mm256_sub_pd(r2, _mm256_mul_pd(x, x)),
+                                  _mm256_mul_pd(y, y));
+  const __m256d bv = _mm256_add_pd(
+      _mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(r2, mm), mm), kr), ka);
+  const int vin =
+      _mm256_movemask_pd(_mm256_and_pd(slab, _mm256_cmp_pd(v, bv, _CMP_GT_OQ)));
+  return vin != 0 ? Pre::kVertexIn : Pre::kOpen;
+}
+#undef TRICYL_AVX2_FN
+#endif
+
 // The rest of the double filter after the early-outs (not inlined: the
 // early-outs decide most queries).
 TRICYL_NOINLINE Tri filterTests(const Local& L) {
@@ -433,12 +557,17 @@ TRICYL_NOINLINE Tri filterTests(const Local& L) {
 // computes bit for bit the values and bounds that makeLocal<FilterKernel> and
 // triangleCylinder<FilterKernel> compute, so every answer it gives is one the
 // filter gives; it only reaches them with fewer instructions and branches.
-template <class S>
+template <bool kAvx2, class S>
 TRICYL_ALWAYS_INLINE Fast decideFast(const Cylinder<S>& cyl,
                                      const Pose<S>& pose,
                                      const Triangle<S>& tri, Decision* out) {
   Local L;
+#if TRICYL_FAST_AVX2
+  const Pre f =
+      kAvx2 ? prologueAvx2(cyl, pose, tri, &L) : prologue(cyl, pose, tri, &L);
+#else
   const Pre f = prologue(cyl, pose, tri, &L);
+#endif
   if (f == Pre::kEarlyOut) {
     *out = {Answer::kDisjoint, Stage::kEarlyOut};
     return Fast::kDecided;
@@ -455,21 +584,41 @@ TRICYL_ALWAYS_INLINE Fast decideFast(const Cylinder<S>& cyl,
   return Fast::kDecided;
 }
 
-template <class S>
+template <bool kAvx2, class S>
 TRICYL_ALWAYS_INLINE Decision decideBody(const Cylinder<S>& cylinder,
                                          const Pose<S>& pose,
                                          const Triangle<S>& triangle) {
   Decision d;
-  const Fast f = decideFast(cylinder, pose, triangle, &d);
+  const Fast f = decideFast<kAvx2>(cylinder, pose, triangle, &d);
   if (f == Fast::kDecided) return d;
   return decideSlow(cylinder, pose, triangle, f == Fast::kUnknown);
 }
+
+#if TRICYL_FAST_AVX2
+// Chosen once per process. Before this flag is initialised (a static
+// constructor of another translation unit calling in) it reads false and the
+// baseline path runs: same answers.
+// TRICYL_SCALAR_BASELINE=1 in the environment keeps the baseline path (to
+// test it on AVX2 machines).
+const bool kHasAvx2 = __builtin_cpu_supports("avx2") != 0 &&
+                      std::getenv("TRICYL_SCALAR_BASELINE") == nullptr;
+
+template <class S>
+__attribute__((target("avx2"), noinline)) Decision decideAvx2(
+    const Cylinder<S>& cylinder, const Pose<S>& pose,
+    const Triangle<S>& triangle) {
+  return decideBody<true>(cylinder, pose, triangle);
+}
+#endif
 
 template <class S>
 TRICYL_ALWAYS_INLINE Decision decideAny(const Cylinder<S>& cylinder,
                                         const Pose<S>& pose,
                                         const Triangle<S>& triangle) {
-  return decideBody(cylinder, pose, triangle);
+#if TRICYL_FAST_AVX2
+  if (kHasAvx2) return decideAvx2(cylinder, pose, triangle);
+#endif
+  return decideBody<false>(cylinder, pose, triangle);
 }
 
 bool checked(Decision d) {
