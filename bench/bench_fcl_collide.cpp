@@ -1,10 +1,12 @@
-// End-to-end fcl::collide of a cylinder against env.obj and bunny.obj
-// (BVHModel<OBBRSS>): tricyl::Solver vs FCL's stock GJKSolver_libccd in the
-// same binary, first hit (num_max_contacts = 1) and exhaustive, contact data
-// off and on. A third solver whose Cylinder/triangle test is a no-op
-// ("traversal") measures what the BVH traversal alone costs in the
-// exhaustive case, where the set of visited node pairs does not depend on
-// the leaf answers.
+// End-to-end collide of a cylinder against env.obj and bunny.obj
+// (BVHModel<OBBRSS>), in the same binary, first hit (num_max_contacts = 1)
+// and exhaustive, contact data off and on:
+// - tricyl/    tricyl::collide: tricyl's own traversal (fcl_mesh_cylinder.h)
+// - solver/    fcl::collide with tricyl::Solver: FCL's traversal, exact leaves
+// - stock/     fcl::collide: FCL's traversal and libccd's MPR
+// - traversal/ fcl::collide with a solver whose Cylinder/triangle test is a
+//   no-op: what FCL's traversal alone costs in the exhaustive case, where
+//   the set of visited node pairs does not depend on the leaf answers.
 //
 // Each benchmark iteration is one collide call; the calls cycle through a
 // fixed, seeded set of cylinder poses near the mesh surface (about half of
@@ -120,7 +122,7 @@ const MeshData& mesh(const std::string& file) {
   return file == "env.obj" ? env : bunny;
 }
 
-enum class Which { kTricyl, kStock, kTraversal };
+enum class Which { kTricyl, kSolver, kStock, kTraversal };
 
 void BM_Collide(benchmark::State& state, std::string file, Which which,
                 bool exhaustive, bool contact) {
@@ -136,6 +138,7 @@ void BM_Collide(benchmark::State& state, std::string file, Which which,
     cyls.push_back(
         std::make_unique<fcl::CollisionObjectd>(d.cyls[i], d.poses[i]));
   const TraversalOnlySolver null_solver;
+  const tricyl::Solver<double> solver;
   std::size_t i = 0;
   double hits = 0;
   for (auto _ : state) {
@@ -144,6 +147,9 @@ void BM_Collide(benchmark::State& state, std::string file, Which which,
     switch (which) {
       case Which::kTricyl:
         tricyl::collide(&o_mesh, o_cyl, req, res);
+        break;
+      case Which::kSolver:
+        fcl::collide(&o_mesh, o_cyl, &solver, req, res);
         break;
       case Which::kStock:
         fcl::collide(&o_mesh, o_cyl, req, res);
@@ -169,6 +175,8 @@ void registerAll() {
                                  (contact ? "/contact" : "/bool");
         benchmark::RegisterBenchmark(("tricyl/" + base).c_str(), BM_Collide,
                                      file, Which::kTricyl, exhaustive, contact);
+        benchmark::RegisterBenchmark(("solver/" + base).c_str(), BM_Collide,
+                                     file, Which::kSolver, exhaustive, contact);
         benchmark::RegisterBenchmark(("stock/" + base).c_str(), BM_Collide,
                                      file, Which::kStock, exhaustive, contact);
         if (exhaustive && !contact)

@@ -539,6 +539,15 @@ Answer tryIntersectMask(const Cylinder<S>& cylinder, const Pose<S>& pose,
 }
 
 template <class S>
+Answer tryIntersectMask(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                        const TriangleArrays<S>& triangles, std::uint64_t* mask,
+                        std::size_t* hits, const BatchOptions& options,
+                        BatchStats* stats) noexcept {
+  return maskImpl(cylinder, pose, triangles, triangles.num_triangles, mask,
+                  hits, options, stats, ArrayScan{});
+}
+
+template <class S>
 Answer tryIntersectAny(const Cylinder<S>& cylinder, const Pose<S>& pose,
                        const MeshView<S>& mesh, std::size_t* first,
                        const BatchOptions& options,
@@ -643,6 +652,10 @@ std::optional<std::size_t> intersectAny(const Cylinder<S>& cylinder,
   template Answer tryIntersectMask(                                            \
       const Cylinder<S>&, const Pose<S>&, const MeshView<S>&, std::uint64_t*,  \
       std::size_t*, const BatchOptions&, BatchStats*) noexcept;                \
+  template Answer tryIntersectMask(const Cylinder<S>&, const Pose<S>&,         \
+                                   const TriangleArrays<S>&, std::uint64_t*,   \
+                                   std::size_t*, const BatchOptions&,          \
+                                   BatchStats*) noexcept;                      \
   template Answer tryIntersectAny(const Cylinder<S>&, const Pose<S>&,          \
                                   const MeshView<S>&, std::size_t*,            \
                                   const BatchOptions&, BatchStats*) noexcept;

@@ -89,6 +89,7 @@
 #include <vector>
 
 #include "tricyl/fcl_contact.h"
+#include "tricyl/fcl_mesh_cylinder.h"
 #include "tricyl/types.h"
 
 namespace tricyl {
@@ -182,12 +183,22 @@ Pose<S> toPose(const fcl::Transform3<S>& tf) {
 
 /// fcl::collide(o1, o2, request, result) with Solver<S>: the solver's
 /// collision_tolerance is request.gjk_tolerance, as FCL's 4-argument form
-/// sets it for GJKSolver_libccd. Returns the number of contacts.
+/// sets it for GJKSolver_libccd. A BVHModel/Cylinder pair (double) runs
+/// tricyl's own traversal instead of FCL's (fcl_mesh_cylinder.h: same
+/// answers, certified node test, batched leaves). Returns the number of
+/// contacts.
 template <class S>
 std::size_t collide(const fcl::CollisionObject<S>* o1,
                     const fcl::CollisionObject<S>* o2,
                     const fcl::CollisionRequest<S>& request,
                     fcl::CollisionResult<S>& result) {
+  if constexpr (std::is_same_v<S, double>) {  // mesh/cylinder: own traversal
+    std::size_t n = 0;
+    if (collideMeshCylinder(o1->collisionGeometry().get(), o1->getTransform(),
+                            o2->collisionGeometry().get(), o2->getTransform(),
+                            request, result, &n))
+      return n;
+  }
   Solver<S> solver;
   solver.collision_tolerance = request.gjk_tolerance;
   return fcl::collide(o1, o2, &solver, request, result);
@@ -201,6 +212,10 @@ std::size_t collide(const fcl::CollisionGeometry<S>* g1,
                     const fcl::Transform3<S>& tf2,
                     const fcl::CollisionRequest<S>& request,
                     fcl::CollisionResult<S>& result) {
+  if constexpr (std::is_same_v<S, double>) {  // mesh/cylinder: own traversal
+    std::size_t n = 0;
+    if (collideMeshCylinder(g1, tf1, g2, tf2, request, result, &n)) return n;
+  }
   Solver<S> solver;
   solver.collision_tolerance = request.gjk_tolerance;
   return fcl::collide(g1, tf1, g2, tf2, &solver, request, result);

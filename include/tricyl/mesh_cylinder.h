@@ -169,6 +169,14 @@ Answer tryIntersectMask(const Cylinder<S>& cylinder, const Pose<S>& pose,
                         const BatchOptions& options = {},
                         BatchStats* stats = nullptr) noexcept;
 
+/// The same for triangles given as a structure of arrays.
+template <class S>
+Answer tryIntersectMask(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                        const TriangleArrays<S>& triangles, std::uint64_t* mask,
+                        std::size_t* hits = nullptr,
+                        const BatchOptions& options = {},
+                        BatchStats* stats = nullptr) noexcept;
+
 /// Non-throwing "any": kIntersect with *first the lowest hit, kDisjoint, or
 /// kInvalidInput with *first the lowest invalid triangle (or 0 when the
 /// cylinder or pose is invalid) when no hit precedes it.
@@ -197,6 +205,10 @@ Answer tryIntersectAny(const Cylinder<S>& cylinder, const Pose<S>& pose,
   extern template Answer tryIntersectMask(                                    \
       const Cylinder<S>&, const Pose<S>&, const MeshView<S>&, std::uint64_t*, \
       std::size_t*, const BatchOptions&, BatchStats*) noexcept;               \
+  extern template Answer tryIntersectMask(                                    \
+      const Cylinder<S>&, const Pose<S>&, const TriangleArrays<S>&,           \
+      std::uint64_t*, std::size_t*, const BatchOptions&,                      \
+      BatchStats*) noexcept;                                                  \
   extern template Answer tryIntersectAny(                                     \
       const Cylinder<S>&, const Pose<S>&, const MeshView<S>&, std::size_t*,   \
       const BatchOptions&, BatchStats*) noexcept;

@@ -5,6 +5,7 @@
 add_library(tricyl_fcl
   ${CMAKE_CURRENT_LIST_DIR}/fcl_solver.cpp
   ${CMAKE_CURRENT_LIST_DIR}/contact_estimate.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/mesh_collide.cpp
 )
 add_library(tricyl::fcl ALIAS tricyl_fcl)
 target_compile_features(tricyl_fcl PUBLIC cxx_std_17)

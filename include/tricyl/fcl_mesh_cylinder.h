@@ -1,0 +1,83 @@
+// tricyl's own traversal of an FCL BVHModel against a Cylinder: what
+// tricyl::collide runs for a mesh/cylinder pair instead of FCL's traversal
+// (fcl_solver.h). CMake target tricyl::fcl.
+//
+// CONTRACT
+// - Same answer as fcl::collide(mesh, cylinder, &tricyl::Solver, ...): a
+//   triangle collides iff tricyl::tryIntersect says so for the world-frame
+//   triangle FCL would hand the solver (fcl_solver.h, FRAMES: tf_mesh * v,
+//   or v itself for AABB/KDOP meshes whose transform FCL takes for the
+//   identity), so the Boolean is exact for those points. Touching counts.
+// - Contacts: one per colliding triangle, Contact(mesh, cylinder,
+//   triangle index, Contact::NONE), in the order of FCL's depth-first
+//   traversal of the model's own tree (left child first), at most
+//   request.num_max_contacts in total (counting the contacts already in
+//   `result`). With request.enable_contact, pos/normal/penetration_depth are
+//   tricyl::estimateContact's, exactly as the Solver stores them (normal from
+//   the mesh toward the cylinder). Either argument order: like FCL, the
+//   mesh is always o1 of the contacts.
+// - Where the two can differ: (a) FCL's floating-point BV tests may prune a
+//   node holding a triangle that touches the cylinder (rounding); the node
+//   test here is certified, so such triangles ARE reported. (b) For AABB and
+//   KDOP meshes with a non-identity transform FCL rebuilds the tree around
+//   the moved vertices on every call; the set of colliding triangles is the
+//   same, the traversal order (hence which triangles fill a small
+//   num_max_contacts) may differ.
+//
+// METHOD
+// 1. The cylinder is moved into the mesh frame once (centre, unit axis).
+// 2. Depth-first over the model's BVH with an explicit stack. A node is
+//    skipped only when a separating axis proves its box (the OBB of an OBB,
+//    kIOS or OBBRSS node, the box around an RSS, the axis-aligned slabs of an
+//    AABB or KDOP) disjoint from the cylinder: the cylinder's axis, the three
+//    box axes (with the cylinder's exact support along them) and the
+//    distance from the box centre to the axis line. Every comparison carries
+//    a margin that covers all rounding and the departure of both rotations
+//    from orthonormal (derivation in src/fcl/mesh_collide.cpp), so the
+//    test never skips a node with a colliding triangle.
+// 3. The surviving leaves' triangles are moved to the world frame and
+//    decided in blocks by the batch kernel (mesh_cylinder.h), whose answer
+//    for each triangle IS tryIntersect's. Blocks are flushed in traversal
+//    order, and the walk stops as soon as num_max_contacts is reached.
+//
+// NOT HANDLED HERE (collideMeshCylinder returns false; tricyl::collide then
+// runs fcl::collide with tricyl::Solver, whose answers are the same):
+// request.enable_cost, num_max_contacts == 0, a model that is not a built
+// triangle mesh, a geometry that is not occupied, NaN/Inf or negative sizes,
+// non-finite transforms, rotations far from orthonormal
+// (sum |R^T R - I| > 2^-20), and a triangle whose world coordinates are not
+// finite (answered "in collision" there, as the Solver documents).
+//
+// THREADS: reentrant; no state outside the call.
+#pragma once
+
+#include <fcl/narrowphase/collision_object.h>
+#include <fcl/narrowphase/collision_request.h>
+#include <fcl/narrowphase/collision_result.h>
+
+#include <cstddef>
+
+namespace tricyl {
+
+/// What one collideMeshCylinder call did (statistics; never changes an
+/// answer).
+struct TraversalStats {
+  std::size_t nodes_tested = 0;   ///< BV nodes given to the node test
+  std::size_t nodes_skipped = 0;  ///< nodes the node test proved disjoint
+  std::size_t leaves = 0;         ///< triangles given to the batch kernel
+  std::size_t hits = 0;           ///< triangles found colliding
+};
+
+/// Runs the traversal above when (g1, g2) is a BVHModel/Cylinder pair (either
+/// order) it handles; then returns true with *num_contacts =
+/// result.numContacts(). Otherwise returns false and touches nothing.
+bool collideMeshCylinder(const fcl::CollisionGeometry<double>* g1,
+                         const fcl::Transform3<double>& tf1,
+                         const fcl::CollisionGeometry<double>* g2,
+                         const fcl::Transform3<double>& tf2,
+                         const fcl::CollisionRequest<double>& request,
+                         fcl::CollisionResult<double>& result,
+                         std::size_t* num_contacts,
+                         TraversalStats* stats = nullptr);
+
+}  // namespace tricyl

@@ -1,0 +1,497 @@
+// tricyl's BVHModel/Cylinder traversal (fcl_mesh_cylinder.h): a certified
+// node test over the model's own tree, then the batch kernel on the leaves.
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/math/bv/AABB.h>
+#include <fcl/math/bv/OBB.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/math/bv/RSS.h>
+#include <fcl/math/bv/kDOP.h>
+#include <fcl/math/bv/kIOS.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "tricyl/fcl_contact.h"
+#include "tricyl/fcl_mesh_cylinder.h"
+#include "tricyl/fcl_solver.h"
+#include "tricyl/mesh_cylinder.h"
+#include "tricyl/triangle_cylinder.h"
+
+namespace tricyl {
+namespace {
+
+using V3 = fcl::Vector3d;
+using Tf = fcl::Transform3d;
+
+// ---------------------------------------------------------------------------
+// THE NODE TEST AND ITS MARGIN
+//
+// A node is skipped when one of these separating tests holds for its box
+// (centre b, axes a_i, half extents e_i) and the cylinder moved into the mesh
+// frame (centre c, unit axis u, radius r, half length h), with d = b - c:
+//   (A) |u.d|   > h + sum_i e_i |u.a_i|                       (cylinder axis)
+//   (B) |a_i.d| > e_i + h |a_i.u| + r sqrt(1 - (a_i.u)^2)     (box axis i)
+//   (C) |d - (u.d) u| > r + |e|                               (axis line)
+// In exact arithmetic with orthonormal rotations and boxes that contain
+// their triangles, each right-hand side is the sum of the two supports along
+// that direction (for (C): the cylinder lies within r of its axis line and
+// the box within |e| of b), so a skipped node holds no point of the
+// cylinder. What the computed test departs from that by, and the margin m
+// added to every right-hand side:
+// 1. Rounding in c, u (R_m^T (t_c - t_m), R_m^T R_c e_z), in the tests
+//    themselves, in FCL's box fit (centres, extents, unit axes), in the
+//    world vertices tf_m * v the leaf test sees, and in the box
+//    conversions below: each a few units in the last place (u = 2^-53) of
+//    the magnitudes involved, all bounded by
+//      L = |b|_1 + sum e + |c|_1 + |t_m|_1 + |t_c|_1 + r + h.
+//    2^-36 L is more than 10^5 times the largest of them.
+// 2. Rotations a hair off orthonormal, delta = max over R_m, R_c of
+//    sum |R^T R - I| (required <= 2^-20, else FCL's own traversal runs):
+//    the contract's cylinder {x : R_c^T (x - t_c) in C} is then
+//    {t_c + R_c^-T y : y in C}, and the mesh frame is R_m^-1 (x - t_m);
+//    R^-T and R^-1 differ from R and R^T by at most 2 delta (delta <= 2^-20)
+//    in norm, which moves every point of the sets compared by at most
+//    2 delta (|x - t_m| + r + h) <= 4 delta L; u is unit to within 2 delta.
+//    16 delta L covers both.
+// So m = (2^-36 + 16 delta) L, evaluated per node (the |b|_1 + sum e part
+// changes from node to node). NaN or Inf in a box makes m NaN or Inf, and
+// no test with a NaN or an infinite right-hand side skips: such nodes are
+// always visited (and their triangles reported "in collision", below).
+constexpr double kRelMargin = 0x1p-36;
+constexpr double kMaxNonOrthogonality = 0x1p-20;
+
+/// The cylinder in the mesh frame and the per-call constants.
+struct Local {
+  double c[3];
+  double u[3];
+  double r;
+  double h;
+  double rel;     // 2^-36 + 16 delta
+  double global;  // rel * (|c|_1 + |t_m|_1 + |t_c|_1 + r + h)
+  // Axis-aligned boxes: the cylinder's support along the world axes of the
+  // mesh frame, h |u_i| + r sqrt(1 - u_i^2), and |u_i|.
+  double au[3];
+  double support[3];
+};
+
+/// A node's box. Axis-aligned boxes (AABB, KDOP) leave `a` unset.
+struct Box {
+  double b[3];
+  double a[3][3];  // a[i] = axis i
+  double e[3];
+};
+
+template <bool kAligned>
+bool overlaps(const Box& x, const Local& k) {
+  const double d[3] = {x.b[0] - k.c[0], x.b[1] - k.c[1], x.b[2] - k.c[2]};
+  const double m =
+      k.global + k.rel * (std::fabs(x.b[0]) + std::fabs(x.b[1]) +
+                          std::fabs(x.b[2]) + x.e[0] + x.e[1] + x.e[2]);
+  const double ud = k.u[0] * d[0] + k.u[1] * d[1] + k.u[2] * d[2];
+  double ua[3];
+  if constexpr (kAligned) {
+    for (int i = 0; i < 3; ++i) ua[i] = k.au[i];
+  } else {
+    for (int i = 0; i < 3; ++i)
+      ua[i] = std::fabs(k.u[0] * x.a[i][0] + k.u[1] * x.a[i][1] +
+                        k.u[2] * x.a[i][2]);
+  }
+  // (A): the cylinder's axis.
+  if (std::fabs(ud) >
+      k.h + x.e[0] * ua[0] + x.e[1] * ua[1] + x.e[2] * ua[2] + m)
+    return false;
+  // (B): the box's axes.
+  for (int i = 0; i < 3; ++i) {
+    double ad, sup;
+    if constexpr (kAligned) {
+      ad = d[i];
+      sup = k.support[i];
+    } else {
+      ad = x.a[i][0] * d[0] + x.a[i][1] * d[1] + x.a[i][2] * d[2];
+      sup = k.h * ua[i] + k.r * std::sqrt(std::max(0.0, 1.0 - ua[i] * ua[i]));
+    }
+    if (std::fabs(ad) > x.e[i] + sup + m) return false;
+  }
+  // (C): the axis line. Squared on both sides (both non-negative; the
+  // relative rounding of the squares is covered by m as in 1.).
+  const double q[3] = {d[0] - ud * k.u[0], d[1] - ud * k.u[1],
+                       d[2] - ud * k.u[2]};
+  const double reach =
+      k.r + std::sqrt(x.e[0] * x.e[0] + x.e[1] * x.e[1] + x.e[2] * x.e[2]) + m;
+  return !(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] > reach * reach);
+}
+
+// Box conversions, one per BV type. Each gives a box containing the BV.
+void fromObb(const fcl::OBB<double>& o, Box* x) {
+  for (int i = 0; i < 3; ++i) {
+    x->b[i] = o.To[i];
+    x->e[i] = o.extent[i];
+    for (int j = 0; j < 3; ++j) x->a[i][j] = o.axis(j, i);
+  }
+}
+
+void fromMinMax(const double* lo, const double* hi, Box* x) {
+  for (int i = 0; i < 3; ++i) {
+    x->b[i] = 0.5 * (lo[i] + hi[i]);
+    x->e[i] = 0.5 * (hi[i] - lo[i]);
+  }
+}
+
+template <class BV>
+struct BoxOf;
+
+template <>
+struct BoxOf<fcl::AABB<double>> {
+  static constexpr bool kAligned = true;
+  static void get(const fcl::AABB<double>& v, Box* x) {
+    fromMinMax(v.min_.data(), v.max_.data(), x);
+  }
+};
+
+template <std::size_t N>
+struct BoxOf<fcl::KDOP<double, N>> {
+  static constexpr bool kAligned = true;
+  // The first three of the N/2 directions are the coordinate axes; the
+  // minima are dist(0..2), the maxima dist(N/2 + 0..2) (FCL's kDOP.h).
+  static void get(const fcl::KDOP<double, N>& v, Box* x) {
+    const double lo[3] = {v.dist(0), v.dist(1), v.dist(2)};
+    const double hi[3] = {v.dist(N / 2), v.dist(N / 2 + 1), v.dist(N / 2 + 2)};
+    fromMinMax(lo, hi, x);
+  }
+};
+
+template <>
+struct BoxOf<fcl::OBB<double>> {
+  static constexpr bool kAligned = false;
+  static void get(const fcl::OBB<double>& v, Box* x) { fromObb(v, x); }
+};
+
+template <>
+struct BoxOf<fcl::OBBRSS<double>> {
+  static constexpr bool kAligned = false;
+  static void get(const fcl::OBBRSS<double>& v, Box* x) { fromObb(v.obb, x); }
+};
+
+template <>
+struct BoxOf<fcl::kIOS<double>> {
+  static constexpr bool kAligned = false;
+  static void get(const fcl::kIOS<double>& v, Box* x) { fromObb(v.obb, x); }
+};
+
+template <>
+struct BoxOf<fcl::RSS<double>> {
+  static constexpr bool kAligned = false;
+  // FCL's RSS: a rectangle with one corner at To, sides l[0] along axis
+  // column 0 and l[1] along column 1, swept by a sphere of radius r. Its box:
+  // centre To + (l0/2) a0 + (l1/2) a1, half extents (l0/2 + r, l1/2 + r, r).
+  static void get(const fcl::RSS<double>& v, Box* x) {
+    const double h0 = 0.5 * v.l[0], h1 = 0.5 * v.l[1];
+    for (int i = 0; i < 3; ++i) {
+      x->b[i] = v.To[i] + h0 * v.axis(i, 0) + h1 * v.axis(i, 1);
+      for (int j = 0; j < 3; ++j) x->a[i][j] = v.axis(j, i);
+    }
+    x->e[0] = h0 + v.r;
+    x->e[1] = h1 + v.r;
+    x->e[2] = v.r;
+  }
+};
+
+/// sum |R^T R - I| over the nine entries; NaN for a non-finite R.
+double nonOrthogonality(const fcl::Matrix3d& R) {
+  double s = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const double g = R(0, i) * R(0, j) + R(1, i) * R(1, j) +
+                       R(2, i) * R(2, j) - (i == j ? 1.0 : 0.0);
+      s += std::fabs(g);
+    }
+  return s;
+}
+
+bool finiteTransform(const Tf& tf) {
+  const auto& M = tf.matrix();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j)
+      if (!std::isfinite(M(i, j))) return false;
+  return true;
+}
+
+double norm1(const V3& v) {
+  return std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
+}
+
+/// A small explicit stack (FCL's trees are rarely deeper than 64; deeper
+/// ones spill to the heap).
+class NodeStack {
+ public:
+  void push(int n) {
+    if (size_ < kInline)
+      inline_[size_] = n;
+    else
+      spill_.push_back(n);
+    ++size_;
+  }
+  bool empty() const { return size_ == 0; }
+  int pop() {
+    --size_;
+    if (size_ < kInline) return inline_[size_];
+    const int n = spill_.back();
+    spill_.pop_back();
+    return n;
+  }
+
+ private:
+  static constexpr std::size_t kInline = 128;
+  int inline_[kInline];
+  std::size_t size_ = 0;
+  std::vector<int> spill_;
+};
+
+/// Leaves waiting for the batch kernel, in traversal order.
+class LeafBlock {
+ public:
+  static constexpr std::size_t kSize = 64;
+
+  LeafBlock(const fcl::CollisionGeometry<double>* mesh,
+            const fcl::CollisionGeometry<double>* cyl_geom,
+            const Cylinder<double>& cyl, const Pose<double>& pose,
+            const fcl::CollisionRequest<double>& request,
+            fcl::CollisionResult<double>& result, TraversalStats* stats)
+      : mesh_(mesh),
+        cyl_geom_(cyl_geom),
+        cyl_(cyl),
+        pose_(pose),
+        request_(request),
+        result_(result),
+        stats_(stats) {}
+
+  bool full() const { return n_ == kSize; }
+
+  void add(int id, const V3& a, const V3& b, const V3& c) {
+    id_[n_] = id;
+    ax_[n_] = a[0], ay_[n_] = a[1], az_[n_] = a[2];
+    bx_[n_] = b[0], by_[n_] = b[1], bz_[n_] = b[2];
+    cx_[n_] = c[0], cy_[n_] = c[1], cz_[n_] = c[2];
+    ++n_;
+  }
+
+  /// Decides the waiting leaves and records the hits in order. Returns true
+  /// when the request is satisfied (the traversal stops).
+  bool flush() {
+    if (n_ == 0) return request_.isSatisfied(result_);
+    const TriangleArrays<double> arrays{ax_, ay_, az_, bx_, by_,
+                                        bz_, cx_, cy_, cz_, n_};
+    std::uint64_t mask[kSize / 64];
+    std::size_t hits = 0;
+    // Cylinder and pose were validated; a triangle with a non-finite world
+    // coordinate gets its bit set ("in collision", as the Solver answers).
+    tryIntersectMask(cyl_, pose_, arrays, mask, &hits);
+    if (stats_ != nullptr) stats_->leaves += n_;
+    bool done = false;
+    for (std::size_t i = 0; i < n_ && hits > 0; ++i) {
+      if (((mask[i / 64] >> (i % 64)) & 1u) == 0) continue;
+      --hits;
+      if (stats_ != nullptr) ++stats_->hits;
+      record(i);
+      if (request_.isSatisfied(result_)) {
+        done = true;
+        break;
+      }
+    }
+    n_ = 0;
+    return done;
+  }
+
+ private:
+  void record(std::size_t i) {
+    if (!request_.enable_contact) {
+      result_.addContact(fcl::Contact<double>(mesh_, cyl_geom_, id_[i],
+                                              fcl::Contact<double>::NONE));
+      return;
+    }
+    // The Solver's contact path (fcl_solver.cpp), and FCL's storage of it:
+    // the solver's normal points from the cylinder to the triangle, the
+    // Contact's from the mesh (o1) to the cylinder (o2).
+    const Triangle<double> tri{{ax_[i], ay_[i], az_[i]},
+                               {bx_[i], by_[i], bz_[i]},
+                               {cx_[i], cy_[i], cz_[i]}};
+    ContactEstimate<double> est;
+    if (estimateContact(cyl_, pose_, tri, &est) == Answer::kDisjoint) return;
+    result_.addContact(fcl::Contact<double>(
+        mesh_, cyl_geom_, id_[i], fcl::Contact<double>::NONE,
+        V3(est.point.x, est.point.y, est.point.z),
+        -V3(est.normal.x, est.normal.y, est.normal.z), est.depth));
+  }
+
+  const fcl::CollisionGeometry<double>* mesh_;
+  const fcl::CollisionGeometry<double>* cyl_geom_;
+  const Cylinder<double>& cyl_;
+  const Pose<double>& pose_;
+  const fcl::CollisionRequest<double>& request_;
+  fcl::CollisionResult<double>& result_;
+  TraversalStats* stats_;
+  std::size_t n_ = 0;
+  int id_[kSize];
+  double ax_[kSize], ay_[kSize], az_[kSize];
+  double bx_[kSize], by_[kSize], bz_[kSize];
+  double cx_[kSize], cy_[kSize], cz_[kSize];
+};
+
+template <class BV>
+bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
+              const fcl::Cylinderd* cyl_geom, const Tf& tf_cyl,
+              const fcl::CollisionRequest<double>& request,
+              fcl::CollisionResult<double>& result, TraversalStats* stats) {
+  using Boxer = BoxOf<BV>;
+  const auto& model = static_cast<const fcl::BVHModel<BV>&>(*geom);
+  if (model.getModelType() != fcl::BVH_MODEL_TRIANGLES ||
+      (model.build_state != fcl::BVH_BUILD_STATE_PROCESSED &&
+       model.build_state != fcl::BVH_BUILD_STATE_UPDATED) ||
+      model.getNumBVs() <= 0 || model.vertices == nullptr ||
+      model.tri_indices == nullptr)
+    return false;
+
+  // Validation: anything the margins do not cover goes to FCL's traversal.
+  const double r = cyl_geom->radius, lz = cyl_geom->lz;
+  if (!(std::isfinite(r) && std::isfinite(lz) && r >= 0 && lz >= 0) ||
+      !finiteTransform(tf_mesh) || !finiteTransform(tf_cyl))
+    return false;
+  const fcl::Matrix3d& Rm = tf_mesh.linear();
+  const fcl::Matrix3d& Rc = tf_cyl.linear();
+  const double delta = std::max(nonOrthogonality(Rm), nonOrthogonality(Rc));
+  if (!(delta <= kMaxNonOrthogonality)) return false;
+
+  Local k;
+  const V3 c = Rm.transpose() * (tf_cyl.translation() - tf_mesh.translation());
+  const V3 u = Rm.transpose() * Rc.col(2);
+  for (int i = 0; i < 3; ++i) {
+    k.c[i] = c[i];
+    k.u[i] = u[i];
+  }
+  k.r = r;
+  k.h = 0.5 * lz;
+  k.rel = kRelMargin + 16 * delta;
+  k.global = k.rel * (norm1(c) + norm1(tf_mesh.translation()) +
+                      norm1(tf_cyl.translation()) + k.r + k.h);
+  for (int i = 0; i < 3; ++i) {
+    k.au[i] = std::fabs(u[i]);
+    k.support[i] =
+        k.h * k.au[i] + k.r * std::sqrt(std::max(0.0, 1.0 - u[i] * u[i]));
+  }
+
+  // World vertices exactly as the Solver sees them (fcl_solver.h, FRAMES):
+  // AABB and KDOP meshes are moved by FCL's initialize() unless it takes the
+  // transform for the identity (Eigen's isIdentity, as FCL calls it).
+  const bool raw = Boxer::kAligned && tf_mesh.matrix().isIdentity();
+  const Cylinder<double> cyl{r, lz};
+  const Pose<double> pose = toPose(tf_cyl);
+  LeafBlock block(geom, cyl_geom, cyl, pose, request, result, stats);
+  NodeStack stack;
+  stack.push(0);
+  Box box;
+  std::size_t tested = 0, skipped = 0;
+  bool done = false;
+  while (!stack.empty() && !done) {
+    const int id = stack.pop();
+    const fcl::BVNode<BV>& node = model.getBV(id);
+    Boxer::get(node.bv, &box);
+    ++tested;
+    if (!overlaps<Boxer::kAligned>(box, k)) {
+      ++skipped;
+      continue;
+    }
+    if (!node.isLeaf()) {
+      stack.push(node.rightChild());  // left child first, as FCL
+      stack.push(node.leftChild());
+      continue;
+    }
+    const int prim = node.primitiveId();
+    const fcl::Triangle& t = model.tri_indices[prim];
+    const V3& p0 = model.vertices[t[0]];
+    const V3& p1 = model.vertices[t[1]];
+    const V3& p2 = model.vertices[t[2]];
+    if (raw)
+      block.add(prim, p0, p1, p2);
+    else
+      block.add(prim, tf_mesh * p0, tf_mesh * p1, tf_mesh * p2);
+    if (block.full()) done = block.flush();
+  }
+  if (!done) block.flush();
+  if (stats != nullptr) {
+    stats->nodes_tested += tested;
+    stats->nodes_skipped += skipped;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool collideMeshCylinder(const fcl::CollisionGeometry<double>* g1,
+                         const fcl::Transform3<double>& tf1,
+                         const fcl::CollisionGeometry<double>* g2,
+                         const fcl::Transform3<double>& tf2,
+                         const fcl::CollisionRequest<double>& request,
+                         fcl::CollisionResult<double>& result,
+                         std::size_t* num_contacts, TraversalStats* stats) {
+  if (g1 == nullptr || g2 == nullptr) return false;
+  // FCL always runs the mesh as o1 (collide swaps a shape/BVH pair).
+  if (g2->getObjectType() == fcl::OT_BVH &&
+      g1->getNodeType() == fcl::GEOM_CYLINDER)
+    return collideMeshCylinder(g2, tf2, g1, tf1, request, result, num_contacts,
+                               stats);
+  if (g1->getObjectType() != fcl::OT_BVH ||
+      g2->getNodeType() != fcl::GEOM_CYLINDER)
+    return false;
+  if (request.enable_cost || request.num_max_contacts == 0 ||
+      !g1->isOccupied() || !g2->isOccupied())
+    return false;
+  if (request.isSatisfied(result)) {  // as FCL's collider does first
+    *num_contacts = result.numContacts();
+    return true;
+  }
+  const auto* cyl = static_cast<const fcl::Cylinderd*>(g2);
+  bool handled = false;
+  switch (g1->getNodeType()) {
+    case fcl::BV_AABB:
+      handled = traverse<fcl::AABB<double>>(g1, tf1, cyl, tf2, request, result,
+                                            stats);
+      break;
+    case fcl::BV_OBB:
+      handled =
+          traverse<fcl::OBB<double>>(g1, tf1, cyl, tf2, request, result, stats);
+      break;
+    case fcl::BV_RSS:
+      handled =
+          traverse<fcl::RSS<double>>(g1, tf1, cyl, tf2, request, result, stats);
+      break;
+    case fcl::BV_kIOS:
+      handled = traverse<fcl::kIOS<double>>(g1, tf1, cyl, tf2, request, result,
+                                            stats);
+      break;
+    case fcl::BV_OBBRSS:
+      handled = traverse<fcl::OBBRSS<double>>(g1, tf1, cyl, tf2, request,
+                                              result, stats);
+      break;
+    case fcl::BV_KDOP16:
+      handled = traverse<fcl::KDOP<double, 16>>(g1, tf1, cyl, tf2, request,
+                                                result, stats);
+      break;
+    case fcl::BV_KDOP18:
+      handled = traverse<fcl::KDOP<double, 18>>(g1, tf1, cyl, tf2, request,
+                                                result, stats);
+      break;
+    case fcl::BV_KDOP24:
+      handled = traverse<fcl::KDOP<double, 24>>(g1, tf1, cyl, tf2, request,
+                                                result, stats);
+      break;
+    default:
+      break;
+  }
+  if (handled) *num_contacts = result.numContacts();
+  return handled;
+}
+
+}  // namespace tricyl
