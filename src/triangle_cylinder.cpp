@@ -528,6 +528,38 @@ __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
 #undef TRICYL_AVX2_FN
 #endif
 
+// A separating line in the projection (docs/exactness.md, "Edge
+// separation"): with o_ij = x_i y_j - x_j y_i (twice the signed area of the
+// origin, P_i, P_j) and A2 = o01 + o12 + o20 (twice the projected area), the
+// origin lies strictly on the other side of edge ij's line than the third
+// vertex iff sign(o_ij) = -sign(A2) != 0, and its distance to that line,
+// |o_ij| / |P_j - P_i|, exceeds r iff o_ij^2 - r^2 L > 0 with
+// L = |P_j - P_i|^2 (> 0 here, since o_ij != 0). Then the whole disk lies in
+// the open half-plane beyond the line, the projected triangle in the closed
+// one on the other side: the projections are disjoint, so are the solids.
+// Each sign is certified by FilterKernel::sign (degree <= 8, depth <= 9, the
+// same quantities (A) and (E) evaluate), so "true" is an exact fact; any
+// undecided sign just skips the test.
+inline bool edgeSeparates(const detail::TriCylLocal<FilterKernel>& q) {
+  using detail::Fd;
+  const Fd* x = q.x;
+  const Fd* y = q.y;
+  const Fd o[3] = {x[0] * y[1] - x[1] * y[0], x[1] * y[2] - x[2] * y[1],
+                   x[2] * y[0] - x[0] * y[2]};
+  const Sign sA = FilterKernel::sign(o[0] + o[1] + o[2]);
+  if (sA != Sign::kPos && sA != Sign::kNeg) return false;
+  const Sign outside = sA == Sign::kPos ? Sign::kNeg : Sign::kPos;
+  const Fd r2 = q.r * q.r;
+  for (int i = 0; i < 3; ++i) {
+    if (FilterKernel::sign(o[i]) != outside) continue;
+    const int j = i == 2 ? 0 : i + 1;
+    const Fd ex = x[j] - x[i], ey = y[j] - y[i];
+    const Fd len2 = ex * ex + ey * ey;
+    if (FilterKernel::sign(o[i] * o[i] - r2 * len2) == Sign::kPos) return true;
+  }
+  return false;
+}
+
 // The rest of the double filter after the early-outs (not inlined: the
 // early-outs decide most queries).
 TRICYL_NOINLINE Tri filterTests(const Local& L) {
@@ -549,6 +581,7 @@ TRICYL_NOINLINE Tri filterTests(const Local& L) {
   }
   q.H = FilterKernel::lift(L.H);
   q.r = FilterKernel::lift(L.r);
+  if (edgeSeparates(q)) return Tri::kFalse;
   return detail::triangleCylinderTests<FilterKernel>(q, top, bot);
 }
 
