@@ -432,12 +432,60 @@ TRICYL_AVX2_FN __m256d bcast(const S& v) {
   return _mm256_set1_pd(double(v));
 }
 
+// gateBitsOk with 256-bit integer operations (same bits, same answer).
+template <class S>
+__attribute__((target("avx2"), always_inline)) inline bool gateBitsOkAvx2(
+    const Cylinder<S>& cyl, const Pose<S>& pose, const Triangle<S>& tri) {
+  const char* T = reinterpret_cast<const char*>(&tri);
+  const char* P = reinterpret_cast<const char*>(&pose);
+  const char* C = reinterpret_cast<const char*>(&cyl);
+  const __m128i k = GateBits<S>::mask();
+  const __m256i k2 = _mm256_set_m128i(k, k);
+  const __m256i T0 = _mm256_and_si256(
+      _mm256_loadu_si256(reinterpret_cast<const __m256i*>(T)), k2);
+  const __m256i P0 = _mm256_and_si256(
+      _mm256_loadu_si256(reinterpret_cast<const __m256i*>(P)), k2);
+  __m256i len2, rot2;
+  __m128i len, rot;
+  if constexpr (sizeof(S) == 8) {  // R: bytes 0..71, t: 72..95
+    len2 = _mm256_max_epi16(
+        T0,
+        _mm256_and_si256(
+            _mm256_loadu_si256(reinterpret_cast<const __m256i*>(T + 32)), k2));
+    rot2 = _mm256_max_epi16(
+        P0,
+        _mm256_and_si256(
+            _mm256_loadu_si256(reinterpret_cast<const __m256i*>(P + 32)), k2));
+    len = _mm_max_epi16(_mm_max_epi16(_mm_and_si128(ld8(T + 64), k),
+                                      _mm_and_si128(ld16(P + 72), k)),
+                        _mm_max_epi16(_mm_and_si128(ld8(P + 88), k),
+                                      _mm_and_si128(ld16(C), k)));
+    rot = _mm_and_si128(ld8(P + 64), k);
+  } else {  // R: bytes 0..35, t: 36..47
+    len2 = T0;
+    rot2 = P0;
+    len = _mm_max_epi16(
+        _mm_max_epi16(_mm_and_si128(ld4(T + 32), k),
+                      _mm_and_si128(ld4(P + 36), k)),
+        _mm_max_epi16(_mm_and_si128(ld8(P + 40), k), _mm_and_si128(ld8(C), k)));
+    rot = _mm_and_si128(ld4(P + 32), k);
+  }
+  len = _mm_max_epi16(len, _mm_max_epi16(_mm256_castsi256_si128(len2),
+                                         _mm256_extracti128_si256(len2, 1)));
+  rot = _mm_max_epi16(rot, _mm_max_epi16(_mm256_castsi256_si128(rot2),
+                                         _mm256_extracti128_si256(rot2, 1)));
+  const __m128i bad =
+      _mm_or_si128(_mm_cmpgt_epi16(len, _mm_set1_epi16(GateBits<S>::kLen)),
+                   _mm_cmpgt_epi16(rot, _mm_set1_epi16(GateBits<S>::kRot)));
+  return _mm_movemask_epi8(bad) == 0;
+}
+
 template <class S>
 __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
                                                         const Pose<S>& pose,
                                                         const Triangle<S>& tri,
                                                         Local* L) {
-  if (!gateBitsOk(cyl, pose, tri)) return Pre::kGateMiss;
+  if (!gateBitsOkAvx2(cyl, pose, tri)) return Pre::kGateMiss;
   const double r = double(cyl.radius), H = double(cyl.lz);
   if (!(r >= 0) || !(H >= 0)) return Pre::kGateMiss;  // finite: no trap
   const __m256d abs =
@@ -458,7 +506,7 @@ __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
       _mm_max_pd(_mm256_castpd256_pd128(rm), _mm256_extractf128_pd(rm, 1));
   rh = _mm_max_sd(
       _mm_max_sd(rh, _mm_unpackhi_pd(rh, rh)),
-      _mm_and_pd(_mm_set_sd(double(R[2][2])), _mm256_castpd256_pd128(abs)));
+      _mm_and_pd(_mm_set1_pd(double(R[2][2])), _mm256_castpd256_pd128(abs)));
   const __m256d rho = _mm256_broadcastsd_pd(rh);
 
   const __m256d d0 =
@@ -484,12 +532,6 @@ __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
                                   _mm256_mul_pd(bcast(R[1][2]), d1)),
                     _mm256_mul_pd(bcast(R[2][2]), d2));
   const __m256d Z = _mm256_add_pd(z, z);
-  _mm256_storeu_pd(L->x, x);
-  _mm256_storeu_pd(L->y, y);
-  _mm256_storeu_pd(L->Z, Z);
-  _mm256_storeu_pd(L->m, m);
-  L->r = r;
-  L->H = H;
 
   const __m256d rr = _mm256_set1_pd(r), HH = _mm256_set1_pd(H);
   const __m256d kr = _mm256_set1_pd(kRel), ka = _mm256_set1_pd(kAbs);
@@ -511,6 +553,13 @@ __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
   if (((m0 == 15) | (m1 == 15)) | ((m2 == 15) | (m3 == 15)) |
       ((m4 == 15) | (m5 == 15)))
     return Pre::kEarlyOut;
+  _mm256_storeu_pd(L->x, x);
+  _mm256_storeu_pd(L->y, y);
+  _mm256_storeu_pd(L->Z, Z);
+  _mm256_storeu_pd(L->m, m);
+  L->r = r;
+  L->H = H;
+
   // (V), as in the SSE2 version.
   const __m256d nbz = _mm256_xor_pd(bz, neg);
   const __m256d slab = _mm256_and_pd(_mm256_cmp_pd(zt, nbz, _CMP_LT_OQ),

@@ -109,6 +109,7 @@ TYPED_TEST(TriangleCylinderHostile, NonFiniteInputRaisesNoFpException) {
   const Pose<S> pose = identityPose<S>();
   const Triangle<S> tri{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   for (S bad : {std::numeric_limits<S>::quiet_NaN(),
+                -std::numeric_limits<S>::quiet_NaN(),
                 std::numeric_limits<S>::signaling_NaN(),
                 std::numeric_limits<S>::infinity(),
                 -std::numeric_limits<S>::infinity()}) {
