@@ -35,18 +35,30 @@
 //    a margin that covers all rounding and the departure of both rotations
 //    from orthonormal (derivation in src/fcl/mesh_collide.cpp), so the
 //    test never skips a node with a colliding triangle.
+//    A node that passes with at most 8 triangles below it sends them all to
+//    the next step untested (cheaper than testing the nodes in between).
 // 3. The surviving leaves' triangles are moved to the world frame and
-//    decided in blocks by the batch kernel (mesh_cylinder.h), whose answer
-//    for each triangle IS tryIntersect's. Blocks are flushed in traversal
-//    order, and the walk stops as soon as num_max_contacts is reached.
+//    decided in blocks of 64 by the batch kernel (mesh_cylinder.h), whose
+//    answer for each triangle IS tryIntersect's. Blocks are flushed in
+//    traversal order, and the walk stops as soon as num_max_contacts is
+//    reached.
 //
-// NOT HANDLED HERE (collideMeshCylinder returns false; tricyl::collide then
-// runs fcl::collide with tricyl::Solver, whose answers are the same):
-// request.enable_cost, num_max_contacts == 0, a model that is not a built
-// triangle mesh, a geometry that is not occupied, NaN/Inf or negative sizes,
+// ASSUMED: each node's BV contains its triangles up to rounding, as FCL's
+// builders (fit, refit) make it for finite vertices; FCL's own traversal
+// relies on the same. A model whose root box is not finite or has axes
+// that are not orthonormal (what a NaN or Inf vertex does to FCL's fit) is
+// not handled (below).
+//
+// NOT HANDLED HERE (collideMeshCylinder returns false and touches nothing;
+// tricyl::collide then runs fcl::collide with tricyl::Solver, whose answers
+// are the same): request.enable_cost, num_max_contacts == 0, a model that
+// is not a built triangle mesh or whose root box is spoilt (above), a
+// geometry that is not occupied, NaN/Inf or negative cylinder sizes,
 // non-finite transforms, rotations far from orthonormal
-// (sum |R^T R - I| > 2^-20), and a triangle whose world coordinates are not
-// finite (answered "in collision" there, as the Solver documents).
+// (sum |R^T R - I| > 2^-20). A triangle the traversal reaches whose world
+// coordinates are not finite (tf * v overflowed) is reported in collision,
+// as the Solver answers it. No floating-point exception is raised by the
+// traversal itself (quiet comparisons), whatever the input.
 //
 // THREADS: reentrant; no state outside the call.
 #pragma once

@@ -91,6 +91,10 @@ struct Box {
   double e[3];
 };
 
+/// a > b without raising FE_INVALID on a NaN (a quiet comparison): false
+/// then, so a NaN never skips a node.
+inline bool gt(double a, double b) { return std::isgreater(a, b); }
+
 template <bool kAligned>
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((always_inline))
@@ -111,19 +115,19 @@ overlaps(const Box& x, const Local& k) {
                         k.u[2] * x.a[i][2]);
   }
   // (A): the cylinder's axis.
-  if (std::fabs(ud) >
-      k.h + x.e[0] * ua[0] + x.e[1] * ua[1] + x.e[2] * ua[2] + m)
+  if (gt(std::fabs(ud),
+         k.h + x.e[0] * ua[0] + x.e[1] * ua[1] + x.e[2] * ua[2] + m))
     return false;
   // (B): the box's axes. The radial part r sqrt(1 - (a_i.u)^2) >= 0 is only
   // computed when the rest does not already pass.
   for (int i = 0; i < 3; ++i) {
     if constexpr (kAligned) {
-      if (std::fabs(d[i]) > x.e[i] + k.support[i] + m) return false;
+      if (gt(std::fabs(d[i]), x.e[i] + k.support[i] + m)) return false;
     } else {
       const double ad = x.a[i][0] * d[0] + x.a[i][1] * d[1] + x.a[i][2] * d[2];
       const double excess = std::fabs(ad) - (x.e[i] + k.h * ua[i] + m);
-      if (excess > 0 &&
-          excess > k.r * std::sqrt(std::max(0.0, 1.0 - ua[i] * ua[i])))
+      if (gt(excess, 0) &&
+          gt(excess, k.r * std::sqrt(std::fmax(0.0, 1.0 - ua[i] * ua[i]))))
         return false;
     }
   }
@@ -133,11 +137,11 @@ overlaps(const Box& x, const Local& k) {
   const double q[3] = {d[0] - ud * k.u[0], d[1] - ud * k.u[1],
                        d[2] - ud * k.u[2]};
   const double q2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
-  const double near = k.r + std::max(x.e[0], std::max(x.e[1], x.e[2])) + m;
-  if (!(q2 > near * near)) return true;
+  const double near = k.r + std::fmax(x.e[0], std::fmax(x.e[1], x.e[2])) + m;
+  if (!gt(q2, near * near)) return true;
   const double reach =
       k.r + std::sqrt(x.e[0] * x.e[0] + x.e[1] * x.e[1] + x.e[2] * x.e[2]) + m;
-  return !(q2 > reach * reach);
+  return !gt(q2, reach * reach);
 }
 
 // Box conversions, one per BV type. Each gives a box containing the BV.
@@ -416,7 +420,26 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
   const fcl::Matrix3d& Rm = tf_mesh.linear();
   const fcl::Matrix3d& Rc = tf_cyl.linear();
   const double delta = std::max(nonOrthogonality(Rm), nonOrthogonality(Rc));
-  if (!(delta <= kMaxNonOrthogonality)) return false;
+  if (!std::islessequal(delta, kMaxNonOrthogonality)) return false;
+
+  // The root's box must be finite with orthonormal axes. FCL's fit gives
+  // that for finite vertices; a NaN or Inf vertex spoils the root's fit
+  // (its covariance) and can leave boxes that hold nothing: such models go
+  // to FCL's traversal.
+  {
+    Box root;
+    Boxer::get(model.getBV(0).bv, &root);
+    double bad = 0;
+    for (int i = 0; i < 3; ++i) {
+      if (!std::isfinite(root.b[i]) || !std::isfinite(root.e[i])) return false;
+      if constexpr (!Boxer::kAligned)
+        for (int j = 0; j < 3; ++j)
+          bad += std::fabs(root.a[i][0] * root.a[j][0] +
+                           root.a[i][1] * root.a[j][1] +
+                           root.a[i][2] * root.a[j][2] - (i == j ? 1.0 : 0.0));
+    }
+    if (!std::islessequal(bad, kMaxNonOrthogonality)) return false;
+  }
 
   Local k;
   const V3 c = Rm.transpose() * (tf_cyl.translation() - tf_mesh.translation());

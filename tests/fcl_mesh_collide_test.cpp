@@ -1,0 +1,386 @@
+// tricyl's own BVHModel/Cylinder traversal (fcl_mesh_cylinder.h), which
+// tricyl::collide runs for mesh/cylinder pairs: the same answers as
+// fcl::collide with tricyl::Solver (FCL's traversal, exact leaves), contact
+// for contact and in the same order where the contract says so; exact
+// touching found; the node test actually prunes; every request it does not
+// handle goes back to FCL.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <set>
+#include <vector>
+
+#include "fcl_test_support.h"
+#include "test_support.h"
+#include "tricyl/fcl_mesh_cylinder.h"
+#include "tricyl/fcl_solver.h"
+#include "tricyl/triangle_cylinder.h"
+
+namespace tricyl {
+namespace {
+
+using fcltest::Mesh;
+using fcltest::Scene;
+using fcltest::Tf;
+using fcltest::V3;
+
+constexpr std::size_t kMany = 100000;
+
+template <class BV>
+constexpr bool kAlignedBv = std::is_same_v<BV, fcl::AABB<double>> ||
+                            std::is_same_v<BV, fcl::KDOP<double, 16>> ||
+                            std::is_same_v<BV, fcl::KDOP<double, 18>> ||
+                            std::is_same_v<BV, fcl::KDOP<double, 24>>;
+
+/// Triangles the exact kernel says collide, with the world vertices FCL
+/// hands the solver (tf * v; v itself for an AABB/KDOP mesh whose transform
+/// Eigen's isIdentity accepts). Invalid input counts as colliding.
+template <class BV>
+std::set<std::size_t> bruteForce(const Mesh& m, const Tf& mesh_tf, double r,
+                                 double lz, const Tf& cyl_tf) {
+  const bool raw = kAlignedBv<BV> && mesh_tf.matrix().isIdentity();
+  const Pose<double> pose = toPose(cyl_tf);
+  std::set<std::size_t> ids;
+  for (std::size_t i = 0; i < m.t.size(); ++i) {
+    V3 p[3];
+    for (int j = 0; j < 3; ++j)
+      p[j] = raw ? m.v[m.t[i][j]] : V3(mesh_tf * m.v[m.t[i][j]]);
+    if (tryIntersect(Cylinder<double>{r, lz}, pose,
+                     fcltest::toTri(p[0], p[1], p[2])) != Answer::kDisjoint)
+      ids.insert(i);
+  }
+  return ids;
+}
+
+std::vector<int> sequence(const fcl::CollisionResultd& res) {
+  std::vector<int> ids;
+  for (std::size_t i = 0; i < res.numContacts(); ++i)
+    ids.push_back(res.getContact(i).b1);
+  return ids;
+}
+
+template <class BV>
+class MeshCollideTest : public ::testing::Test {};
+using AllBvs = ::testing::Types<fcl::AABB<double>, fcl::OBB<double>,
+                                fcl::RSS<double>, fcl::kIOS<double>,
+                                fcl::OBBRSS<double>, fcl::KDOP<double, 16>,
+                                fcl::KDOP<double, 18>, fcl::KDOP<double, 24>>;
+TYPED_TEST_SUITE(MeshCollideTest, AllBvs);
+
+// Every request shape on seeded scenes (random, grazing face/edge/vertex,
+// thin), half of them with an identity mesh transform: the exhaustive set is
+// the brute-force set; FCL's (with tricyl::Solver) is a subset (its BV tests
+// round) and, when equal, comes in the same order with bit-identical
+// contact data, and the first-k contacts are FCL's first k.
+TYPED_TEST(MeshCollideTest, SameContactsAsFclTraversalWithSolver) {
+  const std::uint64_t seed = test::baseSeed() ^ 0x6d657368u;
+  SCOPED_TRACE(test::seedTrace(seed));
+  const tricyl::Solver<double> solver;
+  long scenes = 0, fcl_missed = 0, hits = 0;
+  for (const Mesh& m : {fcltest::gridMesh(10), fcltest::sphereMesh(8)}) {
+    auto model = fcltest::makeModel<TypeParam>(m);
+    std::vector<Scene> all = fcltest::makeScenes(m, seed, 4);
+    for (std::size_t k = 0; k < all.size(); ++k) {
+      Scene s = all[k];
+      if (k % 2 == 1) {  // identity mesh transform: the raw-vertex path
+        s.cyl_tf = s.mesh_tf.inverse(Eigen::Isometry) * s.cyl_tf;
+        s.mesh_tf = Tf::Identity();
+      }
+      SCOPED_TRACE(fcltest::describe(s));
+      const std::set<std::size_t> truth =
+          bruteForce<TypeParam>(m, s.mesh_tf, s.r, s.lz, s.cyl_tf);
+      auto cyl = std::make_shared<fcl::Cylinderd>(s.r, s.lz);
+      const bool same_tree =
+          !kAlignedBv<TypeParam> || s.mesh_tf.matrix().isIdentity();
+      ++scenes;
+      hits += long(truth.size());
+      for (bool contact : {false, true}) {
+        fcl::CollisionRequestd all_req(kMany, contact);
+        fcl::CollisionResultd ours, theirs;
+        std::size_t n = 0;
+        TraversalStats st;
+        ASSERT_TRUE(collideMeshCylinder(model.get(), s.mesh_tf, cyl.get(),
+                                        s.cyl_tf, all_req, ours, &n, &st));
+        EXPECT_EQ(n, ours.numContacts());
+        fcl::collide(model.get(), s.mesh_tf, cyl.get(), s.cyl_tf, &solver,
+                     all_req, theirs);
+        const std::set<std::size_t> got = fcltest::contactIds(ours, cyl.get());
+        const std::set<std::size_t> fcl_got =
+            fcltest::contactIds(theirs, cyl.get());
+        ASSERT_EQ(got, truth) << "scene " << k;
+        EXPECT_EQ(st.hits, truth.size());
+        for (std::size_t id : fcl_got) EXPECT_EQ(truth.count(id), 1u);
+        if (fcl_got != got) {
+          ++fcl_missed;
+          continue;
+        }
+        for (std::size_t i = 0; i < ours.numContacts(); ++i) {
+          const fcl::Contactd& c = ours.getContact(i);
+          EXPECT_EQ(c.o1, model.get());
+          EXPECT_EQ(c.o2, cyl.get());
+          EXPECT_EQ(c.b2, int(fcl::Contactd::NONE));
+        }
+        if (!same_tree) continue;
+        ASSERT_EQ(sequence(ours), sequence(theirs)) << "scene " << k;
+        if (contact)
+          for (std::size_t i = 0; i < ours.numContacts(); ++i) {
+            const fcl::Contactd& a = ours.getContact(i);
+            const fcl::Contactd& b = theirs.getContact(i);
+            EXPECT_EQ(a.pos, b.pos);
+            EXPECT_EQ(a.normal, b.normal);
+            EXPECT_EQ(a.penetration_depth, b.penetration_depth);
+          }
+        for (std::size_t max_c : {std::size_t(1), std::size_t(3)}) {
+          fcl::CollisionRequestd req(max_c, contact);
+          fcl::CollisionResultd o, t;
+          ASSERT_TRUE(collideMeshCylinder(model.get(), s.mesh_tf, cyl.get(),
+                                          s.cyl_tf, req, o, &n));
+          fcl::collide(model.get(), s.mesh_tf, cyl.get(), s.cyl_tf, &solver,
+                       req, t);
+          EXPECT_EQ(sequence(o), sequence(t))
+              << "scene " << k << " max " << max_c;
+        }
+      }
+    }
+  }
+  std::printf("[ traversal] scenes=%ld hits=%ld fcl_pruned_a_hit=%ld\n", scenes,
+              hits, fcl_missed);
+}
+
+// Touching that is exact in double: an integer grid in the plane z = 0 and
+// axis-aligned cylinders whose cap, barrel or rim meets it exactly, under
+// exact rigid motions (axis permutations, sign flips, integer translations)
+// and power-of-two scalings. The traversal must report exactly the
+// brute-force set, which is never empty.
+TYPED_TEST(MeshCollideTest, ExactTouchingIsFound) {
+  Mesh m;
+  constexpr int n = 8;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) m.v.emplace_back(i, j, 0);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const int a = i * (n + 1) + j, b = a + 1, c = a + n + 1, d = c + 1;
+      m.t.emplace_back(a, c, b);
+      m.t.emplace_back(b, c, d);
+    }
+  auto model = fcltest::makeModel<TypeParam>(m);
+  struct Touch {
+    double r, lz;
+    Eigen::Matrix3d R;
+    V3 t;
+    const char* what;
+  };
+  Eigen::Matrix3d axis_x;  // cylinder axis along world x
+  axis_x << 0, 0, 1, 0, 1, 0, -1, 0, 0;
+  const std::vector<Touch> touches = {
+      {1.5, 2, Eigen::Matrix3d::Identity(), V3(3.25, 4.5, 1), "cap on plane"},
+      {1, 2, Eigen::Matrix3d::Identity(), V3(4, 3, -1), "cap from below"},
+      {1, 3, Eigen::Matrix3d::Identity(), V3(5, 4, 0), "barrel on vertices"},
+      {1, 4, axis_x, V3(4.5, 3.25, 1), "barrel tangent to plane"},
+      {0.5, 1, axis_x, V3(8.5, 8.5, 0), "rim on corner vertex"},
+      {2, 1, Eigen::Matrix3d::Identity(), V3(10, 4, 0), "barrel on edge x=8"},
+  };
+  // Exact mesh motions: identity, a signed axis permutation with an integer
+  // translation.
+  Eigen::Matrix3d perm;
+  perm << 0, -1, 0, 0, 0, 1, -1, 0, 0;
+  const Tf motions[2] = {Tf::Identity(), [&] {
+                           Tf tf = Tf::Identity();
+                           tf.linear() = perm;
+                           tf.translation() = V3(-7, 3, 12);
+                           return tf;
+                         }()};
+  for (const Touch& touch : touches)
+    for (const Tf& motion : motions)
+      for (double scale : {1.0, 0x1p-20, 0x1p30}) {
+        SCOPED_TRACE(std::string(touch.what) + " scale " +
+                     std::to_string(scale));
+        Mesh ms = m;
+        for (V3& v : ms.v) v *= scale;
+        auto scaled = scale == 1.0 ? model : fcltest::makeModel<TypeParam>(ms);
+        Tf cyl_tf = Tf::Identity();
+        cyl_tf.linear() = motion.linear() * touch.R;
+        cyl_tf.translation() = motion * V3(touch.t * scale);
+        const double r = touch.r * scale, lz = touch.lz * scale;
+        const std::set<std::size_t> truth =
+            bruteForce<TypeParam>(ms, motion, r, lz, cyl_tf);
+        ASSERT_FALSE(truth.empty());
+        auto cyl = std::make_shared<fcl::Cylinderd>(r, lz);
+        fcl::CollisionRequestd req(kMany, false);
+        fcl::CollisionResultd res;
+        std::size_t count = 0;
+        ASSERT_TRUE(collideMeshCylinder(scaled.get(), motion, cyl.get(), cyl_tf,
+                                        req, res, &count));
+        EXPECT_EQ(fcltest::contactIds(res, cyl.get()), truth);
+        // Moved by one ulp along each world axis, both ways: the sets still
+        // equal the brute force's (some lose the touched feature, some not).
+        for (int axis = 0; axis < 3; ++axis)
+          for (double dir : {-1.0, 1.0}) {
+            Tf moved = cyl_tf;
+            double& x = moved.translation()[axis];
+            x = std::nextafter(x,
+                               dir * std::numeric_limits<double>::infinity());
+            fcl::CollisionResultd res2;
+            ASSERT_TRUE(collideMeshCylinder(scaled.get(), motion, cyl.get(),
+                                            moved, req, res2, &count));
+            EXPECT_EQ(fcltest::contactIds(res2, cyl.get()),
+                      bruteForce<TypeParam>(ms, motion, r, lz, moved))
+                << "axis " << axis << " dir " << dir;
+          }
+      }
+}
+
+// The node test prunes: a cylinder far from the mesh costs one node test
+// and no leaf, one touching a single triangle's interior visits a small
+// fraction of the leaves.
+TYPED_TEST(MeshCollideTest, NodeTestPrunes) {
+  const Mesh m = fcltest::gridMesh(24);  // 1152 triangles on [-1, 1]^2
+  auto model = fcltest::makeModel<TypeParam>(m);
+  auto cyl = std::make_shared<fcl::Cylinderd>(0.01, 0.02);
+  fcl::CollisionRequestd req(kMany, false);
+  std::size_t n = 0;
+  {
+    Tf far = Tf::Identity();
+    far.translation() = V3(5, 5, 5);
+    fcl::CollisionResultd res;
+    TraversalStats st;
+    ASSERT_TRUE(collideMeshCylinder(model.get(), Tf::Identity(), cyl.get(), far,
+                                    req, res, &n, &st));
+    EXPECT_EQ(st.nodes_tested, 1u);
+    EXPECT_EQ(st.nodes_skipped, 1u);
+    EXPECT_EQ(st.leaves, 0u);
+    EXPECT_EQ(n, 0u);
+  }
+  {
+    const fcl::Triangle& t = m.t[300];
+    Tf near = Tf::Identity();
+    near.translation() = (m.v[t[0]] + m.v[t[1]] + m.v[t[2]]) / 3;
+    fcl::CollisionResultd res;
+    TraversalStats st;
+    ASSERT_TRUE(collideMeshCylinder(model.get(), Tf::Identity(), cyl.get(),
+                                    near, req, res, &n, &st));
+    EXPECT_GE(n, 1u);
+    EXPECT_GT(st.nodes_skipped, 0u);
+    EXPECT_LT(st.leaves, m.t.size() / 20);
+    EXPECT_EQ(fcltest::contactIds(res, cyl.get()),
+              bruteForce<TypeParam>(m, Tf::Identity(), 0.01, 0.02, near));
+  }
+}
+
+// Requests and inputs the traversal leaves to FCL: collideMeshCylinder says
+// so and touches nothing, and tricyl::collide then equals fcl::collide with
+// tricyl::Solver.
+TEST(MeshCollideFallback, UnhandledCasesGoToFcl) {
+  const Mesh m = fcltest::gridMesh(6);
+  auto model = fcltest::makeModel<fcl::OBBRSS<double>>(m);
+  const tricyl::Solver<double> solver;
+  Tf at = Tf::Identity();
+  at.translation() = V3(0.1, 0.2, 0.0);
+  struct Case {
+    double r, lz;
+    Tf tf;
+    fcl::CollisionRequestd req;
+    const char* what;
+  };
+  fcl::CollisionRequestd cost(kMany, false, 10, true);
+  fcl::CollisionRequestd none(0, false);
+  Tf skew = at;
+  skew.linear() *= 2.0;  // far from orthonormal
+  Tf nan_tf = at;
+  nan_tf.translation()[1] = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<Case> cases = {
+      {0.3, 0.4, at, cost, "enable_cost"},
+      {0.3, 0.4, at, none, "num_max_contacts = 0"},
+      {0.3, 0.4, skew, fcl::CollisionRequestd(kMany, false), "scaled R"},
+      {std::numeric_limits<double>::quiet_NaN(), 0.4, at,
+       fcl::CollisionRequestd(kMany, false), "NaN radius"},
+      {0.3, -1, at, fcl::CollisionRequestd(kMany, false), "negative length"},
+      {0.3, 0.4, nan_tf, fcl::CollisionRequestd(kMany, false), "NaN pose"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.what);
+    auto cyl = std::make_shared<fcl::Cylinderd>(0.3, 0.4);
+    cyl->radius = c.r;  // the constructor would accept these as well
+    cyl->lz = c.lz;
+    fcl::CollisionResultd res;
+    std::size_t n = 12345;
+    EXPECT_FALSE(collideMeshCylinder(model.get(), Tf::Identity(), cyl.get(),
+                                     c.tf, c.req, res, &n));
+    EXPECT_EQ(n, 12345u);
+    EXPECT_EQ(res.numContacts(), 0u);
+    fcl::CollisionResultd ours, theirs;
+    // FCL's own code computes with the NaN (its BV of the cylinder).
+    test::NoFpTraps no_traps;
+    tricyl::collide(model.get(), Tf::Identity(), cyl.get(), c.tf, c.req, ours);
+    fcl::collide(model.get(), Tf::Identity(), cyl.get(), c.tf, &solver, c.req,
+                 theirs);
+    EXPECT_EQ(sequence(ours), sequence(theirs));
+  }
+  // A pair without a mesh and a cylinder is not the traversal's either.
+  auto sphere = std::make_shared<fcl::Sphered>(0.3);
+  fcl::CollisionResultd res;
+  std::size_t n = 0;
+  EXPECT_FALSE(collideMeshCylinder(model.get(), Tf::Identity(), sphere.get(),
+                                   at, fcl::CollisionRequestd(), res, &n));
+}
+
+// Either argument order gives the same contacts, the mesh always o1 (as
+// FCL, which swaps a shape/BVH pair); a result that already holds enough
+// contacts is left alone, one that holds some is topped up.
+TEST(MeshCollideOrder, BothOrdersAndPrefilledResults) {
+  const Mesh m = fcltest::gridMesh(12);
+  auto model = fcltest::makeModel<fcl::OBBRSS<double>>(m);
+  auto cyl = std::make_shared<fcl::Cylinderd>(0.3, 0.5);
+  Tf at = Tf::Identity();
+  at.translation() = V3(0.05, -0.1, 0.0);
+  fcl::CollisionObjectd o_mesh(model, Tf::Identity());
+  fcl::CollisionObjectd o_cyl(cyl, at);
+  fcl::CollisionRequestd req(kMany, true);
+  fcl::CollisionResultd a, b;
+  tricyl::collide(&o_mesh, &o_cyl, req, a);
+  tricyl::collide(&o_cyl, &o_mesh, req, b);
+  ASSERT_GT(a.numContacts(), 3u);
+  EXPECT_EQ(sequence(a), sequence(b));
+  for (std::size_t i = 0; i < b.numContacts(); ++i) {
+    EXPECT_EQ(b.getContact(i).o1, model.get());
+    EXPECT_EQ(b.getContact(i).normal, a.getContact(i).normal);
+  }
+  fcl::CollisionRequestd two(2, false);
+  fcl::CollisionResultd pre;
+  pre.addContact(fcl::Contactd(nullptr, nullptr, -7, -7));
+  pre.addContact(fcl::Contactd(nullptr, nullptr, -8, -8));
+  EXPECT_EQ(tricyl::collide(&o_mesh, &o_cyl, two, pre), 2u);
+  fcl::CollisionRequestd three(3, false);
+  EXPECT_EQ(tricyl::collide(&o_mesh, &o_cyl, three, pre), 3u);
+  EXPECT_EQ(pre.getContact(2).b1, a.getContact(0).b1);
+}
+
+// A NaN vertex spoils FCL's fit of the root (its covariance): the boxes
+// may then hold nothing, so the traversal leaves such a model to FCL's own
+// (collideMeshCylinder says so), and tricyl::collide answers as
+// fcl::collide with tricyl::Solver does.
+TEST(MeshCollideInvalid, NanVertexModelGoesToFcl) {
+  Mesh m = fcltest::gridMesh(4);
+  m.v[7][2] = std::numeric_limits<double>::quiet_NaN();
+  test::NoFpTraps no_traps;  // FCL's fit and traversal compute with the NaN
+  auto model = fcltest::makeModel<fcl::OBBRSS<double>>(m);
+  auto cyl = std::make_shared<fcl::Cylinderd>(0.01, 0.01);
+  Tf at = Tf::Identity();
+  at.translation() = m.v[6];
+  fcl::CollisionRequestd req(kMany, false);
+  fcl::CollisionResultd res, ours, theirs;
+  std::size_t n = 0;
+  EXPECT_FALSE(collideMeshCylinder(model.get(), Tf::Identity(), cyl.get(), at,
+                                   req, res, &n));
+  const tricyl::Solver<double> solver;
+  tricyl::collide(model.get(), Tf::Identity(), cyl.get(), at, req, ours);
+  fcl::collide(model.get(), Tf::Identity(), cyl.get(), at, &solver, req,
+               theirs);
+  EXPECT_EQ(sequence(ours), sequence(theirs));
+}
+
+}  // namespace
+}  // namespace tricyl
