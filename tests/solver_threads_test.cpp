@@ -166,13 +166,19 @@ struct Outcome {
   }
 };
 
+/// `own`: through tricyl::collide (tricyl's own mesh traversal,
+/// fcl_mesh_cylinder.h) instead of fcl::collide with the shared solver.
 Outcome collideOnce(const Solver<double>& solver,
                     const fcl::CollisionGeometryd* mesh, const Query& q,
-                    bool contact, bool mesh_first) {
+                    bool contact, bool mesh_first, bool own = false) {
   fcl::CollisionRequestd request(contact ? 4 : 1, contact);
   fcl::CollisionResultd result;
   const fcl::Transform3d I = fcl::Transform3d::Identity();
-  if (mesh_first)
+  if (own && mesh_first)
+    tricyl::collide(mesh, I, q.cyl.get(), q.tf, request, result);
+  else if (own)
+    tricyl::collide(q.cyl.get(), q.tf, mesh, I, request, result);
+  else if (mesh_first)
     fcl::collide(mesh, I, q.cyl.get(), q.tf, &solver, request, result);
   else
     fcl::collide(q.cyl.get(), q.tf, mesh, I, &solver, request, result);
@@ -284,15 +290,16 @@ TEST(SolverThreads, SharedSolverMatchesSingleThreaded) {
     const auto aabb = buildModel<fcl::AABBd>(w.mesh);
     const fcl::CollisionGeometryd* models[2] = {obbrss.get(), aabb.get()};
     const std::size_t nq = w.queries.size();
-    // Reference, single-threaded: index = ((q * 2 + model) * 2 + contact) *
-    // 2 + order.
+    // Reference, single-threaded: index = (((q * 2 + model) * 2 + contact) *
+    // 2 + order) * 2 + own (FCL's traversal with the solver, or tricyl's).
     std::vector<Outcome> ref;
     for (std::size_t q = 0; q < nq; ++q)
       for (const auto* model : models)
         for (bool contact : {false, true})
           for (bool mesh_first : {true, false})
-            ref.push_back(
-                collideOnce(solver, model, w.queries[q], contact, mesh_first));
+            for (bool own : {false, true})
+              ref.push_back(collideOnce(solver, model, w.queries[q], contact,
+                                        mesh_first, own));
     std::size_t hits = 0;
     for (const Outcome& o : ref) hits += o.contacts > 0;
     EXPECT_GT(hits, 0u) << "no query collides: the test exercises nothing";
@@ -304,22 +311,23 @@ TEST(SolverThreads, SharedSolverMatchesSingleThreaded) {
         for (int round = 0; round < 2; ++round)
           for (std::size_t k = 0; k < nq; ++k) {
             const std::size_t q = (k + std::size_t(t) * nq / kThreads) % nq;
-            std::size_t i = q * 8;
+            std::size_t i = q * 16;
             for (const auto* model : models)
               for (bool contact : {false, true})
-                for (bool mesh_first : {true, false}) {
-                  const Outcome o = collideOnce(solver, model, w.queries[q],
-                                                contact, mesh_first);
-                  calls.fetch_add(1, std::memory_order_relaxed);
-                  if (!(o == ref[i]))
-                    mismatches.fetch_add(1, std::memory_order_relaxed);
-                  ++i;
-                }
+                for (bool mesh_first : {true, false})
+                  for (bool own : {false, true}) {
+                    const Outcome o = collideOnce(solver, model, w.queries[q],
+                                                  contact, mesh_first, own);
+                    calls.fetch_add(1, std::memory_order_relaxed);
+                    if (!(o == ref[i]))
+                      mismatches.fetch_add(1, std::memory_order_relaxed);
+                    ++i;
+                  }
           }
       });
     for (auto& th : threads) th.join();
     EXPECT_EQ(mismatches.load(), 0) << "of " << calls.load() << " calls";
-    EXPECT_EQ(calls.load(), long(kThreads) * 2 * long(nq) * 8);
+    EXPECT_EQ(calls.load(), long(kThreads) * 2 * long(nq) * 16);
   }
 }
 
