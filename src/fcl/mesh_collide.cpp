@@ -307,7 +307,7 @@ class LeafBlock {
         result_(result),
         stats_(stats) {}
 
-  bool full() const { return n_ == kSize; }
+  bool full() const { return n_ == capacity_; }
 
   /// Queues triangle `id`; its vertices are read at the flush, all in one
   /// loop, so that the cache misses of different leaves overlap.
@@ -350,6 +350,7 @@ class LeafBlock {
       }
     }
     n_ = 0;
+    capacity_ = std::min(kSize, 2 * capacity_);
     return done;
   }
 
@@ -392,6 +393,12 @@ class LeafBlock {
   fcl::CollisionResult<double>& result_;
   TraversalStats* stats_;
   std::size_t n_ = 0;
+  // First hits: small blocks first, so that a traversal that is about to
+  // stop does not decide 64 leaves past the hit; doubled at every flush.
+  std::size_t capacity_ = std::clamp<std::size_t>(
+      2 * (request_.num_max_contacts -
+           std::min(request_.num_max_contacts, result_.numContacts())),
+      4, kSize);
   int id_[kSize];
   double ax_[kSize], ay_[kSize], az_[kSize];
   double bx_[kSize], by_[kSize], bz_[kSize];
