@@ -11,7 +11,8 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#if defined(__SSE2__) && defined(__x86_64__) && \
+    (defined(__GNUC__) || defined(__clang__))
 #define TRICYL_FAST_AVX2 1
 #include <immintrin.h>
 #else
@@ -137,6 +138,22 @@ Decision decide(const Inputs& in, bool filter_done) {
           Stage::kExact};
 }
 
+// Widening a signalling NaN raises FE_INVALID: float inputs are checked by
+// their bits before they are widened.
+bool floatBitsFinite(const Cylinder<float>& cylinder, const Pose<float>& pose,
+                     const Triangle<float>& triangle) {
+  static_assert(sizeof(float) == sizeof(std::uint32_t), "binary32");
+  const void* parts[3] = {&cylinder, &pose, &triangle};
+  const size_t counts[3] = {2, 12, 9};
+  for (int k = 0; k < 3; ++k)
+    for (size_t i = 0; i < counts[k]; ++i) {
+      std::uint32_t b;
+      std::memcpy(&b, static_cast<const char*>(parts[k]) + 4 * i, 4);
+      if ((b & 0x7f800000u) == 0x7f800000u) return false;
+    }
+  return true;
+}
+
 TRICYL_NOINLINE Decision decideSlow(const Cylinder<double>& cylinder,
                                     const Pose<double>& pose,
                                     const Triangle<double>& triangle,
@@ -147,17 +164,8 @@ TRICYL_NOINLINE Decision decideSlow(const Cylinder<float>& cylinder,
                                     const Pose<float>& pose,
                                     const Triangle<float>& triangle,
                                     bool filter_done) {
-  // Widening a signalling NaN raises FE_INVALID: look at the bits first.
-  static_assert(sizeof(float) == sizeof(std::uint32_t), "binary32");
-  const void* parts[3] = {&cylinder, &pose, &triangle};
-  const size_t counts[3] = {2, 12, 9};
-  for (int k = 0; k < 3; ++k)
-    for (size_t i = 0; i < counts[k]; ++i) {
-      std::uint32_t b;
-      std::memcpy(&b, static_cast<const char*>(parts[k]) + 4 * i, 4);
-      if ((b & 0x7f800000u) == 0x7f800000u)
-        return {Answer::kInvalidInput, Stage::kInvalid};
-    }
+  if (!floatBitsFinite(cylinder, pose, triangle))
+    return {Answer::kInvalidInput, Stage::kInvalid};
   const Widened w = widen(cylinder, pose, triangle);
   return decide(Inputs{w.cyl, w.pose, w.tri}, filter_done);
 }
@@ -369,6 +377,7 @@ TRICYL_ALWAYS_INLINE Pre prologue(const Cylinder<S>& cyl, const Pose<S>& pose,
                                   const Triangle<S>& tri, Local* L) {
   Widened w;
   if constexpr (std::is_same_v<S, float>) {
+    if (!floatBitsFinite(cyl, pose, tri)) return Pre::kGateMiss;
     w = widen(cyl, pose, tri);
   } else {
     w = {cyl, pose, tri};

@@ -19,6 +19,8 @@
 // - `intersect` throws tricyl::InvalidInput if any coordinate, pose entry,
 //   radius or length is NaN or infinite, or if radius or lz is negative.
 // - `tryIntersect` is noexcept and returns Answer::kInvalidInput instead.
+// - Validation reads bit patterns before any arithmetic: no input, valid or
+//   not (NaN, signalling NaN, Inf), raises FE_INVALID or FE_DIVBYZERO.
 //
 // METHOD (after D. Eberly, "Intersection of a Triangle and a Cylinder", 2010)
 // Eberly moves the triangle into the cylinder frame, clips it to the slab
