@@ -31,7 +31,9 @@
 
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 
+#include "enum_names.h"
 #include "scenes.h"
 #include "tricyl/types.h"
 
@@ -42,18 +44,13 @@ enum class Family { kUniform, kNear, kFar, kDegenerate };
 inline constexpr Family kAllFamilies[] = {Family::kUniform, Family::kNear,
                                           Family::kFar, Family::kDegenerate};
 
+/// In the order of Family's enumerators.
+inline constexpr const char* kFamilyNames[] = {"uniform", "near", "far",
+                                               "degenerate"};
+static_assert(std::size(kFamilyNames) == std::size(kAllFamilies));
+
 inline const char* familyName(Family f) {
-  switch (f) {
-    case Family::kUniform:
-      return "uniform";
-    case Family::kNear:
-      return "near";
-    case Family::kFar:
-      return "far";
-    case Family::kDegenerate:
-      return "degenerate";
-  }
-  return "?";
+  return enum_names::nameOf(f, kFamilyNames);
 }
 
 /// One case. Point queries use p; the cone query reads cyl as Cone{radius,

@@ -24,10 +24,12 @@
 
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <string_view>
 
+#include "enum_names.h"
 #include "tricyl/types.h"
 
 namespace tricyl::scenes {
@@ -37,22 +39,13 @@ inline constexpr Family kAllFamilies[] = {Family::kUniform, Family::kNear,
                                           Family::kFar,     Family::kThin,
                                           Family::kSliver,  Family::kAligned};
 
+/// In the order of Family's enumerators.
+inline constexpr const char* kFamilyNames[] = {"uniform", "near",   "far",
+                                               "thin",    "sliver", "aligned"};
+static_assert(std::size(kFamilyNames) == std::size(kAllFamilies));
+
 inline const char* familyName(Family f) {
-  switch (f) {
-    case Family::kUniform:
-      return "uniform";
-    case Family::kNear:
-      return "near";
-    case Family::kFar:
-      return "far";
-    case Family::kThin:
-      return "thin";
-    case Family::kSliver:
-      return "sliver";
-    case Family::kAligned:
-      return "aligned";
-  }
-  return "?";
+  return enum_names::nameOf(f, kFamilyNames);
 }
 
 inline std::optional<Family> parseFamily(std::string_view s) {
