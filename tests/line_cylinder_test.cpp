@@ -509,70 +509,12 @@ TEST_P(LineCylinderFamily, AgreesWithOracle) {
 // Intervals are compared within twice the bound (each end is within
 // 1e-14 max(1, |s*|) of the same exact value), infinite ends exactly.
 TEST_P(LineCylinderFamily, Invariances) {
-  const std::uint64_t seed = test::baseSeed() + 5;
-  SCOPED_TRACE(test::seedTrace(seed));
-  const long n = test::scaled(20000);
-  static constexpr int kPerm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
-                                      {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  long failures = 0;
-  for (long i = 0; i < n && failures < 5; ++i) {
-    const test::QueryCase k =
-        qscenes::generate(test::Query::kLine, GetParam(), seed, i);
-    const auto base = clip(k.cyl, k.pose, Line<double>{k.p, k.q});
-    auto same = [&](const std::optional<Interval<double>>& o, bool reversed,
-                    const char* what) {
-      bool ok = o.has_value() == base.has_value();
-      if (ok && o) {
-        const double lo = reversed ? 1 - o->hi : o->lo;
-        const double hi = reversed ? 1 - o->lo : o->hi;
-        // 1 - x adds one rounding, relative to max(1, |x|).
-        ok = near(lo, base->lo, 4e-14) && near(hi, base->hi, 4e-14);
-      }
-      if (!ok) {
-        ++failures;
-        ADD_FAILURE() << what << ", index " << i << "\n" << test::dump(k);
-      }
-    };
-    same(clip(k.cyl, k.pose, Line<double>{k.q, k.p}), true, "reversed");
-    const int perm = int(i % 6);
-    const double sg[3] = {i & 1 ? -1.0 : 1.0, i & 2 ? -1.0 : 1.0,
-                          i & 4 ? -1.0 : 1.0};
-    auto move = [&](const Vec3<double>& x) {
-      const double c[3] = {x.x, x.y, x.z};
-      return Vec3<double>{sg[0] * c[kPerm[perm][0]], sg[1] * c[kPerm[perm][1]],
-                          sg[2] * c[kPerm[perm][2]]};
-    };
-    Pose<double> moved = k.pose;
-    for (int r = 0; r < 3; ++r)
-      for (int col = 0; col < 3; ++col)
-        moved.R[r][col] = sg[r] * k.pose.R[kPerm[perm][r]][col];
-    moved.t = move(k.pose.t);
-    same(clip(k.cyl, moved, Line<double>{move(k.p), move(k.q)}), false,
-         "rigid motion");
-    // Scaling by 2^e is exact unless something becomes subnormal or
-    // overflows, so cases with such values are skipped.
-    auto scalable = [](double v) {
-      return v == 0 || (std::fabs(v) > 0x1p-900 && std::fabs(v) < 0x1p900);
-    };
-    bool exact_scaling = scalable(k.cyl.radius) && scalable(k.cyl.lz);
-    for (const Vec3<double>& v : {k.p, k.q, k.pose.t})
-      exact_scaling =
-          exact_scaling && scalable(v.x) && scalable(v.y) && scalable(v.z);
-    if (exact_scaling) {
-      const int e = (i & 8) ? -37 : 29;
-      auto sc = [e](const Vec3<double>& x) {
-        return Vec3<double>{std::ldexp(x.x, e), std::ldexp(x.y, e),
-                            std::ldexp(x.z, e)};
-      };
-      Pose<double> sp = k.pose;
-      sp.t = sc(k.pose.t);
-      same(clip(Cylinder<double>{std::ldexp(k.cyl.radius, e),
-                                 std::ldexp(k.cyl.lz, e)},
-                sp, Line<double>{sc(k.p), sc(k.q)}),
-           false, "scaled");
-    }
-  }
-  EXPECT_EQ(failures, 0);
+  test::expectIntervalInvariances<Line>(test::Query::kLine, GetParam(),
+                                        [](double got, double base) {
+                                          // 1 - x adds one rounding, relative
+                                          // to max(1, |x|).
+                                          return near(got, base, 4e-14);
+                                        });
 }
 
 INSTANTIATE_TEST_SUITE_P(Families, LineCylinderFamily,

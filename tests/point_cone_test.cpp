@@ -80,18 +80,13 @@ TYPED_TEST(PointConeTyped, DegenerateSizes) {
 
 TYPED_TEST(PointConeTyped, InvalidInput) {
   using S = TypeParam;
-  test::NoFpTraps no_traps;
-  const S nan = std::numeric_limits<S>::quiet_NaN();
-  const S inf = std::numeric_limits<S>::infinity();
-  const Pose<S> I = identityPose<S>();
-  const Vec3<S> o{0, 0, 0};
-  EXPECT_THROW(contains(Cone<S>{-1, 1}, I, o), InvalidInput);
-  EXPECT_THROW(contains(Cone<S>{1, -1}, I, o), InvalidInput);
-  EXPECT_THROW(contains(Cone<S>{nan, 1}, I, o), InvalidInput);
-  EXPECT_THROW(contains(Cone<S>{1, 1}, I, Vec3<S>{0, 0, inf}), InvalidInput);
-  Pose<S> bad = I;
-  bad.R[0][0] = inf;
-  EXPECT_EQ(tryContains(Cone<S>{1, 1}, bad, o), Answer::kInvalidInput);
+  const test::InvalidInputs<S> in;
+  in.template expectBadSizesThrow<Cone>();
+  EXPECT_THROW(contains(Cone<S>{1, 1}, in.I, Vec3<S>{0, 0, in.inf}),
+               InvalidInput);
+  Pose<S> bad = in.I;
+  bad.R[0][0] = in.inf;
+  EXPECT_EQ(tryContains(Cone<S>{1, 1}, bad, in.o), Answer::kInvalidInput);
 }
 
 // The sources' apex form: 0 <= (P-O).N <= L and the distance to the axis
@@ -103,25 +98,19 @@ TYPED_TEST(PointConeTyped, ApexFormMatchesSourceFormula) {
   scenes::Rng g(seed + 7);
   int checked = 0;
   for (int i = 0; i < 2000; ++i) {
-    const auto n = scenes::internal::randomUnit(g);
-    const Vec3<S> O{S(g.uniform(-2, 2)), S(g.uniform(-2, 2)),
-                    S(g.uniform(-2, 2))};
-    const Vec3<S> N{S(n.x), S(n.y), S(n.z)};
-    const S L = S(g.uniform(0.1, 3)), R = S(g.uniform(0.1, 2));
+    const auto a = test::randomAxisForm<S>(g);
+    const Vec3<S>& O = a.O;
+    const S L = a.L, R = a.R;
     const Vec3<S> P{S(O.x + g.uniform(-3, 3)), S(O.y + g.uniform(-3, 3)),
                     S(O.z + g.uniform(-3, 3))};
-    const double v[3] = {double(P.x) - O.x, double(P.y) - O.y,
-                         double(P.z) - O.z};
-    const double dp = v[0] * N.x + v[1] * N.y + v[2] * N.z;
-    const double t = std::sqrt((v[0] - dp * N.x) * (v[0] - dp * N.x) +
-                               (v[1] - dp * N.y) * (v[1] - dp * N.y) +
-                               (v[2] - dp * N.z) * (v[2] - dp * N.z));
+    const auto [dp, t2] = test::axialCoords(a, P);
+    const double t = std::sqrt(t2);
     const double rad = dp * R / L;
     const double margin =
         std::min({std::fabs(dp), std::fabs(dp - L), std::fabs(t - rad)});
     if (margin < 1e-3) continue;
     const bool source = dp >= 0 && dp <= L && t <= rad;
-    const auto pc = coneFromApex(O, N, L, R);
+    const auto pc = coneFromApex(O, a.N, L, R);
     EXPECT_EQ(contains(pc.cone, pc.pose, P), source) << "case " << i;
     ++checked;
   }

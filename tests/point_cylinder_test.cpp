@@ -101,14 +101,11 @@ TYPED_TEST(PointCylinderTyped, DegenerateSizes) {
 
 TYPED_TEST(PointCylinderTyped, InvalidInput) {
   using S = TypeParam;
-  test::NoFpTraps no_traps;
-  const S nan = std::numeric_limits<S>::quiet_NaN();
-  const S inf = std::numeric_limits<S>::infinity();
-  const Pose<S> I = identityPose<S>();
-  const Vec3<S> o{0, 0, 0};
-  EXPECT_THROW(contains(Cylinder<S>{-1, 1}, I, o), InvalidInput);
-  EXPECT_THROW(contains(Cylinder<S>{1, -1}, I, o), InvalidInput);
-  EXPECT_THROW(contains(Cylinder<S>{nan, 1}, I, o), InvalidInput);
+  const test::InvalidInputs<S> in;
+  in.template expectBadSizesThrow<Cylinder>();
+  const S nan = in.nan, inf = in.inf;
+  const Pose<S>& I = in.I;
+  const Vec3<S>& o = in.o;
   EXPECT_THROW(contains(Cylinder<S>{1, inf}, I, o), InvalidInput);
   EXPECT_THROW(contains(Cylinder<S>{1, 1}, I, Vec3<S>{nan, 0, 0}),
                InvalidInput);
@@ -135,19 +132,12 @@ TYPED_TEST(PointCylinderTyped, EndpointFormMatchesSourceFormula) {
   scenes::Rng g(seed);
   int checked = 0;
   for (int i = 0; i < 2000; ++i) {
-    const auto n = scenes::internal::randomUnit(g);
-    const Vec3<S> O{S(g.uniform(-2, 2)), S(g.uniform(-2, 2)),
-                    S(g.uniform(-2, 2))};
-    const Vec3<S> N{S(n.x), S(n.y), S(n.z)};
-    const S L = S(g.uniform(0.1, 3)), R = S(g.uniform(0.1, 2));
+    const auto a = test::randomAxisForm<S>(g);
+    const Vec3<S>&O = a.O, &N = a.N;
+    const S L = a.L, R = a.R;
     const Vec3<S> P{S(g.uniform(-4, 4)), S(g.uniform(-4, 4)),
                     S(g.uniform(-4, 4))};
-    const double v[3] = {double(P.x) - O.x, double(P.y) - O.y,
-                         double(P.z) - O.z};
-    const double dp = v[0] * N.x + v[1] * N.y + v[2] * N.z;
-    const double t2 = (v[0] - dp * N.x) * (v[0] - dp * N.x) +
-                      (v[1] - dp * N.y) * (v[1] - dp * N.y) +
-                      (v[2] - dp * N.z) * (v[2] - dp * N.z);
+    const auto [dp, t2] = test::axialCoords(a, P);
     // Skip cases within 1e-3 of the boundary (formula and conversion round).
     const double margin = std::min(
         {std::fabs(dp), std::fabs(dp - L), std::fabs(std::sqrt(t2) - R)});

@@ -9,7 +9,11 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <limits>
+#include <optional>
 #include <string>
 
 #include "query_oracles.h"
@@ -131,6 +135,140 @@ AgreementStats runAgreement(Query qy, Family fam, long n, const Decide& decide,
       st.stages[0], st.stages[1], st.stages[4], st.stages[2],
       100.0 * double(st.stages[2]) / double(st.cases ? st.cases : 1));
   return st;
+}
+
+/// For the invalid-input tests of the point queries: FP traps are off while
+/// it lives; the values those tests pass.
+template <class S>
+struct InvalidInputs {
+  NoFpTraps no_traps;
+  const S nan = std::numeric_limits<S>::quiet_NaN();
+  const S inf = std::numeric_limits<S>::infinity();
+  const Pose<S> I = identityPose<S>();
+  const Vec3<S> o{0, 0, 0};
+
+  /// contains() on a Solid<S>{radius, length} (Cylinder or Cone) throws
+  /// InvalidInput for a negative radius, a negative length and a NaN radius.
+  template <template <class> class Solid>
+  void expectBadSizesThrow() const {
+    EXPECT_THROW(contains(Solid<S>{-1, 1}, I, o), InvalidInput);
+    EXPECT_THROW(contains(Solid<S>{1, -1}, I, o), InvalidInput);
+    EXPECT_THROW(contains(Solid<S>{nan, 1}, I, o), InvalidInput);
+  }
+};
+
+/// A random axis form of a solid, as the sources write it (origin O, unit
+/// axis N, length L, radius R), rounded to S.
+template <class S>
+struct AxisForm {
+  Vec3<S> O, N;
+  S L, R;
+};
+
+/// O in [-2, 2]^3, N uniform on the sphere, L in [0.1, 3], R in [0.1, 2].
+template <class S>
+AxisForm<S> randomAxisForm(scenes::Rng& g) {
+  const auto n = scenes::internal::randomUnit(g);
+  AxisForm<S> a;
+  a.O = {S(g.uniform(-2, 2)), S(g.uniform(-2, 2)), S(g.uniform(-2, 2))};
+  a.N = {S(n.x), S(n.y), S(n.z)};
+  a.L = S(g.uniform(0.1, 3));
+  a.R = S(g.uniform(0.1, 2));
+  return a;
+}
+
+/// P's coordinates in the axis form, in double: dp = (P - O).N and t2 the
+/// squared distance |(P - O) - dp N|^2 from the axis.
+struct AxialCoords {
+  double dp, t2;
+};
+
+template <class S>
+AxialCoords axialCoords(const AxisForm<S>& a, const Vec3<S>& P) {
+  const Vec3<S>& O = a.O;
+  const Vec3<S>& N = a.N;
+  const double v[3] = {double(P.x) - O.x, double(P.y) - O.y, double(P.z) - O.z};
+  const double dp = v[0] * N.x + v[1] * N.y + v[2] * N.z;
+  const double t2 = (v[0] - dp * N.x) * (v[0] - dp * N.x) +
+                    (v[1] - dp * N.y) * (v[1] - dp * N.y) +
+                    (v[2] - dp * N.z) * (v[2] - dp * N.z);
+  return {dp, t2};
+}
+
+/// The contract's invariances of an interval query on {p, q} (a segment or
+/// a line), on n seeded cases of qy/fam: reversing {p, q} maps the interval
+/// to [1 - hi, 1 - lo]; an exact rigid motion of the world (a signed axis
+/// permutation applied to pose, p and q) and scaling every length by 2^e
+/// (cases where that is not exact are skipped) leave it unchanged.
+/// Shape is Segment or Line; `close(got, base) -> bool` compares one end.
+/// Seed baseSeed() + 5, scaled(20000) cases, stops after 5 failures.
+template <template <class> class Shape, class Close>
+void expectIntervalInvariances(Query qy, Family fam, const Close& close) {
+  const std::uint64_t seed = baseSeed() + 5;
+  SCOPED_TRACE(seedTrace(seed));
+  const long n = scaled(20000);
+  auto clipPQ = [](const Cylinder<double>& cyl, const Pose<double>& pose,
+                   const Vec3<double>& p, const Vec3<double>& q) {
+    return clip(cyl, pose, Shape<double>{p, q});
+  };
+  static constexpr int kPerm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
+                                      {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  long failures = 0;
+  for (long i = 0; i < n && failures < 5; ++i) {
+    const QueryCase k = qscenes::generate(qy, fam, seed, std::uint64_t(i));
+    const auto base = clipPQ(k.cyl, k.pose, k.p, k.q);
+    auto same = [&](const std::optional<Interval<double>>& o, bool reversed,
+                    const char* what) {
+      bool ok = o.has_value() == base.has_value();
+      if (ok && o) {
+        const double lo = reversed ? 1 - o->hi : o->lo;
+        const double hi = reversed ? 1 - o->lo : o->hi;
+        ok = close(lo, base->lo) && close(hi, base->hi);
+      }
+      if (!ok) {
+        ++failures;
+        ADD_FAILURE() << what << ", index " << i << "\n" << dump(k);
+      }
+    };
+    same(clipPQ(k.cyl, k.pose, k.q, k.p), true, "reversed");
+    const int perm = int(i % 6);
+    const double sg[3] = {i & 1 ? -1.0 : 1.0, i & 2 ? -1.0 : 1.0,
+                          i & 4 ? -1.0 : 1.0};
+    auto move = [&](const Vec3<double>& x) {
+      const double c[3] = {x.x, x.y, x.z};
+      return Vec3<double>{sg[0] * c[kPerm[perm][0]], sg[1] * c[kPerm[perm][1]],
+                          sg[2] * c[kPerm[perm][2]]};
+    };
+    Pose<double> moved = k.pose;
+    for (int r = 0; r < 3; ++r)
+      for (int col = 0; col < 3; ++col)
+        moved.R[r][col] = sg[r] * k.pose.R[kPerm[perm][r]][col];
+    moved.t = move(k.pose.t);
+    same(clipPQ(k.cyl, moved, move(k.p), move(k.q)), false, "rigid motion");
+    // Scaling by 2^e is exact unless something becomes subnormal or
+    // overflows, so cases with such values are skipped.
+    auto scalable = [](double v) {
+      return v == 0 || (std::fabs(v) > 0x1p-900 && std::fabs(v) < 0x1p900);
+    };
+    bool exact_scaling = scalable(k.cyl.radius) && scalable(k.cyl.lz);
+    for (const Vec3<double>& v : {k.p, k.q, k.pose.t})
+      exact_scaling =
+          exact_scaling && scalable(v.x) && scalable(v.y) && scalable(v.z);
+    if (exact_scaling) {
+      const int e = (i & 8) ? -37 : 29;
+      auto sc = [e](const Vec3<double>& x) {
+        return Vec3<double>{std::ldexp(x.x, e), std::ldexp(x.y, e),
+                            std::ldexp(x.z, e)};
+      };
+      Pose<double> sp = k.pose;
+      sp.t = sc(k.pose.t);
+      same(clipPQ(Cylinder<double>{std::ldexp(k.cyl.radius, e),
+                                   std::ldexp(k.cyl.lz, e)},
+                  sp, sc(k.p), sc(k.q)),
+           false, "scaled");
+    }
+  }
+  EXPECT_EQ(failures, 0);
 }
 
 inline std::string familyParamName(

@@ -31,6 +31,7 @@
 #include <thread>
 #include <vector>
 
+#include "fcl_test_support.h"
 #include "test_support.h"
 #include "tricyl/fcl_solver.h"
 #include "tricyl/triangle_cylinder.h"
@@ -40,10 +41,7 @@ namespace {
 
 constexpr int kThreads = 4;
 
-struct Mesh {
-  std::vector<fcl::Vector3d> v;
-  std::vector<fcl::Triangle> t;
-};
+using fcltest::Mesh;
 
 Mesh gridMesh(int n) {
   Mesh m;
@@ -77,31 +75,6 @@ Mesh sphereMesh(int n) {  // latitude/longitude, radius 0.8
       m.t.emplace_back(id(i, j), id(i + 1, j + 1), id(i, j + 1));
     }
   return m;
-}
-
-bool readObj(const std::string& path, Mesh* m) {
-  std::ifstream in(path);
-  if (!in) return false;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream ls(line);
-    std::string tag;
-    ls >> tag;
-    if (tag == "v") {
-      double x, y, z;
-      ls >> x >> y >> z;
-      m->v.emplace_back(x, y, z);
-    } else if (tag == "f") {
-      std::size_t idx[3];
-      for (std::size_t& i : idx) {
-        std::string tok;
-        ls >> tok;
-        i = std::stoul(tok.substr(0, tok.find('/'))) - 1;
-      }
-      m->t.emplace_back(idx[0], idx[1], idx[2]);
-    }
-  }
-  return !m->t.empty();
 }
 
 template <class BV>
@@ -225,7 +198,8 @@ std::vector<Workload> workloads() {
   w.push_back({"grid", gridMesh(24), {}});
   w.push_back({"sphere", sphereMesh(16), {}});
   Mesh bunny;
-  if (readObj(std::string(TRICYL_MESH_DIR) + "/bunny.obj", &bunny))
+  if (fcltest::readObj(fcltest::meshPath("bunny.obj"), &bunny) &&
+      !bunny.t.empty())
     w.push_back({"bunny", bunny, {}});
   std::uint64_t seed = test::baseSeed();
   for (auto& x : w) x.queries = makeQueries(x.mesh, 48, seed++);
