@@ -29,6 +29,9 @@
 //   pair keeps FCL's own path (detail::sphereCylinderIntersect), contact data
 //   included, so the Boolean can differ from the stock one only where FCL's
 //   is wrong. Invalid input (NaN/Inf, negative sizes): "in collision".
+// - tricyl::collide (not fcl::collide with a Solver) walks a BVHModel vs
+//   Cylinder pair itself (fcl_mesh_cylinder.h): same contacts, cheaper
+//   traversal; requests it does not handle run FCL's traversal with Solver.
 // - Every other pair (Box, Capsule, Cone, Convex, ... vs meshes and shapes,
 //   Sphere vs meshes, and distance queries) runs GJKSolver_libccd<S>'s own
 //   code, inherited unchanged.
