@@ -48,8 +48,9 @@ using Tf = fcl::Transform3d;
 //    the magnitudes involved, all bounded by
 //      L = |b|_1 + sum e + |c|_1 + |t_m|_1 + |t_c|_1 + r + h.
 //    2^-36 L is more than 10^5 times the largest of them.
-// 2. Rotations a hair off orthonormal, delta = max over R_m, R_c of
-//    sum |R^T R - I| (required <= 2^-20, else FCL's own traversal runs):
+// 2. Rotations a hair off orthonormal, delta = max over R_m, R_c (and the
+//    root box's axes, see traverse) of sum |R^T R - I| (required <= 2^-20,
+//    else FCL's own traversal runs):
 //    the contract's cylinder {x : R_c^T (x - t_c) in C} is then
 //    {t_c + R_c^-T y : y in C}, and the mesh frame is R_m^-1 (x - t_m);
 //    R^-T and R^-1 differ from R and R^T by at most 2 delta (delta <= 2^-20)
@@ -426,27 +427,30 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
     return false;
   const fcl::Matrix3d& Rm = tf_mesh.linear();
   const fcl::Matrix3d& Rc = tf_cyl.linear();
-  const double delta = std::max(nonOrthogonality(Rm), nonOrthogonality(Rc));
-  if (!std::islessequal(delta, kMaxNonOrthogonality)) return false;
-
-  // The root's box must be finite with orthonormal axes. FCL's fit gives
-  // that for finite vertices; a NaN or Inf vertex spoils the root's fit
-  // (its covariance) and can leave boxes that hold nothing: such models go
-  // to FCL's traversal.
+  // The root's box must be finite with near-orthonormal axes. FCL's fit
+  // gives that for finite vertices (Jacobi eigenvectors: orthonormal to
+  // rounding); a NaN or Inf vertex spoils the root's fit (its covariance)
+  // and can leave boxes that hold nothing: such models go to FCL's
+  // traversal. The root's departure from orthonormal enters delta like the
+  // rotations' (a box fitted along axes A misses its points by at most
+  // |A A^T - I| |v - b|, item 2 of the margin); the other boxes come from
+  // the same fit.
+  double box_delta = 0;
   {
     Box root;
     Boxer::get(model.getBV(0).bv, &root);
-    double bad = 0;
     for (int i = 0; i < 3; ++i) {
       if (!std::isfinite(root.b[i]) || !std::isfinite(root.e[i])) return false;
       if constexpr (!Boxer::kAligned)
         for (int j = 0; j < 3; ++j)
-          bad += std::fabs(root.a[i][0] * root.a[j][0] +
-                           root.a[i][1] * root.a[j][1] +
-                           root.a[i][2] * root.a[j][2] - (i == j ? 1.0 : 0.0));
+          box_delta += std::fabs(
+              root.a[i][0] * root.a[j][0] + root.a[i][1] * root.a[j][1] +
+              root.a[i][2] * root.a[j][2] - (i == j ? 1.0 : 0.0));
     }
-    if (!std::islessequal(bad, kMaxNonOrthogonality)) return false;
   }
+  const double delta =
+      std::max({nonOrthogonality(Rm), nonOrthogonality(Rc), box_delta});
+  if (!std::islessequal(delta, kMaxNonOrthogonality)) return false;
 
   Local k;
   const V3 c = Rm.transpose() * (tf_cyl.translation() - tf_mesh.translation());
