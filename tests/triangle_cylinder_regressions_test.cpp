@@ -59,6 +59,18 @@ TEST(TriangleCylinderRegression, FloatRoundTripFoldedByOptimizer) {
 
 // Hostile input: the checked API throws InvalidInput, the non-throwing one
 // returns kInvalidInput, and neither reads or computes past the check.
+/// The 23 scalar inputs of a world-pose query, by number: radius, length,
+/// R row by row, t, then the three vertices.
+template <class S>
+S* inputSlot(Cylinder<S>& c, Pose<S>& p, Triangle<S>& t, int slot) {
+  S* slots[23] = {&c.radius,  &c.lz,      &p.R[0][0], &p.R[0][1], &p.R[0][2],
+                  &p.R[1][0], &p.R[1][1], &p.R[1][2], &p.R[2][0], &p.R[2][1],
+                  &p.R[2][2], &p.t.x,     &p.t.y,     &p.t.z,     &t.a.x,
+                  &t.a.y,     &t.a.z,     &t.b.x,     &t.b.y,     &t.b.z,
+                  &t.c.x,     &t.c.y,     &t.c.z};
+  return slots[slot];
+}
+
 template <class S>
 class TriangleCylinderHostile : public ::testing::Test {};
 using Scalars = ::testing::Types<float, double>;
@@ -80,13 +92,7 @@ TYPED_TEST(TriangleCylinderHostile, NonFiniteOrNegativeIsRejected) {
       Cylinder<S> c = cyl;
       Pose<S> p = pose;
       Triangle<S> t = tri;
-      S* slots[23] = {&c.radius,  &c.lz,      &p.R[0][0], &p.R[0][1],
-                      &p.R[0][2], &p.R[1][0], &p.R[1][1], &p.R[1][2],
-                      &p.R[2][0], &p.R[2][1], &p.R[2][2], &p.t.x,
-                      &p.t.y,     &p.t.z,     &t.a.x,     &t.a.y,
-                      &t.a.z,     &t.b.x,     &t.b.y,     &t.b.z,
-                      &t.c.x,     &t.c.y,     &t.c.z};
-      *slots[slot] = bad;
+      *inputSlot(c, p, t, slot) = bad;
       EXPECT_EQ(tryIntersect(c, p, t), Answer::kInvalidInput) << slot;
       EXPECT_EQ(decideIntersect(c, p, t).stage, Stage::kInvalid) << slot;
       EXPECT_THROW(intersect(c, p, t), InvalidInput) << slot;
@@ -117,13 +123,7 @@ TYPED_TEST(TriangleCylinderHostile, NonFiniteInputRaisesNoFpException) {
       Cylinder<S> c = cyl;
       Pose<S> p = pose;
       Triangle<S> t = tri;
-      S* slots[23] = {&c.radius,  &c.lz,      &p.R[0][0], &p.R[0][1],
-                      &p.R[0][2], &p.R[1][0], &p.R[1][1], &p.R[1][2],
-                      &p.R[2][0], &p.R[2][1], &p.R[2][2], &p.t.x,
-                      &p.t.y,     &p.t.z,     &t.a.x,     &t.a.y,
-                      &t.a.z,     &t.b.x,     &t.b.y,     &t.b.z,
-                      &t.c.x,     &t.c.y,     &t.c.z};
-      *slots[slot] = bad;
+      *inputSlot(c, p, t, slot) = bad;
       std::feclearexcept(FE_ALL_EXCEPT);
       EXPECT_EQ(tryIntersect(c, p, t), Answer::kInvalidInput) << slot;
       EXPECT_EQ(std::fetestexcept(FE_INVALID | FE_DIVBYZERO), 0) << slot;
