@@ -64,11 +64,7 @@ std::vector<int> sequence(const fcl::CollisionResultd& res) {
 
 template <class BV>
 class MeshCollideTest : public ::testing::Test {};
-using AllBvs = ::testing::Types<fcl::AABB<double>, fcl::OBB<double>,
-                                fcl::RSS<double>, fcl::kIOS<double>,
-                                fcl::OBBRSS<double>, fcl::KDOP<double, 16>,
-                                fcl::KDOP<double, 18>, fcl::KDOP<double, 24>>;
-TYPED_TEST_SUITE(MeshCollideTest, AllBvs);
+TYPED_TEST_SUITE(MeshCollideTest, fcltest::AllBvs);
 
 // Every request shape on seeded scenes (random, grazing face/edge/vertex,
 // thin), half of them with an identity mesh transform: the exhaustive set is

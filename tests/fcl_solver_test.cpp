@@ -167,11 +167,7 @@ void checkAgainstOracle(const MeshCase& mc) {
 
 template <class BV>
 class FclSolverBvTest : public ::testing::Test {};
-using AllBvs = ::testing::Types<fcl::AABB<double>, fcl::OBB<double>,
-                                fcl::RSS<double>, fcl::kIOS<double>,
-                                fcl::OBBRSS<double>, fcl::KDOP<double, 16>,
-                                fcl::KDOP<double, 18>, fcl::KDOP<double, 24>>;
-TYPED_TEST_SUITE(FclSolverBvTest, AllBvs);
+TYPED_TEST_SUITE(FclSolverBvTest, fcltest::AllBvs);
 
 TYPED_TEST(FclSolverBvTest, ProceduralMeshesMatchOracle) {
   checkAgainstOracle<TypeParam>(meshCase("grid"));

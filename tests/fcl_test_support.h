@@ -117,6 +117,12 @@ inline Mesh sphereMesh(int n) {
   return m;
 }
 
+/// Every BV type FCL 0.7 builds meshes with, for typed tests.
+using AllBvs = ::testing::Types<fcl::AABB<double>, fcl::OBB<double>,
+                                fcl::RSS<double>, fcl::kIOS<double>,
+                                fcl::OBBRSS<double>, fcl::KDOP<double, 16>,
+                                fcl::KDOP<double, 18>, fcl::KDOP<double, 24>>;
+
 template <class BV>
 std::shared_ptr<fcl::BVHModel<BV>> makeModel(const Mesh& m) {
   auto model = std::make_shared<fcl::BVHModel<BV>>();
