@@ -441,52 +441,64 @@ TRICYL_AVX2_FN __m256d bcast(const S& v) {
   return _mm256_set1_pd(double(v));
 }
 
-// gateBitsOk with 256-bit integer operations (same bits, same answer).
+// The gate of gateBitsOk with whole-word integer comparisons (the same
+// admitted set, fewer instructions): |x| < 2^40 iff the bits of |x| (sign
+// cleared) are <= 0x426f ffff ffff ffff (double) or 0x537f ffff (float), and
+// |R_jk| < 2 iff they are <= 0x3fff ffff ffff ffff or 0x3fff ffff; non-negative
+// bit patterns order like their values under a signed comparison, and NaN
+// and Inf (exponent all ones) exceed both limits. Every load stays inside the
+// aggregates (the static_asserts above pin their layout).
+__attribute__((target("avx2"), always_inline)) inline __m256i ld32(
+    const char* p) {
+  return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+}
+// (|v| as bits) > lim, lane by lane (64-bit lanes); a = the sign-clear mask.
+__attribute__((target("avx2"), always_inline)) inline __m256i gt64(
+    __m256i v, __m256i a, __m256i lim) {
+  return _mm256_cmpgt_epi64(_mm256_and_si256(v, a), lim);
+}
+
 template <class S>
 __attribute__((target("avx2"), always_inline)) inline bool gateBitsOkAvx2(
     const Cylinder<S>& cyl, const Pose<S>& pose, const Triangle<S>& tri) {
   const char* T = reinterpret_cast<const char*>(&tri);
   const char* P = reinterpret_cast<const char*>(&pose);
   const char* C = reinterpret_cast<const char*>(&cyl);
-  const __m128i k = GateBits<S>::mask();
-  const __m256i k2 = _mm256_set_m128i(k, k);
-  const __m256i T0 = _mm256_and_si256(
-      _mm256_loadu_si256(reinterpret_cast<const __m256i*>(T)), k2);
-  const __m256i P0 = _mm256_and_si256(
-      _mm256_loadu_si256(reinterpret_cast<const __m256i*>(P)), k2);
-  __m256i len2, rot2;
-  __m128i len, rot;
-  if constexpr (sizeof(S) == 8) {  // R: bytes 0..71, t: 72..95
-    len2 = _mm256_max_epi16(
-        T0,
-        _mm256_and_si256(
-            _mm256_loadu_si256(reinterpret_cast<const __m256i*>(T + 32)), k2));
-    rot2 = _mm256_max_epi16(
-        P0,
-        _mm256_and_si256(
-            _mm256_loadu_si256(reinterpret_cast<const __m256i*>(P + 32)), k2));
-    len = _mm_max_epi16(_mm_max_epi16(_mm_and_si128(ld8(T + 64), k),
-                                      _mm_and_si128(ld16(P + 72), k)),
-                        _mm_max_epi16(_mm_and_si128(ld8(P + 88), k),
-                                      _mm_and_si128(ld16(C), k)));
-    rot = _mm_and_si128(ld8(P + 64), k);
-  } else {  // R: bytes 0..35, t: 36..47
-    len2 = T0;
-    rot2 = P0;
-    len = _mm_max_epi16(
-        _mm_max_epi16(_mm_and_si128(ld4(T + 32), k),
-                      _mm_and_si128(ld4(P + 36), k)),
-        _mm_max_epi16(_mm_and_si128(ld8(P + 40), k), _mm_and_si128(ld8(C), k)));
-    rot = _mm_and_si128(ld4(P + 32), k);
+  __m256i bad;
+  __m128i bad2;
+  if constexpr (sizeof(S) == 8) {
+    // T: ax ay az bx | by bz cx cy | cz;  P: R00 R01 R02 R10 | R11 R12 R20 R21
+    // | R22 tx ty tz;  C: r lz.
+    const __m256i a = _mm256_set1_epi64x(0x7fffffffffffffffLL);
+    const __m256i len = _mm256_set1_epi64x(0x426fffffffffffffLL);
+    const __m256i rot = _mm256_set1_epi64x(0x3fffffffffffffffLL);
+    const __m256i mix = _mm256_blend_epi32(len, rot, 0x03);  // (rot, len x3)
+    bad = _mm256_or_si256(
+        _mm256_or_si256(gt64(ld32(T), a, len), gt64(ld32(T + 32), a, len)),
+        _mm256_or_si256(
+            _mm256_or_si256(gt64(ld32(P), a, rot), gt64(ld32(P + 32), a, rot)),
+            gt64(ld32(P + 64), a, mix)));
+    const __m128i a2 = _mm256_castsi256_si128(a);
+    const __m128i len2 = _mm256_castsi256_si128(len);
+    bad2 = _mm_or_si128(_mm_cmpgt_epi64(_mm_and_si128(ld16(C), a2), len2),
+                        _mm_cmpgt_epi64(_mm_and_si128(ld8(T + 64), a2), len2));
+  } else {
+    // T: ax ay az bx by bz cx cy | cz;  P: R00 .. R21 | R22 tx ty tz;
+    // C: r lz.
+    const __m256i a = _mm256_set1_epi32(0x7fffffff);
+    const __m256i len = _mm256_set1_epi32(0x537fffff);
+    const __m256i rot = _mm256_set1_epi32(0x3fffffff);
+    const __m128i a2 = _mm256_castsi256_si128(a);
+    const __m128i len2 = _mm256_castsi256_si128(len);
+    const __m128i mix2 = _mm_blend_epi32(len2, _mm256_castsi256_si128(rot), 1);
+    bad =
+        _mm256_or_si256(_mm256_cmpgt_epi32(_mm256_and_si256(ld32(T), a), len),
+                        _mm256_cmpgt_epi32(_mm256_and_si256(ld32(P), a), rot));
+    const __m128i rest = _mm_unpacklo_epi64(ld8(C), ld4(T + 32));  // r lz cz 0
+    bad2 = _mm_or_si128(_mm_cmpgt_epi32(_mm_and_si128(ld16(P + 32), a2), mix2),
+                        _mm_cmpgt_epi32(_mm_and_si128(rest, a2), len2));
   }
-  len = _mm_max_epi16(len, _mm_max_epi16(_mm256_castsi256_si128(len2),
-                                         _mm256_extracti128_si256(len2, 1)));
-  rot = _mm_max_epi16(rot, _mm_max_epi16(_mm256_castsi256_si128(rot2),
-                                         _mm256_extracti128_si256(rot2, 1)));
-  const __m128i bad =
-      _mm_or_si128(_mm_cmpgt_epi16(len, _mm_set1_epi16(GateBits<S>::kLen)),
-                   _mm_cmpgt_epi16(rot, _mm_set1_epi16(GateBits<S>::kRot)));
-  return _mm_movemask_epi8(bad) == 0;
+  return (_mm256_testz_si256(bad, bad) & _mm_testz_si128(bad2, bad2)) != 0;
 }
 
 template <class S>
@@ -549,18 +561,30 @@ __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
       _mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(m, m), HH), kr), ka);
   const __m256d zt = _mm256_sub_pd(Z, HH);                      // Z - H
   const __m256d zb = _mm256_sub_pd(_mm256_xor_pd(Z, neg), HH);  // -Z - H
-  const int m0 =
-      _mm256_movemask_pd(_mm256_cmp_pd(_mm256_sub_pd(x, rr), bx, _CMP_GT_OQ));
-  const int m1 = _mm256_movemask_pd(
-      _mm256_cmp_pd(_mm256_sub_pd(_mm256_xor_pd(x, neg), rr), bx, _CMP_GT_OQ));
-  const int m2 =
-      _mm256_movemask_pd(_mm256_cmp_pd(_mm256_sub_pd(y, rr), bx, _CMP_GT_OQ));
-  const int m3 = _mm256_movemask_pd(
-      _mm256_cmp_pd(_mm256_sub_pd(_mm256_xor_pd(y, neg), rr), bx, _CMP_GT_OQ));
-  const int m4 = _mm256_movemask_pd(_mm256_cmp_pd(zt, bz, _CMP_GT_OQ));
-  const int m5 = _mm256_movemask_pd(_mm256_cmp_pd(zb, bz, _CMP_GT_OQ));
-  if (((m0 == 15) | (m1 == 15)) | ((m2 == 15) | (m3 == 15)) |
-      ((m4 == 15) | (m5 == 15)))
+  // One comparison mask per plane (lanes = vertices), then AND over the
+  // lanes of all six at once, by transposing pairs: a plane separates iff its
+  // mask is all ones.
+  const __m256d c0 = _mm256_cmp_pd(_mm256_sub_pd(x, rr), bx, _CMP_GT_OQ);
+  const __m256d c1 =
+      _mm256_cmp_pd(_mm256_sub_pd(_mm256_xor_pd(x, neg), rr), bx, _CMP_GT_OQ);
+  const __m256d c2 = _mm256_cmp_pd(_mm256_sub_pd(y, rr), bx, _CMP_GT_OQ);
+  const __m256d c3 =
+      _mm256_cmp_pd(_mm256_sub_pd(_mm256_xor_pd(y, neg), rr), bx, _CMP_GT_OQ);
+  const __m256d c4 = _mm256_cmp_pd(zt, bz, _CMP_GT_OQ);
+  const __m256d c5 = _mm256_cmp_pd(zb, bz, _CMP_GT_OQ);
+  // (c0[0] c0[1], c1[0] c1[1], c0[2] c0[3], c1[2] c1[3]) and likewise.
+  const __m256d p01 =
+      _mm256_and_pd(_mm256_unpacklo_pd(c0, c1), _mm256_unpackhi_pd(c0, c1));
+  const __m256d p23 =
+      _mm256_and_pd(_mm256_unpacklo_pd(c2, c3), _mm256_unpackhi_pd(c2, c3));
+  const __m256d p45 =
+      _mm256_and_pd(_mm256_unpacklo_pd(c4, c5), _mm256_unpackhi_pd(c4, c5));
+  // (all c0, all c1, all c2, all c3) | (all c4, all c5, all c4, all c5).
+  const __m256d all03 = _mm256_and_pd(_mm256_permute2f128_pd(p01, p23, 0x20),
+                                      _mm256_permute2f128_pd(p01, p23, 0x31));
+  const __m256d all45 =
+      _mm256_and_pd(p45, _mm256_permute2f128_pd(p45, p45, 0x01));
+  if (_mm256_movemask_pd(_mm256_or_pd(all03, all45)) != 0)
     return Pre::kEarlyOut;
   _mm256_storeu_pd(L->x, x);
   _mm256_storeu_pd(L->y, y);
@@ -694,6 +718,16 @@ TRICYL_ALWAYS_INLINE Decision decideBody(const Cylinder<S>& cylinder,
 const bool kHasAvx2 = __builtin_cpu_supports("avx2") != 0 &&
                       std::getenv("TRICYL_SCALAR_BASELINE") == nullptr;
 
+// The fast path's gate as prologueAvx2 applies it (for
+// diagnostic::fastPathGate).
+template <class S>
+__attribute__((target("avx2"), noinline)) bool gateAvx2(
+    const Cylinder<S>& cylinder, const Pose<S>& pose,
+    const Triangle<S>& triangle) {
+  return gateBitsOkAvx2(cylinder, pose, triangle) && cylinder.radius >= 0 &&
+         cylinder.lz >= 0;
+}
+
 template <class S>
 __attribute__((target("avx2"), noinline)) Decision decideAvx2(
     const Cylinder<S>& cylinder, const Pose<S>& pose,
@@ -759,6 +793,21 @@ bool intersectUncertified(const Cylinder<S>& cylinder, const Pose<S>& pose,
   bool early = false;
   return detail::triangleCylinder<NaiveKernel>(q, &early) == Tri::kTrue;
 }
+
+template <class S>
+int fastPathGate(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                 const Triangle<S>& triangle) noexcept {
+#if TRICYL_FAST_AVX2
+  if (kHasAvx2) return gateAvx2(cylinder, pose, triangle) ? 1 : 0;
+#endif
+  (void)cylinder, (void)pose, (void)triangle;
+  return -1;
+}
+template int fastPathGate(const Cylinder<float>&, const Pose<float>&,
+                          const Triangle<float>&) noexcept;
+template int fastPathGate(const Cylinder<double>&, const Pose<double>&,
+                          const Triangle<double>&) noexcept;
+
 template bool intersectUncertified(const Cylinder<float>&, const Pose<float>&,
                                    const Triangle<float>&) noexcept;
 template bool intersectUncertified(const Cylinder<double>&, const Pose<double>&,

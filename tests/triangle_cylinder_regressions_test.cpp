@@ -171,6 +171,47 @@ TYPED_TEST(TriangleCylinderHostile, FastPathGateBoundaries) {
   }
 }
 
+// The gate itself, slot by slot (the fast path reads the 23 inputs in a
+// few wide loads; a slot it missed would let a NaN or a value outside the
+// range gate into the filter): every value strictly inside (the largest
+// below 2^40 for lengths, below 2 for rotation entries, either sign) is
+// admitted, and the boundary values, beyond them, Inf, NaN and a negative
+// radius or length are not. Skipped where there is no AVX2 path.
+TYPED_TEST(TriangleCylinderHostile, FastPathGateChecksEverySlot) {
+  using S = TypeParam;
+  const Cylinder<S> cyl{1, 2};
+  const Pose<S> pose = identityPose<S>();
+  const Triangle<S> tri{{1, 2, 3}, {4, 5, 6}, {7, 8, 9}};
+  if (diagnostic::fastPathGate(cyl, pose, tri) < 0)
+    GTEST_SKIP() << "no AVX2 fast path on this CPU or in this build";
+  ASSERT_EQ(diagnostic::fastPathGate(cyl, pose, tri), 1);
+  const S inf = std::numeric_limits<S>::infinity();
+  const S nan = std::numeric_limits<S>::quiet_NaN();
+  for (int slot = 0; slot < 23; ++slot) {
+    const bool rotation = slot >= 2 && slot <= 10;
+    const S lim = rotation ? S(2) : S(0x1p40);
+    const S inside = std::nextafter(lim, S(0));
+    const S beyond = std::nextafter(lim, inf);
+    for (S sign : {S(1), S(-1)}) {
+      for (S v : {inside, lim, beyond, S(0x1p100), inf, nan}) {
+        Cylinder<S> c = cyl;
+        Pose<S> p = pose;
+        Triangle<S> t = tri;
+        *inputSlot(c, p, t, slot) = sign * v;
+        const bool negative_length = slot < 2 && sign < 0;
+        const int want = v == inside && !negative_length ? 1 : 0;
+        EXPECT_EQ(diagnostic::fastPathGate(c, p, t), want)
+            << "slot " << slot << " value " << double(sign * v);
+      }
+    }
+    Cylinder<S> c = cyl;  // -0 is a valid radius and length
+    Pose<S> p = pose;
+    Triangle<S> t = tri;
+    *inputSlot(c, p, t, slot) = S(-0.0);
+    EXPECT_EQ(diagnostic::fastPathGate(c, p, t), 1) << "slot " << slot;
+  }
+}
+
 // Huge but finite inputs: squares of 1e300 overflow double, so the filters
 // cannot decide and the exact path must (bounded time, right answer).
 TYPED_TEST(TriangleCylinderHostile, HugeAndTinyFiniteInputsStayExact) {

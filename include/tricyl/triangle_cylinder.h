@@ -76,6 +76,15 @@ namespace diagnostic {
 template <class S>
 bool intersectUncertified(const Cylinder<S>& cylinder, const Pose<S>& pose,
                           const Triangle<S>& triangle) noexcept;
+
+/// Whether the vectorised (AVX2) fast path's bit-level gate admits these
+/// inputs: 1 (admitted: every length |x| < 2^40, every |R_jk| < 2, r >= 0,
+/// lz >= 0, nothing NaN or infinite), 0 (rejected: the query takes the
+/// validating path), or -1 (no AVX2 path in this build or on this CPU).
+/// For tests of the gate itself; the answer of a query never depends on it.
+template <class S>
+int fastPathGate(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                 const Triangle<S>& triangle) noexcept;
 }  // namespace diagnostic
 
 extern template bool intersect(const Cylinder<float>&, const Pose<float>&,
@@ -103,6 +112,10 @@ extern template bool intersectUncertified(const Cylinder<float>&,
 extern template bool intersectUncertified(const Cylinder<double>&,
                                           const Pose<double>&,
                                           const Triangle<double>&) noexcept;
+extern template int fastPathGate(const Cylinder<float>&, const Pose<float>&,
+                                 const Triangle<float>&) noexcept;
+extern template int fastPathGate(const Cylinder<double>&, const Pose<double>&,
+                                 const Triangle<double>&) noexcept;
 }  // namespace diagnostic
 
 }  // namespace tricyl
