@@ -190,8 +190,10 @@ TRICYL_NOINLINE Decision decideSlow(const Cylinder<float>& cylinder,
 // decideSlow, which decides exactly as before.
 enum class Fast { kGateMiss, kDecided, kUnknown };
 // What the prologue found: a gate miss, a certified early-out (disjoint), a
-// vertex certainly inside the solid (test (V): intersect), or nothing yet.
-enum class Pre { kGateMiss, kEarlyOut, kVertexIn, kOpen };
+// certified common point (test (V): a vertex inside the solid; with AVX2
+// also test (X): an edge crossing a cap plane inside the cap disk), or
+// nothing yet.
+enum class Pre { kGateMiss, kEarlyOut, kHit, kOpen };
 
 // The local frame as toLocal<FilterKernel> computes it: one magnitude
 // m_i = rho s_i per vertex (rho = max |R_jk|), z doubled; and the cylinder.
@@ -367,7 +369,7 @@ TRICYL_ALWAYS_INLINE Pre prologue(const Cylinder<S>& cyl, const Pose<S>& pose,
   const int beyond =
       _mm_movemask_pd(_mm_or_pd(_mm_or_pd(pos_all, neg_all), z_all));
   if (beyond != 0) return Pre::kEarlyOut;
-  return (_mm_movemask_pd(vin) & 1) != 0 ? Pre::kVertexIn : Pre::kOpen;
+  return (_mm_movemask_pd(vin) & 1) != 0 ? Pre::kHit : Pre::kOpen;
 }
 #else
 // Portable version: the bit-level validate() and rangeGateOk() of
@@ -416,7 +418,7 @@ TRICYL_ALWAYS_INLINE Pre prologue(const Cylinder<S>& cyl, const Pose<S>& pose,
            ((r2 - x * x) - y * y > ((r2 + mm) + mm) * kRel + kAbs);
   }
   if (beyond != 0) return Pre::kEarlyOut;
-  return vin ? Pre::kVertexIn : Pre::kOpen;
+  return vin ? Pre::kHit : Pre::kOpen;
 }
 #endif
 
@@ -499,6 +501,62 @@ __attribute__((target("avx2"), always_inline)) inline bool gateBitsOkAvx2(
                         _mm_cmpgt_epi32(_mm_and_si128(rest, a2), len2));
   }
   return (_mm256_testz_si256(bad, bad) & _mm_testz_si128(bad2, bad2)) != 0;
+}
+
+// Test (X) of the kernel for the six edge/cap-plane crossings, branch-free,
+// lanes = edges (0,1), (1,2), (2,0) (lane 3 repeats (2,0)): the same Fd
+// expressions as triangleCylinderTests, value and magnitude in separate
+// registers, in the same order, so each "true" is a sign the kernel
+// certifies. For the plane Z = sH, a_k = Z_k - sH with magnitude
+// ma_k = fl(2 m_k + H); the edge crosses it strictly iff a_i, a_j have
+// certified opposite signs, at the point (X, Y) / W with
+//   X = x_i a_j - x_j a_i,  Y = y_i a_j - y_j a_i,  W = a_j - a_i,
+// inside the cap disk iff fl(fl(r2 (W W) - X X) - Y Y) is certainly >= 0.
+// True iff some crossing is certainly inside its cap disk: the triangle and
+// the cylinder then share that point. (Eberly's cases 3b-5: the clipped
+// polygon's vertex on a cap.) Anything undecided is left to the kernel.
+__attribute__((target("avx2"), always_inline)) inline bool capCrossingHit(
+    __m256d x, __m256d y, __m256d m, __m256d Z, __m256d a_top, __m256d ba,
+    __m256d r2, __m256d HH) {
+  constexpr int kNext = 0x09;  // lanes (1, 2, 0, 0): the edge's second end
+  const __m256d kr = _mm256_set1_pd(kRel), ka = _mm256_set1_pd(kAbs);
+  const __m256d neg = _mm256_set1_pd(-0.0);
+  const __m256d ma = _mm256_add_pd(_mm256_add_pd(m, m), HH);
+  const __m256d xj = _mm256_permute4x64_pd(x, kNext);
+  const __m256d yj = _mm256_permute4x64_pd(y, kNext);
+  const __m256d mj = _mm256_permute4x64_pd(m, kNext);
+  const __m256d maj = _mm256_permute4x64_pd(ma, kNext);
+  const __m256d baj = _mm256_permute4x64_pd(ba, kNext);
+  const __m256d nba = _mm256_xor_pd(ba, neg), nbaj = _mm256_xor_pd(baj, neg);
+  // Magnitudes shared by both planes: X and Y (m_i ma_j + m_j ma_i), W.
+  const __m256d mX =
+      _mm256_add_pd(_mm256_mul_pd(m, maj), _mm256_mul_pd(mj, ma));
+  const __m256d mW = _mm256_add_pd(maj, ma);
+  const __m256d me =
+      _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(r2, _mm256_mul_pd(mW, mW)),
+                                  _mm256_mul_pd(mX, mX)),
+                    _mm256_mul_pd(mX, mX));
+  const __m256d be = _mm256_add_pd(_mm256_mul_pd(me, kr), ka);
+  __m256d hit = _mm256_setzero_pd();
+  for (int s = 0; s < 2; ++s) {
+    const __m256d a = s == 0 ? a_top : _mm256_add_pd(Z, HH);  // Z - H, Z + H
+    const __m256d aj = _mm256_permute4x64_pd(a, kNext);
+    const __m256d cross =
+        _mm256_or_pd(_mm256_and_pd(_mm256_cmp_pd(a, nba, _CMP_LT_OQ),
+                                   _mm256_cmp_pd(aj, baj, _CMP_GT_OQ)),
+                     _mm256_and_pd(_mm256_cmp_pd(a, ba, _CMP_GT_OQ),
+                                   _mm256_cmp_pd(aj, nbaj, _CMP_LT_OQ)));
+    const __m256d X = _mm256_sub_pd(_mm256_mul_pd(x, aj), _mm256_mul_pd(xj, a));
+    const __m256d Y = _mm256_sub_pd(_mm256_mul_pd(y, aj), _mm256_mul_pd(yj, a));
+    const __m256d W = _mm256_sub_pd(aj, a);
+    const __m256d e =
+        _mm256_sub_pd(_mm256_sub_pd(_mm256_mul_pd(r2, _mm256_mul_pd(W, W)),
+                                    _mm256_mul_pd(X, X)),
+                      _mm256_mul_pd(Y, Y));
+    hit = _mm256_or_pd(hit,
+                       _mm256_and_pd(cross, _mm256_cmp_pd(e, be, _CMP_GT_OQ)));
+  }
+  return _mm256_movemask_pd(hit) != 0;
 }
 
 template <class S>
@@ -605,7 +663,8 @@ __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
       _mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(r2, mm), mm), kr), ka);
   const int vin =
       _mm256_movemask_pd(_mm256_and_pd(slab, _mm256_cmp_pd(v, bv, _CMP_GT_OQ)));
-  return vin != 0 ? Pre::kVertexIn : Pre::kOpen;
+  if (vin != 0) return Pre::kHit;
+  return capCrossingHit(x, y, m, Z, zt, bz, r2, HH) ? Pre::kHit : Pre::kOpen;
 }
 #undef TRICYL_AVX2_FN
 #endif
@@ -687,7 +746,7 @@ TRICYL_ALWAYS_INLINE Fast decideFast(const Cylinder<S>& cyl,
     *out = {Answer::kDisjoint, Stage::kEarlyOut};
     return Fast::kDecided;
   }
-  if (f == Pre::kVertexIn) {
+  if (f == Pre::kHit) {
     *out = {Answer::kIntersect, Stage::kFastPath};
     return Fast::kDecided;
   }
