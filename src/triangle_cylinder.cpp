@@ -701,6 +701,63 @@ inline bool edgeSeparates(const detail::TriCylLocal<FilterKernel>& q) {
   return false;
 }
 
+// The triangle's own plane separates (docs/exactness.md, "Plane
+// separation"). In the coordinates (x, y, Z) the solid is x^2 + y^2 <= r^2,
+// |Z| <= H, so n.p <= r |(n_x, n_y)| + H |n_Z| on it for any n; the triangle
+// lies in n.p = d with n = (P1 - P0) x (P2 - P0), d = n.P0. It is disjoint
+// if |d| > r |(n_x, n_y)| + H |n_Z|. With s = the sign of the computed d
+// (any choice works: s d <= |d| exactly), q1 = s d - H n_Z and
+// q2 = s d + H n_Z certainly positive give s d - H |n_Z| = min(q1, q2) > 0,
+// and q1^2, q2^2 > r^2 (n_x^2 + n_y^2) give (|d| - H |n_Z|)^2 >= min^2 >
+// r^2 |(n_x, n_y)|^2: the plane misses the solid. A degenerate triangle
+// (n = 0) never passes (q1 = q2 = 0 exactly). Depth <= 14, degree 6 in the
+// local coordinates (12 in the inputs), magnitudes below 2^280 under the
+// gate: FilterKernel::sign applies as for the kernel's own predicates.
+inline bool planeSeparates(const detail::TriCylLocal<FilterKernel>& q) {
+  using detail::Fd;
+  const Fd* x = q.x;
+  const Fd* y = q.y;
+  const Fd* Z = q.Z;
+  const Fd ux = x[1] - x[0], uy = y[1] - y[0], uz = Z[1] - Z[0];
+  const Fd vx = x[2] - x[0], vy = y[2] - y[0], vz = Z[2] - Z[0];
+  const Fd nx = uy * vz - uz * vy, ny = uz * vx - ux * vz,
+           nz = ux * vy - uy * vx;
+  Fd d = nx * x[0] + ny * y[0] + nz * Z[0];
+  if (d.v < 0) d = -d;  // exact; s d <= |d| whatever s is
+  const Fd Hn = q.H * nz;
+  const Fd q1 = d - Hn, q2 = d + Hn;
+  if (FilterKernel::sign(q1) != Sign::kPos ||
+      FilterKernel::sign(q2) != Sign::kPos)
+    return false;
+  const Fd rN = (q.r * q.r) * (nx * nx + ny * ny);
+  return FilterKernel::sign(q1 * q1 - rN) == Sign::kPos &&
+         FilterKernel::sign(q2 * q2 - rN) == Sign::kPos;
+}
+
+// A separating line in the projection perpendicular to a vertex's direction
+// (docs/exactness.md, "Direction separation"): with u = P_k (projected), if
+// every vertex has P_j . u > r |u|, the projected triangle lies in the open
+// half-plane {p . u > r |u|}, which the disk (p . u <= |p| |u| <= r |u|)
+// does not meet. Certified as P_j . u > 0 and (P_j . u)^2 > r^2 |u|^2 for
+// j = 0, 1, 2 (degree 4, depth <= 9).
+inline bool directionSeparates(const detail::TriCylLocal<FilterKernel>& q) {
+  using detail::Fd;
+  const Fd* x = q.x;
+  const Fd* y = q.y;
+  const Fd r2 = q.r * q.r;
+  for (int k = 0; k < 3; ++k) {
+    const Fd ru = r2 * (x[k] * x[k] + y[k] * y[k]);
+    bool all = true;
+    for (int j = 0; j < 3 && all; ++j) {
+      const Fd s = x[j] * x[k] + y[j] * y[k];
+      all = FilterKernel::sign(s) == Sign::kPos &&
+            FilterKernel::sign(s * s - ru) == Sign::kPos;
+    }
+    if (all) return true;
+  }
+  return false;
+}
+
 // The rest of the double filter after the early-outs (not inlined: the
 // early-outs decide most queries).
 TRICYL_NOINLINE Tri filterTests(const Local& L) {
@@ -722,7 +779,8 @@ TRICYL_NOINLINE Tri filterTests(const Local& L) {
   }
   q.H = FilterKernel::lift(L.H);
   q.r = FilterKernel::lift(L.r);
-  if (edgeSeparates(q)) return Tri::kFalse;
+  if (edgeSeparates(q) || planeSeparates(q) || directionSeparates(q))
+    return Tri::kFalse;
   return detail::triangleCylinderTests<FilterKernel>(q, top, bot);
 }
 
