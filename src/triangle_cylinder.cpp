@@ -440,7 +440,11 @@ TRICYL_AVX2_FN __m256d lanes(const S& a, const S& b, const S& c) {
 }
 template <class S>
 TRICYL_AVX2_FN __m256d bcast(const S& v) {
-  return _mm256_set1_pd(double(v));
+  if constexpr (sizeof(S) == 8) {
+    return _mm256_broadcast_sd(&v);  // a load, not a shuffle
+  } else {
+    return _mm256_set1_pd(double(v));
+  }
 }
 
 // The gate of gateBitsOk with whole-word integer comparisons (the same
@@ -619,30 +623,18 @@ __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
       _mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(m, m), HH), kr), ka);
   const __m256d zt = _mm256_sub_pd(Z, HH);                      // Z - H
   const __m256d zb = _mm256_sub_pd(_mm256_xor_pd(Z, neg), HH);  // -Z - H
-  // One comparison mask per plane (lanes = vertices), then AND over the
-  // lanes of all six at once, by transposing pairs: a plane separates iff its
-  // mask is all ones.
-  const __m256d c0 = _mm256_cmp_pd(_mm256_sub_pd(x, rr), bx, _CMP_GT_OQ);
-  const __m256d c1 =
-      _mm256_cmp_pd(_mm256_sub_pd(_mm256_xor_pd(x, neg), rr), bx, _CMP_GT_OQ);
-  const __m256d c2 = _mm256_cmp_pd(_mm256_sub_pd(y, rr), bx, _CMP_GT_OQ);
-  const __m256d c3 =
-      _mm256_cmp_pd(_mm256_sub_pd(_mm256_xor_pd(y, neg), rr), bx, _CMP_GT_OQ);
-  const __m256d c4 = _mm256_cmp_pd(zt, bz, _CMP_GT_OQ);
-  const __m256d c5 = _mm256_cmp_pd(zb, bz, _CMP_GT_OQ);
-  // (c0[0] c0[1], c1[0] c1[1], c0[2] c0[3], c1[2] c1[3]) and likewise.
-  const __m256d p01 =
-      _mm256_and_pd(_mm256_unpacklo_pd(c0, c1), _mm256_unpackhi_pd(c0, c1));
-  const __m256d p23 =
-      _mm256_and_pd(_mm256_unpacklo_pd(c2, c3), _mm256_unpackhi_pd(c2, c3));
-  const __m256d p45 =
-      _mm256_and_pd(_mm256_unpacklo_pd(c4, c5), _mm256_unpackhi_pd(c4, c5));
-  // (all c0, all c1, all c2, all c3) | (all c4, all c5, all c4, all c5).
-  const __m256d all03 = _mm256_and_pd(_mm256_permute2f128_pd(p01, p23, 0x20),
-                                      _mm256_permute2f128_pd(p01, p23, 0x31));
-  const __m256d all45 =
-      _mm256_and_pd(p45, _mm256_permute2f128_pd(p45, p45, 0x01));
-  if (_mm256_movemask_pd(_mm256_or_pd(all03, all45)) != 0)
+  const int m0 =
+      _mm256_movemask_pd(_mm256_cmp_pd(_mm256_sub_pd(x, rr), bx, _CMP_GT_OQ));
+  const int m1 = _mm256_movemask_pd(
+      _mm256_cmp_pd(_mm256_sub_pd(_mm256_xor_pd(x, neg), rr), bx, _CMP_GT_OQ));
+  const int m2 =
+      _mm256_movemask_pd(_mm256_cmp_pd(_mm256_sub_pd(y, rr), bx, _CMP_GT_OQ));
+  const int m3 = _mm256_movemask_pd(
+      _mm256_cmp_pd(_mm256_sub_pd(_mm256_xor_pd(y, neg), rr), bx, _CMP_GT_OQ));
+  const int m4 = _mm256_movemask_pd(_mm256_cmp_pd(zt, bz, _CMP_GT_OQ));
+  const int m5 = _mm256_movemask_pd(_mm256_cmp_pd(zb, bz, _CMP_GT_OQ));
+  if (((m0 == 15) | (m1 == 15)) | ((m2 == 15) | (m3 == 15)) |
+      ((m4 == 15) | (m5 == 15)))
     return Pre::kEarlyOut;
   _mm256_storeu_pd(L->x, x);
   _mm256_storeu_pd(L->y, y);
