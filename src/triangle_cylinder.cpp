@@ -344,13 +344,16 @@ TRICYL_ALWAYS_INLINE Pre prologue(const Cylinder<S>& cyl, const Pose<S>& pose,
     _mm_storeh_pd(&L->y[i], xy);
     L->Z[i] = _mm_cvtsd_f64(Z);
     L->m[i] = m;
-    const __m128d bxy = _mm_set1_pd((m + r) * kRel + kAbs);
+    // Early-outs with the magnitude 2 s >= m (see prologueAvx2).
+    const double me = _mm_cvtsd_f64(_mm_add_sd(s, s));
+    const __m128d bxy = _mm_set1_pd((me + r) * kRel + kAbs);
+    const __m128d bze = _mm_set1_pd(((me + me) + H) * kRel + kAbs);
     const __m128d bzz = _mm_set1_pd(((m + m) + H) * kRel + kAbs);
     pos_all = _mm_and_pd(pos_all, _mm_cmplt_pd(bxy, _mm_sub_pd(xy, rr)));
     neg_all = _mm_and_pd(
         neg_all, _mm_cmplt_pd(bxy, _mm_sub_pd(_mm_xor_pd(xy, neg), rr)));
     const __m128d ZH = _mm_sub_pd(_mm_xor_pd(_mm_unpacklo_pd(Z, Z), negZ), HH);
-    z_all = _mm_and_pd(z_all, _mm_cmplt_pd(bzz, ZH));
+    z_all = _mm_and_pd(z_all, _mm_cmplt_pd(bze, ZH));
     // (V): in the slab (fl(Z - H) < -b and fl(-Z - H) < -b, i.e.
     // fl(Z + H) > b) and fl(fl(r2 - x x) - y y) > b' with the magnitude
     // fl(fl(r2 + m m) + m m), as triangleCylinderTests evaluates it.
@@ -408,11 +411,14 @@ TRICYL_ALWAYS_INLINE Pre prologue(const Cylinder<S>& cyl, const Pose<S>& pose,
     L->y[i] = y;
     L->Z[i] = Z;
     L->m[i] = m;
-    const double bz = ((m + m) + H) * kRel + kAbs;
-    const double bx = (m + r) * kRel + kAbs;
-    beyond &= unsigned(Z - H > bz) | unsigned(-Z - H > bz) << 1 |
+    // Early-outs with the magnitude 2 s >= m (see prologueAvx2).
+    const double me = s + s;
+    const double bze = ((me + me) + H) * kRel + kAbs;
+    const double bx = (me + r) * kRel + kAbs;
+    beyond &= unsigned(Z - H > bze) | unsigned(-Z - H > bze) << 1 |
               unsigned(x - r > bx) << 2 | unsigned(-x - r > bx) << 3 |
               unsigned(y - r > bx) << 4 | unsigned(-y - r > bx) << 5;
+    const double bz = ((m + m) + H) * kRel + kAbs;
     const double mm = m * m;
     vin |= (Z - H < -bz) & (Z + H > bz) &
            ((r2 - x * x) - y * y > ((r2 + mm) + mm) * kRel + kAbs);
@@ -575,22 +581,6 @@ __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
       _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffLL));
   const __m256d neg = _mm256_set1_pd(-0.0);
   const auto& R = pose.R;
-  // rho = max |R_jk|, the same value as the scalar max.
-  const __m256d r0 =
-      _mm256_and_pd(_mm256_set_pd(double(R[1][0]), double(R[0][2]),
-                                  double(R[0][1]), double(R[0][0])),
-                    abs);
-  const __m256d r1 =
-      _mm256_and_pd(_mm256_set_pd(double(R[2][1]), double(R[2][0]),
-                                  double(R[1][2]), double(R[1][1])),
-                    abs);
-  const __m256d rm = _mm256_max_pd(r0, r1);
-  __m128d rh =
-      _mm_max_pd(_mm256_castpd256_pd128(rm), _mm256_extractf128_pd(rm, 1));
-  rh = _mm_max_sd(
-      _mm_max_sd(rh, _mm_unpackhi_pd(rh, rh)),
-      _mm_and_pd(_mm_set1_pd(double(R[2][2])), _mm256_castpd256_pd128(abs)));
-  const __m256d rho = _mm256_broadcastsd_pd(rh);
 
   const __m256d d0 =
       _mm256_sub_pd(lanes(tri.a.x, tri.b.x, tri.c.x), bcast(pose.t.x));
@@ -601,7 +591,11 @@ __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
   const __m256d s = _mm256_add_pd(
       _mm256_add_pd(_mm256_and_pd(d0, abs), _mm256_and_pd(d1, abs)),
       _mm256_and_pd(d2, abs));
-  const __m256d m = _mm256_mul_pd(rho, s);
+  // The early-outs use the magnitude 2 s >= rho s = m (the gate admits only
+  // |R_jk| < 2, and rounding is monotone: fl(rho s) <= fl(2 s) = 2 s), which
+  // needs no rho; every bound below is >= the kernel's, so each early-out is
+  // one the kernel takes. m itself is computed only if they fail.
+  const __m256d me = _mm256_add_pd(s, s);
   const __m256d x =
       _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(bcast(R[0][0]), d0),
                                   _mm256_mul_pd(bcast(R[1][0]), d1)),
@@ -618,24 +612,48 @@ __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
 
   const __m256d rr = _mm256_set1_pd(r), HH = _mm256_set1_pd(H);
   const __m256d kr = _mm256_set1_pd(kRel), ka = _mm256_set1_pd(kAbs);
-  const __m256d bx = _mm256_add_pd(_mm256_mul_pd(_mm256_add_pd(m, rr), kr), ka);
+  const __m256d bx =
+      _mm256_add_pd(_mm256_mul_pd(_mm256_add_pd(me, rr), kr), ka);
+  const __m256d bze = _mm256_add_pd(
+      _mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(me, me), HH), kr), ka);
+  // A plane x = r or x = -r separates iff every vertex has fl(|x| - r) > b
+  // (fl(|x| - r) is fl(x - r) for x > 0 and fl(-x - r) for x < 0: rounding
+  // is symmetric) and the three x have the same sign (sign bits 0 or 15; x =
+  // +-0 never passes the first test). Likewise y, and Z with H.
+  const __m256d zt = _mm256_sub_pd(Z, HH);  // Z - H
+  const int cx = _mm256_movemask_pd(
+      _mm256_cmp_pd(_mm256_sub_pd(_mm256_and_pd(x, abs), rr), bx, _CMP_GT_OQ));
+  const int cy = _mm256_movemask_pd(
+      _mm256_cmp_pd(_mm256_sub_pd(_mm256_and_pd(y, abs), rr), bx, _CMP_GT_OQ));
+  const int cz = _mm256_movemask_pd(
+      _mm256_cmp_pd(_mm256_sub_pd(_mm256_and_pd(Z, abs), HH), bze, _CMP_GT_OQ));
+  const int sx = _mm256_movemask_pd(x), sy = _mm256_movemask_pd(y),
+            sz = _mm256_movemask_pd(Z);
+  auto same = [](int sgn) { return (sgn == 0) | (sgn == 15); };
+  if (((cx == 15) & same(sx)) | ((cy == 15) & same(sy)) |
+      ((cz == 15) & same(sz)))
+    return Pre::kEarlyOut;
+
+  // rho = max |R_jk|, the same value as the scalar max.
+  const __m256d r0 =
+      _mm256_and_pd(_mm256_set_pd(double(R[1][0]), double(R[0][2]),
+                                  double(R[0][1]), double(R[0][0])),
+                    abs);
+  const __m256d r1 =
+      _mm256_and_pd(_mm256_set_pd(double(R[2][1]), double(R[2][0]),
+                                  double(R[1][2]), double(R[1][1])),
+                    abs);
+  const __m256d rm = _mm256_max_pd(r0, r1);
+  __m128d rh =
+      _mm_max_pd(_mm256_castpd256_pd128(rm), _mm256_extractf128_pd(rm, 1));
+  rh = _mm_max_sd(
+      _mm_max_sd(rh, _mm_unpackhi_pd(rh, rh)),
+      _mm_and_pd(_mm_set1_pd(double(R[2][2])), _mm256_castpd256_pd128(abs)));
+  const __m256d rho = _mm256_broadcastsd_pd(rh);
+  const __m256d m = _mm256_mul_pd(rho, s);
   const __m256d bz = _mm256_add_pd(
       _mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(m, m), HH), kr), ka);
-  const __m256d zt = _mm256_sub_pd(Z, HH);                      // Z - H
   const __m256d zb = _mm256_sub_pd(_mm256_xor_pd(Z, neg), HH);  // -Z - H
-  const int m0 =
-      _mm256_movemask_pd(_mm256_cmp_pd(_mm256_sub_pd(x, rr), bx, _CMP_GT_OQ));
-  const int m1 = _mm256_movemask_pd(
-      _mm256_cmp_pd(_mm256_sub_pd(_mm256_xor_pd(x, neg), rr), bx, _CMP_GT_OQ));
-  const int m2 =
-      _mm256_movemask_pd(_mm256_cmp_pd(_mm256_sub_pd(y, rr), bx, _CMP_GT_OQ));
-  const int m3 = _mm256_movemask_pd(
-      _mm256_cmp_pd(_mm256_sub_pd(_mm256_xor_pd(y, neg), rr), bx, _CMP_GT_OQ));
-  const int m4 = _mm256_movemask_pd(_mm256_cmp_pd(zt, bz, _CMP_GT_OQ));
-  const int m5 = _mm256_movemask_pd(_mm256_cmp_pd(zb, bz, _CMP_GT_OQ));
-  if (((m0 == 15) | (m1 == 15)) | ((m2 == 15) | (m3 == 15)) |
-      ((m4 == 15) | (m5 == 15)))
-    return Pre::kEarlyOut;
   _mm256_storeu_pd(L->x, x);
   _mm256_storeu_pd(L->y, y);
   _mm256_storeu_pd(L->Z, Z);
@@ -771,6 +789,19 @@ TRICYL_NOINLINE Tri filterTests(const Local& L) {
   }
   q.H = FilterKernel::lift(L.H);
   q.r = FilterKernel::lift(L.r);
+  // The kernel's own early-outs with the per-vertex magnitudes (the
+  // prologue's use the looser 2 s): slab, then the disk's bounding square.
+  if ((top[0] == Sign::kPos && top[1] == Sign::kPos && top[2] == Sign::kPos) ||
+      (bot[0] == Sign::kNeg && bot[1] == Sign::kNeg && bot[2] == Sign::kNeg))
+    return Tri::kFalse;
+  unsigned beyond = 15;
+  for (int i = 0; i < 3; ++i) {
+    const double b = (L.m[i] + L.r) * kRel + kAbs;
+    beyond &= unsigned(L.x[i] - L.r > b) | unsigned(-L.x[i] - L.r > b) << 1 |
+              unsigned(L.y[i] - L.r > b) << 2 |
+              unsigned(-L.y[i] - L.r > b) << 3;
+  }
+  if (beyond != 0) return Tri::kFalse;
   if (edgeSeparates(q) || planeSeparates(q) || directionSeparates(q))
     return Tri::kFalse;
   return detail::triangleCylinderTests<FilterKernel>(q, top, bot);
