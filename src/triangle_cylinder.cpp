@@ -634,6 +634,25 @@ __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
       ((cz == 15) & same(sz)))
     return Pre::kEarlyOut;
 
+  // (V), then (X), also with the magnitude 2 s >= m: a looser bound is still
+  // a valid one, and the few queries it leaves undecided (a vertex or a
+  // crossing within about 2^-45 relative of the boundary) are decided by the
+  // remaining tests, which re-run (V) and (X) with the per-vertex m.
+  const __m256d zb = _mm256_sub_pd(_mm256_xor_pd(Z, neg), HH);  // -Z - H
+  const __m256d nbz = _mm256_xor_pd(bze, neg);
+  const __m256d slab = _mm256_and_pd(_mm256_cmp_pd(zt, nbz, _CMP_LT_OQ),
+                                     _mm256_cmp_pd(zb, nbz, _CMP_LT_OQ));
+  const __m256d r2 = _mm256_set1_pd(r * r);
+  const __m256d mm = _mm256_mul_pd(me, me);
+  const __m256d v = _mm256_sub_pd(_mm256_sub_pd(r2, _mm256_mul_pd(x, x)),
+                                  _mm256_mul_pd(y, y));
+  const __m256d bv = _mm256_add_pd(
+      _mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(r2, mm), mm), kr), ka);
+  const int vin =
+      _mm256_movemask_pd(_mm256_and_pd(slab, _mm256_cmp_pd(v, bv, _CMP_GT_OQ)));
+  if (vin != 0) return Pre::kHit;
+  if (capCrossingHit(x, y, me, Z, zt, bze, r2, HH)) return Pre::kHit;
+
   // rho = max |R_jk|, the same value as the scalar max.
   const __m256d r0 =
       _mm256_and_pd(_mm256_set_pd(double(R[1][0]), double(R[0][2]),
@@ -650,31 +669,13 @@ __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
       _mm_max_sd(rh, _mm_unpackhi_pd(rh, rh)),
       _mm_and_pd(_mm_set1_pd(double(R[2][2])), _mm256_castpd256_pd128(abs)));
   const __m256d rho = _mm256_broadcastsd_pd(rh);
-  const __m256d m = _mm256_mul_pd(rho, s);
-  const __m256d bz = _mm256_add_pd(
-      _mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(m, m), HH), kr), ka);
-  const __m256d zb = _mm256_sub_pd(_mm256_xor_pd(Z, neg), HH);  // -Z - H
-  _mm256_storeu_pd(L->x, x);
+  _mm256_storeu_pd(L->x, x);  // only the remaining tests read L
   _mm256_storeu_pd(L->y, y);
   _mm256_storeu_pd(L->Z, Z);
-  _mm256_storeu_pd(L->m, m);
+  _mm256_storeu_pd(L->m, _mm256_mul_pd(rho, s));
   L->r = r;
   L->H = H;
-
-  // (V), as in the SSE2 version.
-  const __m256d nbz = _mm256_xor_pd(bz, neg);
-  const __m256d slab = _mm256_and_pd(_mm256_cmp_pd(zt, nbz, _CMP_LT_OQ),
-                                     _mm256_cmp_pd(zb, nbz, _CMP_LT_OQ));
-  const __m256d r2 = _mm256_set1_pd(r * r);
-  const __m256d mm = _mm256_mul_pd(m, m);
-  const __m256d v = _mm256_sub_pd(_mm256_sub_pd(r2, _mm256_mul_pd(x, x)),
-                                  _mm256_mul_pd(y, y));
-  const __m256d bv = _mm256_add_pd(
-      _mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(r2, mm), mm), kr), ka);
-  const int vin =
-      _mm256_movemask_pd(_mm256_and_pd(slab, _mm256_cmp_pd(v, bv, _CMP_GT_OQ)));
-  if (vin != 0) return Pre::kHit;
-  return capCrossingHit(x, y, m, Z, zt, bz, r2, HH) ? Pre::kHit : Pre::kOpen;
+  return Pre::kOpen;
 }
 #undef TRICYL_AVX2_FN
 #endif
