@@ -191,9 +191,10 @@ TRICYL_NOINLINE Decision decideSlow(const Cylinder<float>& cylinder,
 enum class Fast { kGateMiss, kDecided, kUnknown };
 // What the prologue found: a gate miss, a certified early-out (disjoint), a
 // certified common point (test (V): a vertex inside the solid; with AVX2
-// also test (X): an edge crossing a cap plane inside the cap disk), or
+// also test (X): an edge crossing a cap plane inside the cap disk), a
+// certified separation after the early-outs (AVX2: edge separation), or
 // nothing yet.
-enum class Pre { kGateMiss, kEarlyOut, kHit, kOpen };
+enum class Pre { kGateMiss, kEarlyOut, kHit, kDisjoint, kOpen };
 
 // The local frame as toLocal<FilterKernel> computes it: one magnitude
 // m_i = rho s_i per vertex (rho = max |R_jk|), z doubled; and the cylinder.
@@ -513,6 +514,54 @@ __attribute__((target("avx2"), always_inline)) inline bool gateBitsOkAvx2(
   return (_mm256_testz_si256(bad, bad) & _mm_testz_si128(bad2, bad2)) != 0;
 }
 
+// edgeSeparates (below) for the three edges at once, branch-free, lanes =
+// edges (0,1), (1,2), (2,0) (lane 3 repeats (2,0)), with the magnitude `me`
+// per vertex: the same Fd expressions, values and magnitudes in separate
+// registers, so a lane it reports is a separation FilterKernel::sign
+// certifies (docs/exactness.md, "Edge separation").
+__attribute__((target("avx2"), always_inline)) inline bool edgeSeparatesAvx2(
+    __m256d x, __m256d y, __m256d me, __m256d r2) {
+  constexpr int kNext = 0x09;  // lanes (1, 2, 0, 0): the edge's second end
+  const __m256d kr = _mm256_set1_pd(kRel), ka = _mm256_set1_pd(kAbs);
+  const __m256d neg = _mm256_set1_pd(-0.0);
+  const __m256d xj = _mm256_permute4x64_pd(x, kNext);
+  const __m256d yj = _mm256_permute4x64_pd(y, kNext);
+  const __m256d mj = _mm256_permute4x64_pd(me, kNext);
+  // o = x_i y_j - x_j y_i, magnitude m_i m_j + m_j m_i.
+  const __m256d o = _mm256_sub_pd(_mm256_mul_pd(x, yj), _mm256_mul_pd(xj, y));
+  const __m256d p = _mm256_mul_pd(me, mj);
+  const __m256d mo = _mm256_add_pd(p, _mm256_mul_pd(mj, me));
+  // A2 = (o0 + o1) + o2 in every lane, and its magnitude.
+  const __m256d A2 =
+      _mm256_add_pd(_mm256_add_pd(_mm256_permute4x64_pd(o, 0x00),
+                                  _mm256_permute4x64_pd(o, 0x55)),
+                    _mm256_permute4x64_pd(o, 0xaa));
+  const __m256d mA =
+      _mm256_add_pd(_mm256_add_pd(_mm256_permute4x64_pd(mo, 0x00),
+                                  _mm256_permute4x64_pd(mo, 0x55)),
+                    _mm256_permute4x64_pd(mo, 0xaa));
+  const __m256d bA = _mm256_add_pd(_mm256_mul_pd(mA, kr), ka);
+  const __m256d bo = _mm256_add_pd(_mm256_mul_pd(mo, kr), ka);
+  // The origin strictly beyond edge i's line: sign(o_i) = -sign(A2) != 0.
+  const __m256d outside = _mm256_or_pd(
+      _mm256_and_pd(_mm256_cmp_pd(A2, bA, _CMP_GT_OQ),
+                    _mm256_cmp_pd(o, _mm256_xor_pd(bo, neg), _CMP_LT_OQ)),
+      _mm256_and_pd(_mm256_cmp_pd(A2, _mm256_xor_pd(bA, neg), _CMP_LT_OQ),
+                    _mm256_cmp_pd(o, bo, _CMP_GT_OQ)));
+  // ... and farther than r from it: o^2 - r2 L > 0, L = |P_j - P_i|^2.
+  const __m256d ex = _mm256_sub_pd(xj, x), ey = _mm256_sub_pd(yj, y);
+  const __m256d mE = _mm256_add_pd(mj, me);
+  const __m256d L = _mm256_add_pd(_mm256_mul_pd(ex, ex), _mm256_mul_pd(ey, ey));
+  const __m256d mL =
+      _mm256_add_pd(_mm256_mul_pd(mE, mE), _mm256_mul_pd(mE, mE));
+  const __m256d d = _mm256_sub_pd(_mm256_mul_pd(o, o), _mm256_mul_pd(r2, L));
+  const __m256d md =
+      _mm256_add_pd(_mm256_mul_pd(mo, mo), _mm256_mul_pd(r2, mL));
+  const __m256d distant =
+      _mm256_cmp_pd(d, _mm256_add_pd(_mm256_mul_pd(md, kr), ka), _CMP_GT_OQ);
+  return _mm256_movemask_pd(_mm256_and_pd(outside, distant)) != 0;
+}
+
 // Test (X) of the kernel for the six edge/cap-plane crossings, branch-free,
 // lanes = edges (0,1), (1,2), (2,0) (lane 3 repeats (2,0)): the same Fd
 // expressions as triangleCylinderTests, value and magnitude in separate
@@ -652,6 +701,7 @@ __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
       _mm256_movemask_pd(_mm256_and_pd(slab, _mm256_cmp_pd(v, bv, _CMP_GT_OQ)));
   if (vin != 0) return Pre::kHit;
   if (capCrossingHit(x, y, me, Z, zt, bze, r2, HH)) return Pre::kHit;
+  if (edgeSeparatesAvx2(x, y, me, r2)) return Pre::kDisjoint;
 
   // rho = max |R_jk|, the same value as the scalar max.
   const __m256d r0 =
@@ -830,6 +880,10 @@ TRICYL_ALWAYS_INLINE Fast decideFast(const Cylinder<S>& cyl,
   }
   if (f == Pre::kHit) {
     *out = {Answer::kIntersect, Stage::kFastPath};
+    return Fast::kDecided;
+  }
+  if (f == Pre::kDisjoint) {
+    *out = {Answer::kDisjoint, Stage::kFastPath};
     return Fast::kDecided;
   }
   if (f == Pre::kGateMiss) return Fast::kGateMiss;
