@@ -618,14 +618,10 @@ __attribute__((target("avx2"), always_inline)) inline bool capCrossingHit(
   return _mm256_movemask_pd(hit) != 0;
 }
 
-template <class S>
-__attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
-                                                        const Pose<S>& pose,
-                                                        const Triangle<S>& tri,
-                                                        Local* L) {
-  if (!gateBitsOkAvx2(cyl, pose, tri)) return Pre::kGateMiss;
-  const double r = double(cyl.radius), H = double(cyl.lz);
-  if (!(r >= 0) || !(H >= 0)) return Pre::kGateMiss;  // finite: no trap
+// The arithmetic of the prologue, on double inputs that passed the gate.
+__attribute__((target("avx2"), always_inline)) inline Pre prologueAvx2Body(
+    const Pose<double>& pose, const Triangle<double>& tri, double r, double H,
+    Local* L) {
   const __m256d abs =
       _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffLL));
   const __m256d neg = _mm256_set1_pd(-0.0);
@@ -726,6 +722,46 @@ __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
   L->r = r;
   L->H = H;
   return Pre::kOpen;
+}
+
+// The gate, then the arithmetic in double. Float inputs (finite: the gate
+// read their bits) are widened once, exactly, by vector conversions into
+// double aggregates of the same layout, so the arithmetic reads doubles.
+template <class S>
+__attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
+                                                        const Pose<S>& pose,
+                                                        const Triangle<S>& tri,
+                                                        Local* L) {
+  if (!gateBitsOkAvx2(cyl, pose, tri)) return Pre::kGateMiss;
+  const double r = double(cyl.radius), H = double(cyl.lz);
+  if (!(r >= 0) || !(H >= 0)) return Pre::kGateMiss;  // finite: no trap
+  if constexpr (sizeof(S) == 8) {
+    return prologueAvx2Body(pose, tri, r, H, L);
+  } else {
+    static_assert(sizeof(Pose<double>) == 12 * sizeof(double) &&
+                  sizeof(Triangle<double>) == 9 * sizeof(double));
+    // Byte-wise views of the float aggregates (pinned layout above), and
+    // buffers that become the double aggregates by memcpy.
+    const char* p = reinterpret_cast<const char*>(&pose);
+    const char* t = reinterpret_cast<const char*>(&tri);
+    auto ld4f = [](const char* q) {
+      __m128 v;
+      std::memcpy(&v, q, sizeof v);
+      return v;
+    };
+    alignas(32) double P[12], T[12];
+    _mm256_store_pd(P, _mm256_cvtps_pd(ld4f(p)));
+    _mm256_store_pd(P + 4, _mm256_cvtps_pd(ld4f(p + 16)));
+    _mm256_store_pd(P + 8, _mm256_cvtps_pd(ld4f(p + 32)));
+    _mm256_store_pd(T, _mm256_cvtps_pd(ld4f(t)));
+    _mm256_store_pd(T + 4, _mm256_cvtps_pd(ld4f(t + 16)));
+    T[8] = double(tri.c.z);
+    Pose<double> pd;
+    Triangle<double> td;
+    std::memcpy(&pd, P, sizeof pd);
+    std::memcpy(&td, T, sizeof td);
+    return prologueAvx2Body(pd, td, r, H, L);
+  }
 }
 #undef TRICYL_AVX2_FN
 #endif
