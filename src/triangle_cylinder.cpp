@@ -514,6 +514,67 @@ __attribute__((target("avx2"), always_inline)) inline bool gateBitsOkAvx2(
   return (_mm256_testz_si256(bad, bad) & _mm_testz_si128(bad2, bad2)) != 0;
 }
 
+// Test (E) of the kernel for the three edges at once, branch-free, lanes =
+// edges (0,1), (1,2), (2,0) (lane 3 repeats (2,0)), with the magnitude `me`
+// per vertex (Z: 2 me): the closest point of edge (i, j)'s projection to the
+// axis is interior, within r of it, and inside the slab. The same Fd
+// expressions as triangleCylinderTests, values and magnitudes in separate
+// registers; every one of the six signs must be certain. (Eberly's polygon
+// test "an edge within r of the origin", on an unclipped edge.)
+// FilterKernel::sign's bound for the magnitude m, lane by lane.
+__attribute__((target("avx2"), always_inline)) inline __m256d bound(
+    __m256d m, __m256d k_rel, __m256d k_abs) {
+  return _mm256_add_pd(_mm256_mul_pd(m, k_rel), k_abs);
+}
+
+__attribute__((target("avx2"), always_inline)) inline bool edgeHitAvx2(
+    __m256d x, __m256d y, __m256d Z, __m256d me, __m256d r2, __m256d HH) {
+  constexpr int kNext = 0x09;  // lanes (1, 2, 0, 0): the edge's second end
+  const __m256d kr = _mm256_set1_pd(kRel), ka = _mm256_set1_pd(kAbs);
+  const __m256d xj = _mm256_permute4x64_pd(x, kNext);
+  const __m256d yj = _mm256_permute4x64_pd(y, kNext);
+  const __m256d Zj = _mm256_permute4x64_pd(Z, kNext);
+  const __m256d mj = _mm256_permute4x64_pd(me, kNext);
+  const __m256d m2 = _mm256_add_pd(me, me), m2j = _mm256_add_pd(mj, mj);
+  // ex, ey (magnitude mj + mi), L = ex ex + ey ey.
+  const __m256d ex = _mm256_sub_pd(xj, x), ey = _mm256_sub_pd(yj, y);
+  const __m256d mE = _mm256_add_pd(mj, me);
+  const __m256d L = _mm256_add_pd(_mm256_mul_pd(ex, ex), _mm256_mul_pd(ey, ey));
+  const __m256d mL =
+      _mm256_add_pd(_mm256_mul_pd(mE, mE), _mm256_mul_pd(mE, mE));
+  // c = x_i y_j - x_j y_i; r2 L - c c.
+  const __m256d c = _mm256_sub_pd(_mm256_mul_pd(x, yj), _mm256_mul_pd(xj, y));
+  const __m256d mc =
+      _mm256_add_pd(_mm256_mul_pd(me, mj), _mm256_mul_pd(mj, me));
+  const __m256d near_ =
+      _mm256_sub_pd(_mm256_mul_pd(r2, L), _mm256_mul_pd(c, c));
+  const __m256d mnear =
+      _mm256_add_pd(_mm256_mul_pd(r2, mL), _mm256_mul_pd(mc, mc));
+  // g = -(x_i ex + y_i ey), L - g.
+  const __m256d g =
+      _mm256_xor_pd(_mm256_add_pd(_mm256_mul_pd(x, ex), _mm256_mul_pd(y, ey)),
+                    _mm256_set1_pd(-0.0));
+  const __m256d mg =
+      _mm256_add_pd(_mm256_mul_pd(me, mE), _mm256_mul_pd(me, mE));
+  const __m256d Lg = _mm256_sub_pd(L, g);
+  const __m256d mLg = _mm256_add_pd(mL, mg);
+  // zL = Z_i L + g (Z_j - Z_i), HL = H L; HL - zL and HL + zL.
+  const __m256d zL = _mm256_add_pd(_mm256_mul_pd(Z, L),
+                                   _mm256_mul_pd(g, _mm256_sub_pd(Zj, Z)));
+  const __m256d mzL = _mm256_add_pd(_mm256_mul_pd(m2, mL),
+                                    _mm256_mul_pd(mg, _mm256_add_pd(m2j, m2)));
+  const __m256d HL = _mm256_mul_pd(HH, L);
+  const __m256d bHz = bound(_mm256_add_pd(_mm256_mul_pd(HH, mL), mzL), kr, ka);
+  __m256d ok = _mm256_cmp_pd(L, bound(mL, kr, ka), _CMP_GT_OQ);
+  ok =
+      _mm256_and_pd(ok, _mm256_cmp_pd(near_, bound(mnear, kr, ka), _CMP_GT_OQ));
+  ok = _mm256_and_pd(ok, _mm256_cmp_pd(g, bound(mg, kr, ka), _CMP_GT_OQ));
+  ok = _mm256_and_pd(ok, _mm256_cmp_pd(Lg, bound(mLg, kr, ka), _CMP_GT_OQ));
+  ok = _mm256_and_pd(ok, _mm256_cmp_pd(_mm256_sub_pd(HL, zL), bHz, _CMP_GT_OQ));
+  ok = _mm256_and_pd(ok, _mm256_cmp_pd(_mm256_add_pd(HL, zL), bHz, _CMP_GT_OQ));
+  return _mm256_movemask_pd(ok) != 0;
+}
+
 // edgeSeparates (below) for the three edges at once, branch-free, lanes =
 // edges (0,1), (1,2), (2,0) (lane 3 repeats (2,0)), with the magnitude `me`
 // per vertex: the same Fd expressions, values and magnitudes in separate
@@ -698,6 +759,7 @@ __attribute__((target("avx2"), always_inline)) inline Pre prologueAvx2Body(
   if (vin != 0) return Pre::kHit;
   if (capCrossingHit(x, y, me, Z, zt, bze, r2, HH)) return Pre::kHit;
   if (edgeSeparatesAvx2(x, y, me, r2)) return Pre::kDisjoint;
+  if (edgeHitAvx2(x, y, Z, me, r2, HH)) return Pre::kHit;
 
   // rho = max |R_jk|, the same value as the scalar max.
   const __m256d r0 =
