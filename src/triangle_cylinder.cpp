@@ -938,6 +938,9 @@ TRICYL_NOINLINE Tri filterTests(const Local& L) {
   }
   q.H = FilterKernel::lift(L.H);
   q.r = FilterKernel::lift(L.r);
+  // The certificates the AVX2 prologue has no lanes for first (it tried the
+  // early-outs and edge separation, with the magnitude 2 s).
+  if (planeSeparates(q) || directionSeparates(q)) return Tri::kFalse;
   // The kernel's own early-outs with the per-vertex magnitudes (the
   // prologue's use the looser 2 s): slab, then the disk's bounding square.
   if ((top[0] == Sign::kPos && top[1] == Sign::kPos && top[2] == Sign::kPos) ||
@@ -951,8 +954,7 @@ TRICYL_NOINLINE Tri filterTests(const Local& L) {
               unsigned(-L.y[i] - L.r > b) << 3;
   }
   if (beyond != 0) return Tri::kFalse;
-  if (edgeSeparates(q) || planeSeparates(q) || directionSeparates(q))
-    return Tri::kFalse;
+  if (edgeSeparates(q)) return Tri::kFalse;
   return detail::triangleCylinderTests<FilterKernel>(q, top, bot);
 }
 
