@@ -1031,6 +1031,15 @@ __attribute__((target("avx2"), noinline)) Decision decideAvx2(
 }
 #endif
 
+// The baseline path out of line too, so that the entry points stay a
+// test and a call (no stack frame of their own).
+template <class S>
+TRICYL_NOINLINE Decision decideBaseline(const Cylinder<S>& cylinder,
+                                        const Pose<S>& pose,
+                                        const Triangle<S>& triangle) {
+  return decideBody<false>(cylinder, pose, triangle);
+}
+
 template <class S>
 TRICYL_ALWAYS_INLINE Decision decideAny(const Cylinder<S>& cylinder,
                                         const Pose<S>& pose,
@@ -1038,7 +1047,7 @@ TRICYL_ALWAYS_INLINE Decision decideAny(const Cylinder<S>& cylinder,
 #if TRICYL_FAST_AVX2
   if (kHasAvx2) return decideAvx2(cylinder, pose, triangle);
 #endif
-  return decideBody<false>(cylinder, pose, triangle);
+  return decideBaseline(cylinder, pose, triangle);
 }
 
 bool checked(Decision d) {
