@@ -203,13 +203,16 @@ struct Local {
   double r, H;
 };
 
-// Early-outs, the same certified signs as triangleCylinder: Z_i - H and
-// Z_i + H have magnitude fl(2 m_i + lz), x_i - r, -x_i - r, y_i - r and
-// -y_i - r have fl(m_i + r); a sign is certain beyond fl(m kRel) + kAbs. The
-// triangle is beyond a plane iff all three vertices are. fl(-x - r) and
-// fl(-Z - H) are the negations of fl(x + r) and fl(Z + H) (rounding is
-// symmetric), so "fl(-Z - H) > b" is "fl(Z + H) < -b", the bottom test of
-// triangleCylinder.
+// Early-outs, the certified signs of triangleCylinder: Z_i - H and Z_i + H
+// have magnitude fl(2 m_i + lz), x_i - r, -x_i - r, y_i - r and -y_i - r
+// have fl(m_i + r); a sign is certain beyond fl(m kRel) + kAbs. The triangle
+// is beyond a plane iff all three vertices are. fl(-x - r) and fl(-Z - H)
+// are the negations of fl(x + r) and fl(Z + H) (rounding is symmetric), so
+// "fl(-Z - H) > b" is "fl(Z + H) < -b", the bottom test of triangleCylinder.
+// The prologues use the magnitude 2 s_i >= m_i = rho s_i instead (the gate
+// admits |R_jk| <= 2 only, and rounding is monotone: fl(rho s) <= fl(2 s)),
+// so the bounds are the kernel's or larger and rho is not needed before the
+// early-outs; filterTests re-runs them with m_i for what gets through.
 constexpr double kRel = FilterKernel::kRel, kAbs = FilterKernel::kAbs;
 
 #if defined(__SSE2__)
