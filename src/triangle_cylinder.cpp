@@ -437,24 +437,18 @@ TRICYL_ALWAYS_INLINE Pre prologue(const Cylinder<S>& cyl, const Pose<S>& pose,
 // vertices (lane 3 repeats vertex 2, so "all lanes" and "any lane" are
 // "all vertices" and "any vertex"). Every lane operation is the scalar IEEE
 // operation of the portable version in the same order (no FMA: the target
-// is "avx2" only and -ffp-contract=off), so the values, bounds and
-// comparisons are those of the SSE2 and portable versions, bit for bit.
+// is "avx2" only and -ffp-contract=off), so the local coordinates are those
+// of the SSE2 and portable versions, bit for bit; its bounds are theirs or
+// larger (the magnitude 2 s, see prologueAvx2Body).
 #define TRICYL_AVX2_FN __attribute__((target("avx2"), always_inline)) inline
-template <class S>
-TRICYL_AVX2_FN __m256d lanes(const S& a, const S& b, const S& c) {
-  if constexpr (sizeof(S) == 8) {
-    return _mm256_set_pd(c, c, b, a);
-  } else {
-    return _mm256_cvtps_pd(_mm_set_ps(c, c, b, a));
-  }
+// (a, b, c, c) and (v, v, v, v); the AVX2 arithmetic reads doubles only
+// (float inputs are widened first, in prologueAvx2).
+TRICYL_AVX2_FN __m256d lanes(const double& a, const double& b,
+                             const double& c) {
+  return _mm256_set_pd(c, c, b, a);
 }
-template <class S>
-TRICYL_AVX2_FN __m256d bcast(const S& v) {
-  if constexpr (sizeof(S) == 8) {
-    return _mm256_broadcast_sd(&v);  // a load, not a shuffle
-  } else {
-    return _mm256_set1_pd(double(v));
-  }
+TRICYL_AVX2_FN __m256d bcast(const double& v) {
+  return _mm256_broadcast_sd(&v);  // a load, not a shuffle
 }
 
 // The gate of gateBitsOk with whole-word integer comparisons (the same
@@ -517,58 +511,74 @@ __attribute__((target("avx2"), always_inline)) inline bool gateBitsOkAvx2(
   return (_mm256_testz_si256(bad, bad) & _mm_testz_si128(bad2, bad2)) != 0;
 }
 
-// Test (E) of the kernel for the three edges at once, branch-free, lanes =
-// edges (0,1), (1,2), (2,0) (lane 3 repeats (2,0)), with the magnitude `me`
-// per vertex (Z: 2 me): the closest point of edge (i, j)'s projection to the
-// axis is interior, within r of it, and inside the slab. The same Fd
-// expressions as triangleCylinderTests, values and magnitudes in separate
-// registers; every one of the six signs must be certain. (Eberly's polygon
-// test "an edge within r of the origin", on an unclipped edge.)
 // FilterKernel::sign's bound for the magnitude m, lane by lane.
 __attribute__((target("avx2"), always_inline)) inline __m256d bound(
     __m256d m, __m256d k_rel, __m256d k_abs) {
   return _mm256_add_pd(_mm256_mul_pd(m, k_rel), k_abs);
 }
 
+// The per-edge quantities shared by the lane tests below, computed once:
+// lanes = edges (0,1), (1,2), (2,0) (lane 3 repeats (2,0)), from vertex lanes
+// x, y, Z and the per-vertex magnitude `me` (Z: 2 me). Each pair is an Fd,
+// value and magnitude, evaluated as the kernel evaluates it.
+struct EdgeLanes {
+  __m256d xj, yj, Zj, mj;  // the edge's second end (lanes (1, 2, 0, 0))
+  __m256d ex, ey, mE;      // P_j - P_i, magnitude m_j + m_i
+  __m256d L, mL;           // ex ex + ey ey
+  __m256d o, mo;           // x_i y_j - x_j y_i (the (A) orientation, (E)'s c)
+};
+
+__attribute__((target("avx2"), always_inline)) inline EdgeLanes edgeLanes(
+    __m256d x, __m256d y, __m256d Z, __m256d me) {
+  constexpr int kNext = 0x09;  // lanes (1, 2, 0, 0)
+  EdgeLanes e;
+  e.xj = _mm256_permute4x64_pd(x, kNext);
+  e.yj = _mm256_permute4x64_pd(y, kNext);
+  e.Zj = _mm256_permute4x64_pd(Z, kNext);
+  e.mj = _mm256_permute4x64_pd(me, kNext);
+  e.ex = _mm256_sub_pd(e.xj, x);
+  e.ey = _mm256_sub_pd(e.yj, y);
+  e.mE = _mm256_add_pd(e.mj, me);
+  e.L = _mm256_add_pd(_mm256_mul_pd(e.ex, e.ex), _mm256_mul_pd(e.ey, e.ey));
+  e.mL = _mm256_add_pd(_mm256_mul_pd(e.mE, e.mE), _mm256_mul_pd(e.mE, e.mE));
+  e.o = _mm256_sub_pd(_mm256_mul_pd(x, e.yj), _mm256_mul_pd(e.xj, y));
+  e.mo = _mm256_add_pd(_mm256_mul_pd(me, e.mj), _mm256_mul_pd(e.mj, me));
+  return e;
+}
+
+// Test (E) of the kernel for the three edges at once, branch-free, with the
+// magnitude `me` per vertex (Z: 2 me): the closest point of edge (i, j)'s
+// projection to the axis is interior, within r of it, and inside the slab.
+// The same Fd expressions as triangleCylinderTests, values and magnitudes in
+// separate registers; every one of the six signs must be certain. (Eberly's
+// polygon test "an edge within r of the origin", on an unclipped edge.)
 __attribute__((target("avx2"), always_inline)) inline bool edgeHitAvx2(
-    __m256d x, __m256d y, __m256d Z, __m256d me, __m256d r2, __m256d HH) {
-  constexpr int kNext = 0x09;  // lanes (1, 2, 0, 0): the edge's second end
+    const EdgeLanes& e, __m256d x, __m256d y, __m256d Z, __m256d me, __m256d r2,
+    __m256d HH) {
   const __m256d kr = _mm256_set1_pd(kRel), ka = _mm256_set1_pd(kAbs);
-  const __m256d xj = _mm256_permute4x64_pd(x, kNext);
-  const __m256d yj = _mm256_permute4x64_pd(y, kNext);
-  const __m256d Zj = _mm256_permute4x64_pd(Z, kNext);
-  const __m256d mj = _mm256_permute4x64_pd(me, kNext);
-  const __m256d m2 = _mm256_add_pd(me, me), m2j = _mm256_add_pd(mj, mj);
-  // ex, ey (magnitude mj + mi), L = ex ex + ey ey.
-  const __m256d ex = _mm256_sub_pd(xj, x), ey = _mm256_sub_pd(yj, y);
-  const __m256d mE = _mm256_add_pd(mj, me);
-  const __m256d L = _mm256_add_pd(_mm256_mul_pd(ex, ex), _mm256_mul_pd(ey, ey));
-  const __m256d mL =
-      _mm256_add_pd(_mm256_mul_pd(mE, mE), _mm256_mul_pd(mE, mE));
-  // c = x_i y_j - x_j y_i; r2 L - c c.
-  const __m256d c = _mm256_sub_pd(_mm256_mul_pd(x, yj), _mm256_mul_pd(xj, y));
-  const __m256d mc =
-      _mm256_add_pd(_mm256_mul_pd(me, mj), _mm256_mul_pd(mj, me));
+  const __m256d m2 = _mm256_add_pd(me, me), m2j = _mm256_add_pd(e.mj, e.mj);
+  // r2 L - c c, with c = o.
   const __m256d near_ =
-      _mm256_sub_pd(_mm256_mul_pd(r2, L), _mm256_mul_pd(c, c));
+      _mm256_sub_pd(_mm256_mul_pd(r2, e.L), _mm256_mul_pd(e.o, e.o));
   const __m256d mnear =
-      _mm256_add_pd(_mm256_mul_pd(r2, mL), _mm256_mul_pd(mc, mc));
+      _mm256_add_pd(_mm256_mul_pd(r2, e.mL), _mm256_mul_pd(e.mo, e.mo));
   // g = -(x_i ex + y_i ey), L - g.
-  const __m256d g =
-      _mm256_xor_pd(_mm256_add_pd(_mm256_mul_pd(x, ex), _mm256_mul_pd(y, ey)),
-                    _mm256_set1_pd(-0.0));
+  const __m256d g = _mm256_xor_pd(
+      _mm256_add_pd(_mm256_mul_pd(x, e.ex), _mm256_mul_pd(y, e.ey)),
+      _mm256_set1_pd(-0.0));
   const __m256d mg =
-      _mm256_add_pd(_mm256_mul_pd(me, mE), _mm256_mul_pd(me, mE));
-  const __m256d Lg = _mm256_sub_pd(L, g);
-  const __m256d mLg = _mm256_add_pd(mL, mg);
+      _mm256_add_pd(_mm256_mul_pd(me, e.mE), _mm256_mul_pd(me, e.mE));
+  const __m256d Lg = _mm256_sub_pd(e.L, g);
+  const __m256d mLg = _mm256_add_pd(e.mL, mg);
   // zL = Z_i L + g (Z_j - Z_i), HL = H L; HL - zL and HL + zL.
-  const __m256d zL = _mm256_add_pd(_mm256_mul_pd(Z, L),
-                                   _mm256_mul_pd(g, _mm256_sub_pd(Zj, Z)));
-  const __m256d mzL = _mm256_add_pd(_mm256_mul_pd(m2, mL),
+  const __m256d zL = _mm256_add_pd(_mm256_mul_pd(Z, e.L),
+                                   _mm256_mul_pd(g, _mm256_sub_pd(e.Zj, Z)));
+  const __m256d mzL = _mm256_add_pd(_mm256_mul_pd(m2, e.mL),
                                     _mm256_mul_pd(mg, _mm256_add_pd(m2j, m2)));
-  const __m256d HL = _mm256_mul_pd(HH, L);
-  const __m256d bHz = bound(_mm256_add_pd(_mm256_mul_pd(HH, mL), mzL), kr, ka);
-  __m256d ok = _mm256_cmp_pd(L, bound(mL, kr, ka), _CMP_GT_OQ);
+  const __m256d HL = _mm256_mul_pd(HH, e.L);
+  const __m256d bHz =
+      bound(_mm256_add_pd(_mm256_mul_pd(HH, e.mL), mzL), kr, ka);
+  __m256d ok = _mm256_cmp_pd(e.L, bound(e.mL, kr, ka), _CMP_GT_OQ);
   ok =
       _mm256_and_pd(ok, _mm256_cmp_pd(near_, bound(mnear, kr, ka), _CMP_GT_OQ));
   ok = _mm256_and_pd(ok, _mm256_cmp_pd(g, bound(mg, kr, ka), _CMP_GT_OQ));
@@ -578,88 +588,70 @@ __attribute__((target("avx2"), always_inline)) inline bool edgeHitAvx2(
   return _mm256_movemask_pd(ok) != 0;
 }
 
-// edgeSeparates (below) for the three edges at once, branch-free, lanes =
-// edges (0,1), (1,2), (2,0) (lane 3 repeats (2,0)), with the magnitude `me`
-// per vertex: the same Fd expressions, values and magnitudes in separate
-// registers, so a lane it reports is a separation FilterKernel::sign
-// certifies (docs/exactness.md, "Edge separation").
+// edgeSeparates (below) for the three edges at once, branch-free, with the
+// magnitude `me` per vertex: the same Fd expressions, values and magnitudes
+// in separate registers, so a lane it reports is a separation
+// FilterKernel::sign certifies (docs/exactness.md, "Edge separation").
 __attribute__((target("avx2"), always_inline)) inline bool edgeSeparatesAvx2(
-    __m256d x, __m256d y, __m256d me, __m256d r2) {
-  constexpr int kNext = 0x09;  // lanes (1, 2, 0, 0): the edge's second end
+    const EdgeLanes& e, __m256d r2) {
   const __m256d kr = _mm256_set1_pd(kRel), ka = _mm256_set1_pd(kAbs);
   const __m256d neg = _mm256_set1_pd(-0.0);
-  const __m256d xj = _mm256_permute4x64_pd(x, kNext);
-  const __m256d yj = _mm256_permute4x64_pd(y, kNext);
-  const __m256d mj = _mm256_permute4x64_pd(me, kNext);
-  // o = x_i y_j - x_j y_i, magnitude m_i m_j + m_j m_i.
-  const __m256d o = _mm256_sub_pd(_mm256_mul_pd(x, yj), _mm256_mul_pd(xj, y));
-  const __m256d p = _mm256_mul_pd(me, mj);
-  const __m256d mo = _mm256_add_pd(p, _mm256_mul_pd(mj, me));
   // A2 = (o0 + o1) + o2 in every lane, and its magnitude.
   const __m256d A2 =
-      _mm256_add_pd(_mm256_add_pd(_mm256_permute4x64_pd(o, 0x00),
-                                  _mm256_permute4x64_pd(o, 0x55)),
-                    _mm256_permute4x64_pd(o, 0xaa));
+      _mm256_add_pd(_mm256_add_pd(_mm256_permute4x64_pd(e.o, 0x00),
+                                  _mm256_permute4x64_pd(e.o, 0x55)),
+                    _mm256_permute4x64_pd(e.o, 0xaa));
   const __m256d mA =
-      _mm256_add_pd(_mm256_add_pd(_mm256_permute4x64_pd(mo, 0x00),
-                                  _mm256_permute4x64_pd(mo, 0x55)),
-                    _mm256_permute4x64_pd(mo, 0xaa));
-  const __m256d bA = _mm256_add_pd(_mm256_mul_pd(mA, kr), ka);
-  const __m256d bo = _mm256_add_pd(_mm256_mul_pd(mo, kr), ka);
+      _mm256_add_pd(_mm256_add_pd(_mm256_permute4x64_pd(e.mo, 0x00),
+                                  _mm256_permute4x64_pd(e.mo, 0x55)),
+                    _mm256_permute4x64_pd(e.mo, 0xaa));
+  const __m256d bA = bound(mA, kr, ka);
+  const __m256d bo = bound(e.mo, kr, ka);
   // The origin strictly beyond edge i's line: sign(o_i) = -sign(A2) != 0.
   const __m256d outside = _mm256_or_pd(
       _mm256_and_pd(_mm256_cmp_pd(A2, bA, _CMP_GT_OQ),
-                    _mm256_cmp_pd(o, _mm256_xor_pd(bo, neg), _CMP_LT_OQ)),
+                    _mm256_cmp_pd(e.o, _mm256_xor_pd(bo, neg), _CMP_LT_OQ)),
       _mm256_and_pd(_mm256_cmp_pd(A2, _mm256_xor_pd(bA, neg), _CMP_LT_OQ),
-                    _mm256_cmp_pd(o, bo, _CMP_GT_OQ)));
-  // ... and farther than r from it: o^2 - r2 L > 0, L = |P_j - P_i|^2.
-  const __m256d ex = _mm256_sub_pd(xj, x), ey = _mm256_sub_pd(yj, y);
-  const __m256d mE = _mm256_add_pd(mj, me);
-  const __m256d L = _mm256_add_pd(_mm256_mul_pd(ex, ex), _mm256_mul_pd(ey, ey));
-  const __m256d mL =
-      _mm256_add_pd(_mm256_mul_pd(mE, mE), _mm256_mul_pd(mE, mE));
-  const __m256d d = _mm256_sub_pd(_mm256_mul_pd(o, o), _mm256_mul_pd(r2, L));
+                    _mm256_cmp_pd(e.o, bo, _CMP_GT_OQ)));
+  // ... and farther than r from it: o^2 - r2 L > 0.
+  const __m256d d =
+      _mm256_sub_pd(_mm256_mul_pd(e.o, e.o), _mm256_mul_pd(r2, e.L));
   const __m256d md =
-      _mm256_add_pd(_mm256_mul_pd(mo, mo), _mm256_mul_pd(r2, mL));
-  const __m256d distant =
-      _mm256_cmp_pd(d, _mm256_add_pd(_mm256_mul_pd(md, kr), ka), _CMP_GT_OQ);
+      _mm256_add_pd(_mm256_mul_pd(e.mo, e.mo), _mm256_mul_pd(r2, e.mL));
+  const __m256d distant = _mm256_cmp_pd(d, bound(md, kr, ka), _CMP_GT_OQ);
   return _mm256_movemask_pd(_mm256_and_pd(outside, distant)) != 0;
 }
 
 // Test (X) of the kernel for the six edge/cap-plane crossings, branch-free,
-// lanes = edges (0,1), (1,2), (2,0) (lane 3 repeats (2,0)): the same Fd
-// expressions as triangleCylinderTests, value and magnitude in separate
-// registers, in the same order, so each "true" is a sign the kernel
-// certifies. For the plane Z = sH, a_k = Z_k - sH with magnitude
-// ma_k = fl(2 m_k + H); the edge crosses it strictly iff a_i, a_j have
-// certified opposite signs, at the point (X, Y) / W with
+// lanes = edges: the same Fd expressions as triangleCylinderTests, value and
+// magnitude in separate registers, in the same order, so each "true" is a
+// sign the kernel certifies. For the plane Z = sH, a_k = Z_k - sH with
+// magnitude ma_k = fl(2 m_k + H); the edge crosses it strictly iff a_i, a_j
+// have certified opposite signs, at the point (X, Y) / W with
 //   X = x_i a_j - x_j a_i,  Y = y_i a_j - y_j a_i,  W = a_j - a_i,
 // inside the cap disk iff fl(fl(r2 (W W) - X X) - Y Y) is certainly >= 0.
 // True iff some crossing is certainly inside its cap disk: the triangle and
 // the cylinder then share that point. (Eberly's cases 3b-5: the clipped
 // polygon's vertex on a cap.) Anything undecided is left to the kernel.
 __attribute__((target("avx2"), always_inline)) inline bool capCrossingHit(
-    __m256d x, __m256d y, __m256d m, __m256d Z, __m256d a_top, __m256d ba,
-    __m256d r2, __m256d HH) {
+    const EdgeLanes& e, __m256d x, __m256d y, __m256d m, __m256d Z,
+    __m256d a_top, __m256d ba, __m256d r2, __m256d HH) {
   constexpr int kNext = 0x09;  // lanes (1, 2, 0, 0): the edge's second end
   const __m256d kr = _mm256_set1_pd(kRel), ka = _mm256_set1_pd(kAbs);
   const __m256d neg = _mm256_set1_pd(-0.0);
   const __m256d ma = _mm256_add_pd(_mm256_add_pd(m, m), HH);
-  const __m256d xj = _mm256_permute4x64_pd(x, kNext);
-  const __m256d yj = _mm256_permute4x64_pd(y, kNext);
-  const __m256d mj = _mm256_permute4x64_pd(m, kNext);
   const __m256d maj = _mm256_permute4x64_pd(ma, kNext);
   const __m256d baj = _mm256_permute4x64_pd(ba, kNext);
   const __m256d nba = _mm256_xor_pd(ba, neg), nbaj = _mm256_xor_pd(baj, neg);
   // Magnitudes shared by both planes: X and Y (m_i ma_j + m_j ma_i), W.
   const __m256d mX =
-      _mm256_add_pd(_mm256_mul_pd(m, maj), _mm256_mul_pd(mj, ma));
+      _mm256_add_pd(_mm256_mul_pd(m, maj), _mm256_mul_pd(e.mj, ma));
   const __m256d mW = _mm256_add_pd(maj, ma);
   const __m256d me =
       _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(r2, _mm256_mul_pd(mW, mW)),
                                   _mm256_mul_pd(mX, mX)),
                     _mm256_mul_pd(mX, mX));
-  const __m256d be = _mm256_add_pd(_mm256_mul_pd(me, kr), ka);
+  const __m256d be = bound(me, kr, ka);
   __m256d hit = _mm256_setzero_pd();
   for (int s = 0; s < 2; ++s) {
     const __m256d a = s == 0 ? a_top : _mm256_add_pd(Z, HH);  // Z - H, Z + H
@@ -669,15 +661,17 @@ __attribute__((target("avx2"), always_inline)) inline bool capCrossingHit(
                                    _mm256_cmp_pd(aj, baj, _CMP_GT_OQ)),
                      _mm256_and_pd(_mm256_cmp_pd(a, ba, _CMP_GT_OQ),
                                    _mm256_cmp_pd(aj, nbaj, _CMP_LT_OQ)));
-    const __m256d X = _mm256_sub_pd(_mm256_mul_pd(x, aj), _mm256_mul_pd(xj, a));
-    const __m256d Y = _mm256_sub_pd(_mm256_mul_pd(y, aj), _mm256_mul_pd(yj, a));
+    const __m256d X =
+        _mm256_sub_pd(_mm256_mul_pd(x, aj), _mm256_mul_pd(e.xj, a));
+    const __m256d Y =
+        _mm256_sub_pd(_mm256_mul_pd(y, aj), _mm256_mul_pd(e.yj, a));
     const __m256d W = _mm256_sub_pd(aj, a);
-    const __m256d e =
+    const __m256d v =
         _mm256_sub_pd(_mm256_sub_pd(_mm256_mul_pd(r2, _mm256_mul_pd(W, W)),
                                     _mm256_mul_pd(X, X)),
                       _mm256_mul_pd(Y, Y));
     hit = _mm256_or_pd(hit,
-                       _mm256_and_pd(cross, _mm256_cmp_pd(e, be, _CMP_GT_OQ)));
+                       _mm256_and_pd(cross, _mm256_cmp_pd(v, be, _CMP_GT_OQ)));
   }
   return _mm256_movemask_pd(hit) != 0;
 }
@@ -760,9 +754,10 @@ __attribute__((target("avx2"), always_inline)) inline Pre prologueAvx2Body(
   const int vin =
       _mm256_movemask_pd(_mm256_and_pd(slab, _mm256_cmp_pd(v, bv, _CMP_GT_OQ)));
   if (vin != 0) return Pre::kHit;
-  if (capCrossingHit(x, y, me, Z, zt, bze, r2, HH)) return Pre::kHit;
-  if (edgeSeparatesAvx2(x, y, me, r2)) return Pre::kDisjoint;
-  if (edgeHitAvx2(x, y, Z, me, r2, HH)) return Pre::kHit;
+  const EdgeLanes e = edgeLanes(x, y, Z, me);
+  if (capCrossingHit(e, x, y, me, Z, zt, bze, r2, HH)) return Pre::kHit;
+  if (edgeSeparatesAvx2(e, r2)) return Pre::kDisjoint;
+  if (edgeHitAvx2(e, x, y, Z, me, r2, HH)) return Pre::kHit;
 
   // rho = max |R_jk|, the same value as the scalar max.
   const __m256d r0 =
