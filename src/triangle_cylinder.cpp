@@ -940,18 +940,8 @@ TRICYL_NOINLINE Tri filterTests(const Local& L) {
   // early-outs and edge separation, with the magnitude 2 s).
   if (planeSeparates(q) || directionSeparates(q)) return Tri::kFalse;
   // The kernel's own early-outs with the per-vertex magnitudes (the
-  // prologue's use the looser 2 s): slab, then the disk's bounding square.
-  if ((top[0] == Sign::kPos && top[1] == Sign::kPos && top[2] == Sign::kPos) ||
-      (bot[0] == Sign::kNeg && bot[1] == Sign::kNeg && bot[2] == Sign::kNeg))
-    return Tri::kFalse;
-  unsigned beyond = 15;
-  for (int i = 0; i < 3; ++i) {
-    const double b = (L.m[i] + L.r) * kRel + kAbs;
-    beyond &= unsigned(L.x[i] - L.r > b) | unsigned(-L.x[i] - L.r > b) << 1 |
-              unsigned(L.y[i] - L.r > b) << 2 |
-              unsigned(-L.y[i] - L.r > b) << 3;
-  }
-  if (beyond != 0) return Tri::kFalse;
+  // prologues' use the looser 2 s).
+  if (detail::certainlyBeyond<FilterKernel>(q, top, bot)) return Tri::kFalse;
   if (edgeSeparates(q)) return Tri::kFalse;
   return detail::triangleCylinderTests<FilterKernel>(q, top, bot);
 }

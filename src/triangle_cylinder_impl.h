@@ -146,12 +146,33 @@ template <class K>
 Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
                           const Sign* bot);
 
+/// The early-outs: cases 0a/0b (the triangle strictly below or above the
+/// slab, from the slab signs top[i] = sign(Z_i - H), bot[i] = sign(Z_i + H)),
+/// then the disk's bounding square (the projection strictly beyond x > r,
+/// x < -r, y > r or y < -r). An undecided sign simply skips an early-out.
+template <class K>
+bool certainlyBeyond(const TriCylLocal<K>& q, const Sign* top,
+                     const Sign* bot) {
+  using N = typename K::Num;
+  if ((top[0] == Sign::kPos && top[1] == Sign::kPos && top[2] == Sign::kPos) ||
+      (bot[0] == Sign::kNeg && bot[1] == Sign::kNeg && bot[2] == Sign::kNeg))
+    return true;
+  const N& r = q.r;
+  auto allPos = [&](const N* c, bool negate) {
+    for (int i = 0; i < 3; ++i) {
+      const N v = negate ? N(-c[i] - r) : N(c[i] - r);
+      if (K::sign(v) != Sign::kPos) return false;
+    }
+    return true;
+  };
+  return allPos(q.x, false) || allPos(q.x, true) || allPos(q.y, false) ||
+         allPos(q.y, true);
+}
+
 /// The test itself. `early` is set when a certified early-out decided.
 template <class K>
 Tri triangleCylinder(const TriCylLocal<K>& q, bool* early) {
   using N = typename K::Num;
-  const N* x = q.x;
-  const N* y = q.y;
   const N* Z = q.Z;
   const N& H = q.H;
   *early = false;
@@ -163,31 +184,10 @@ Tri triangleCylinder(const TriCylLocal<K>& q, bool* early) {
     top[i] = K::sign(Z[i] - H);
     bot[i] = K::sign(Z[i] + H);
   }
-  // Cases 0a/0b: the triangle is strictly below or above the slab.
-  if ((top[0] == Sign::kPos && top[1] == Sign::kPos && top[2] == Sign::kPos) ||
-      (bot[0] == Sign::kNeg && bot[1] == Sign::kNeg && bot[2] == Sign::kNeg)) {
+  if (certainlyBeyond<K>(q, top, bot)) {
     *early = true;
     return Tri::kFalse;
   }
-  // Bounding-box early-out: the projection lies strictly beyond one side of
-  // the disk's bounding square (x > r, x < -r, y > r or y < -r). An
-  // undecided sign simply skips the early-out.
-  {
-    const N& r = q.r;
-    auto allPos = [&](const N* c, bool negate) {
-      for (int i = 0; i < 3; ++i) {
-        const N v = negate ? N(-c[i] - r) : N(c[i] - r);
-        if (K::sign(v) != Sign::kPos) return false;
-      }
-      return true;
-    };
-    if (allPos(x, false) || allPos(x, true) || allPos(y, false) ||
-        allPos(y, true)) {
-      *early = true;
-      return Tri::kFalse;
-    }
-  }
-
   return triangleCylinderTests<K>(q, top, bot);
 }
 
