@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <type_traits>
 #include <vector>
 
 #include "tricyl/fcl_contact.h"
@@ -244,6 +246,25 @@ double norm1(const V3& v) {
   return std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
 }
 
+// FCL 0.7's BVNodeBase accessors and fcl::Triangle::operator[] are
+// out-of-line functions of libfcl: a call through the PLT for every node and
+// vertex index (about 6 % of tricyl::collide on bunny.obj). These read the
+// same data directly: BV_node_base.h documents first_child (>= 0: the first
+// of the two adjacent children, < 0: -(primitive index + 1)), and an
+// fcl::Triangle is its three vertex indices, read through its object
+// representation (trivially copyable). MeshCollideTest checks the contacts
+// against FCL's own traversal for every BV type.
+inline bool isLeaf(const fcl::BVNodeBase& n) { return n.first_child < 0; }
+inline int leftChild(const fcl::BVNodeBase& n) { return n.first_child; }
+inline int rightChild(const fcl::BVNodeBase& n) { return n.first_child + 1; }
+inline int primitiveId(const fcl::BVNodeBase& n) { return -(n.first_child + 1); }
+
+static_assert(std::is_trivially_copyable_v<fcl::Triangle> &&
+              sizeof(fcl::Triangle) == 3 * sizeof(std::size_t));
+inline void vertexIds(const fcl::Triangle& t, std::size_t ids[3]) {
+  std::memcpy(ids, &t, sizeof(fcl::Triangle));
+}
+
 /// Asks for the part of a node the node test reads (the traversal is a
 /// chain of dependent loads through a tree far larger than the cache).
 template <class BV>
@@ -322,9 +343,11 @@ class LeafBlock {
     const fcl::Triangle* t[kSize];
     for (std::size_t i = 0; i < n_; ++i) t[i] = &tris_[id_[i]];
     for (std::size_t i = 0; i < n_; ++i) {
-      const V3& p0 = vertices_[(*t[i])[0]];
-      const V3& p1 = vertices_[(*t[i])[1]];
-      const V3& p2 = vertices_[(*t[i])[2]];
+      std::size_t v[3];
+      vertexIds(*t[i], v);
+      const V3& p0 = vertices_[v[0]];
+      const V3& p1 = vertices_[v[1]];
+      const V3& p2 = vertices_[v[2]];
       if (raw_) {
         store(i, p0, p1, p2);
       } else {
@@ -497,21 +520,20 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
         continue;
       }
     }
-    if (!node.isLeaf()) {
+    if (!isLeaf(node)) {
+      const int left = leftChild(node), right = rightChild(node);
+      prefetchNode(model.getBV(left));
+      prefetchNode(model.getBV(right));
       if (untested || node.num_primitives <= kUntestedSubtree) {
-        prefetchNode(model.getBV(node.leftChild()));
-        prefetchNode(model.getBV(node.rightChild()));
-        stack.push(~node.rightChild());
-        stack.push(~node.leftChild());
+        stack.push(~right);
+        stack.push(~left);
         continue;
       }
-      prefetchNode(model.getBV(node.leftChild()));
-      prefetchNode(model.getBV(node.rightChild()));
-      stack.push(node.rightChild());  // left child first, as FCL
-      stack.push(node.leftChild());
+      stack.push(right);  // left child first, as FCL
+      stack.push(left);
       continue;
     }
-    block.add(node.primitiveId());
+    block.add(primitiveId(node));
     if (block.full()) done = block.flush();
   }
   if (!done) block.flush();
