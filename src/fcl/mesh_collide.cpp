@@ -242,6 +242,14 @@ bool finiteTransform(const Tf& tf) {
   return true;
 }
 
+bool exactIdentity(const Tf& tf) {
+  const auto& M = tf.matrix();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j)
+      if (!(M(i, j) == (i == j ? 1.0 : 0.0))) return false;
+  return true;
+}
+
 double norm1(const V3& v) {
   return std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
 }
@@ -495,8 +503,14 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
 
   // World vertices exactly as the Solver sees them (fcl_solver.h, FRAMES):
   // AABB and KDOP meshes are moved by FCL's initialize() unless it takes the
-  // transform for the identity (Eigen's isIdentity, as FCL calls it).
-  const bool raw = Boxer::kAligned && tf_mesh.matrix().isIdentity();
+  // transform for the identity (Eigen's isIdentity, as FCL calls it). The
+  // other meshes are moved by tf_mesh at every leaf; when tf_mesh is exactly
+  // the identity that gives each finite coordinate's own value (1 x + 0 y +
+  // 0 z + 0 = x, up to the sign of a zero), so the vertices are read as they
+  // are. (A non-finite vertex stays non-finite and is reported "in
+  // collision" either way.)
+  const bool raw = Boxer::kAligned ? tf_mesh.matrix().isIdentity()
+                                   : exactIdentity(tf_mesh);
   const Cylinder<double> cyl{r, lz};
   const Pose<double> pose = toPose(tf_cyl);
   LeafBlock block(geom, model.vertices, model.tri_indices, tf_mesh, raw,
