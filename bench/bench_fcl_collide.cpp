@@ -265,11 +265,10 @@ void BM_PairedCollide(benchmark::State& state, std::string file,
 void registerAll() {
   for (const char* file : {"env.obj", "bunny.obj"})
     for (bool exhaustive : {false, true})
-      benchmark::RegisterBenchmark(
-          (std::string("paired/") + file +
-           (exhaustive ? "/exhaustive" : "/first_hit"))
-              .c_str(),
-          BM_PairedCollide, file, exhaustive);
+      benchmark::RegisterBenchmark((std::string("paired/") + file +
+                                    (exhaustive ? "/exhaustive" : "/first_hit"))
+                                       .c_str(),
+                                   BM_PairedCollide, file, exhaustive);
 
   for (const char* file : {"env.obj", "bunny.obj"})
     for (bool exhaustive : {false, true})

@@ -157,7 +157,8 @@ void BM_Paired(benchmark::State& state) {
     t.translation() = fcl::Vector3d(c.pose.t.x, c.pose.t.y, c.pose.t.z);
     cyl.emplace_back(c.cyl.radius, c.cyl.lz);
     tf.push_back(t);
-    for (const auto& q : {c.tri.a, c.tri.b, c.tri.c}) p.emplace_back(q.x, q.y, q.z);
+    for (const auto& q : {c.tri.a, c.tri.b, c.tri.c})
+      p.emplace_back(q.x, q.y, q.z);
   }
   fcl::detail::GJKSolver_libccd<double> solver;
   solver.collision_tolerance = 1e-6;

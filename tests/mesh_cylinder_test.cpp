@@ -121,10 +121,12 @@ void expectMatchesKernel(const Cylinder<S>& cyl, const Pose<S>& pose,
     ref_hits += ref[i];
     if (ref[i] && ref_first == n) ref_first = i;
   }
-  for (const BatchOptions& opt : kAllOptions) {
+  BatchStats by_option[std::size(kAllOptions)];
+  for (std::size_t o = 0; o < std::size(kAllOptions); ++o) {
+    const BatchOptions& opt = kAllOptions[o];
     SCOPED_TRACE(describe(opt));
     std::vector<std::uint64_t> mask((n + 63) / 64, ~std::uint64_t(0));
-    BatchStats st;
+    BatchStats& st = by_option[o];
     const std::size_t hits =
         intersectMask(cyl, pose, mesh.view(), mask.data(), opt, &st);
     EXPECT_EQ(hits, ref_hits);
@@ -169,6 +171,15 @@ void expectMatchesKernel(const Cylinder<S>& cyl, const Pose<S>& pose,
       EXPECT_EQ(any2, std::optional<std::size_t>(ref_first));
     }
   }
+  // The AVX2 vertex passes compute the portable codes bit for bit, so the
+  // same triangles are rejected, by the same test (kAllOptions: portable,
+  // then AVX2, for each cull setting).
+  for (std::size_t o = 0; o + 1 < std::size(kAllOptions); o += 2) {
+    SCOPED_TRACE(describe(kAllOptions[o + 1]));
+    EXPECT_EQ(by_option[o].culled, by_option[o + 1].culled);
+    EXPECT_EQ(by_option[o].early_out, by_option[o + 1].early_out);
+    EXPECT_EQ(by_option[o].kernel, by_option[o + 1].kernel);
+  }
 }
 
 template <class S>
@@ -201,6 +212,41 @@ TYPED_TEST(MeshCylinderTyped, BuiltinMeshesMatchKernel) {
   // The test exercised hits and both rejection kinds and the kernel.
   EXPECT_GT(cov.hits, 0u);
   EXPECT_GT(cov.culled, 0u);
+  EXPECT_GT(cov.early, 0u);
+  EXPECT_GT(cov.kernel, 0u);
+}
+
+// Vertex coordinates at the edges of the local pass's gate and of double:
+// exactly 2^40 (admitted) and the next double up (not: the kernel decides
+// those triangles), -0, subnormals, and vertices far from everything, in
+// every position of the AVX2 pass's four-vertex groups and of its scalar
+// tail (9 vertices: two groups and one left over).
+TEST(MeshCylinder, VertexPassGateValues) {
+  const double big = 0x1p40, above = std::nextafter(0x1p40, 1e300);
+  const double sub = std::numeric_limits<double>::denorm_min();
+  const double vals[] = {0.0, -0.0, sub,  -sub,  0.25,   -0.75,
+                         1.5, big,  -big, above, -above, 3e11};
+  Coverage cov;
+  for (std::uint64_t k = 0; k < 200; ++k) {
+    Indexed<double> mesh;
+    std::uint64_t h = k * 0x9e3779b97f4a7c15ULL + 1;
+    auto next = [&] {
+      h ^= h >> 31;
+      h *= 0xbf58476d1ce4e5b9ULL;
+      h ^= h >> 29;
+      return vals[h % std::size(vals)];
+    };
+    for (int i = 0; i < 27; ++i) mesh.v.push_back(next());
+    for (std::uint32_t a = 0; a < 9; ++a)
+      for (std::uint32_t b : {(a + 1) % 9, (a + 4) % 9})
+        mesh.f.insert(mesh.f.end(), {a, b, (a + 7) % 9});
+    const Cylinder<double> cyl{0.5, 2};
+    Pose<double> pose{{{0, 1, 0}, {0, 0, 1}, {1, 0, 0}}, {0.25, 0, -0.5}};
+    SCOPED_TRACE("case " + std::to_string(k));
+    expectMatchesKernel(cyl, pose, mesh, arrays(mesh), &cov);
+    if (::testing::Test::HasFailure()) return;
+  }
+  EXPECT_GT(cov.hits, 0u);
   EXPECT_GT(cov.early, 0u);
   EXPECT_GT(cov.kernel, 0u);
 }

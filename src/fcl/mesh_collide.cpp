@@ -265,7 +265,9 @@ double norm1(const V3& v) {
 inline bool isLeaf(const fcl::BVNodeBase& n) { return n.first_child < 0; }
 inline int leftChild(const fcl::BVNodeBase& n) { return n.first_child; }
 inline int rightChild(const fcl::BVNodeBase& n) { return n.first_child + 1; }
-inline int primitiveId(const fcl::BVNodeBase& n) { return -(n.first_child + 1); }
+inline int primitiveId(const fcl::BVNodeBase& n) {
+  return -(n.first_child + 1);
+}
 
 static_assert(std::is_trivially_copyable_v<fcl::Triangle> &&
               sizeof(fcl::Triangle) == 3 * sizeof(std::size_t));
@@ -509,8 +511,8 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
   // 0 z + 0 = x, up to the sign of a zero), so the vertices are read as they
   // are. (A non-finite vertex stays non-finite and is reported "in
   // collision" either way.)
-  const bool raw = Boxer::kAligned ? tf_mesh.matrix().isIdentity()
-                                   : exactIdentity(tf_mesh);
+  const bool raw =
+      Boxer::kAligned ? tf_mesh.matrix().isIdentity() : exactIdentity(tf_mesh);
   const Cylinder<double> cyl{r, lz};
   const Pose<double> pose = toPose(tf_cyl);
   LeafBlock block(geom, model.vertices, model.tri_indices, tf_mesh, raw,
