@@ -451,13 +451,15 @@ TRICYL_AVX2_FN __m256d bcast(const double& v) {
   return _mm256_broadcast_sd(&v);  // a load, not a shuffle
 }
 
-// The gate of gateBitsOk with whole-word integer comparisons (the same
-// admitted set, fewer instructions): |x| < 2^40 iff the bits of |x| (sign
-// cleared) are <= 0x426f ffff ffff ffff (double) or 0x537f ffff (float), and
-// |R_jk| < 2 iff they are <= 0x3fff ffff ffff ffff or 0x3fff ffff; non-negative
-// bit patterns order like their values under a signed comparison, and NaN
-// and Inf (exponent all ones) exceed both limits. Every load stays inside the
-// aggregates (the static_asserts above pin their layout).
+// The gate of gateBitsOk in 256-bit registers (the same admitted set, fewer
+// instructions): |x| < 2^40 iff the bits of |x| (sign cleared) are <=
+// 0x426f ffff ffff ffff (double) or 0x537f ffff (float), and |R_jk| < 2 iff
+// they are <= 0x3fff ffff ffff ffff or 0x3fff ffff; non-negative bit
+// patterns order like their values under a signed comparison, and NaN and
+// Inf (exponent all ones) exceed both limits. Double compares the top 16
+// bits of each word after 16-bit maxima (as gateBitsOk does) and also reads
+// the signs of r and lz; float compares whole words. Every load stays inside
+// the aggregates (the static_asserts above pin their layout).
 __attribute__((target("avx2"), always_inline)) inline __m256i ld32(
     const char* p) {
   return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
@@ -466,6 +468,11 @@ __attribute__((target("avx2"), always_inline)) inline __m256i ld32(
 __attribute__((target("avx2"), always_inline)) inline __m256i gt64(
     __m256i v, __m256i a, __m256i lim) {
   return _mm256_cmpgt_epi64(_mm256_and_si256(v, a), lim);
+}
+
+__attribute__((target("avx2"), always_inline)) inline __m256i andTop(
+    __m256i top, __m256i v) {
+  return _mm256_and_si256(v, top);
 }
 
 template <class S>
@@ -478,20 +485,31 @@ __attribute__((target("avx2"), always_inline)) inline bool gateBitsOkAvx2(
   __m128i bad2;
   if constexpr (sizeof(S) == 8) {
     // T: ax ay az bx | by bz cx cy | cz;  P: R00 R01 R02 R10 | R11 R12 R20 R21
-    // | R22 tx ty tz;  C: r lz.
-    const __m256i a = _mm256_set1_epi64x(0x7fffffffffffffffLL);
-    const __m256i len = _mm256_set1_epi64x(0x426fffffffffffffLL);
-    const __m256i rot = _mm256_set1_epi64x(0x3fffffffffffffffLL);
+    // | R22 tx ty tz;  C: r lz. Each 64-bit word keeps only its top 16 bits,
+    // sign cleared (|x| < 2^40 iff they are <= 0x426f, |R_jk| < 2 iff <=
+    // 0x3fff: the limits' low 48 bits are all ones), so that 16-bit maxima
+    // merge the words with the same limit before one compare (the other
+    // 16-bit lanes are 0). And r, lz >= 0 (-0 passes): the bits with the sign
+    // flipped are > 0 as a signed word only for a negative non-zero value.
+    const __m256i top = _mm256_set1_epi64x(0x7fff000000000000LL);
+    const __m256i len = _mm256_set1_epi64x(0x426fLL << 48);
+    const __m256i rot = _mm256_set1_epi64x(0x3fffLL << 48);
     const __m256i mix = _mm256_blend_epi32(len, rot, 0x03);  // (rot, len x3)
-    bad = _mm256_or_si256(
-        _mm256_or_si256(gt64(ld32(T), a, len), gt64(ld32(T + 32), a, len)),
-        _mm256_or_si256(
-            _mm256_or_si256(gt64(ld32(P), a, rot), gt64(ld32(P + 32), a, rot)),
-            gt64(ld32(P + 64), a, mix)));
-    const __m128i a2 = _mm256_castsi256_si128(a);
-    const __m128i len2 = _mm256_castsi256_si128(len);
-    bad2 = _mm_or_si128(_mm_cmpgt_epi64(_mm_and_si128(ld16(C), a2), len2),
-                        _mm_cmpgt_epi64(_mm_and_si128(ld8(T + 64), a2), len2));
+    const __m128i c = ld16(C);
+    const __m128i hi2 = _mm256_castsi256_si128(top);
+    const __m256i lens = _mm256_max_epi16(
+        _mm256_max_epi16(andTop(top, ld32(T)), andTop(top, ld32(T + 32))),
+        _mm256_zextsi128_si256(_mm_max_epi16(_mm_and_si128(c, hi2),
+                                             _mm_and_si128(ld8(T + 64), hi2))));
+    const __m256i rots =
+        _mm256_max_epi16(andTop(top, ld32(P)), andTop(top, ld32(P + 32)));
+    const __m128i negative = _mm_cmpgt_epi64(
+        _mm_xor_si128(c, _mm_set1_epi64x(std::int64_t(0x8000000000000000ULL))),
+        _mm_setzero_si128());
+    bad = _mm256_or_si256(_mm256_or_si256(_mm256_cmpgt_epi16(lens, len),
+                                          _mm256_cmpgt_epi16(rots, rot)),
+                          _mm256_cmpgt_epi16(andTop(top, ld32(P + 64)), mix));
+    bad2 = negative;
   } else {
     // T: ax ay az bx by bz cx cy | cz;  P: R00 .. R21 | R22 tx ty tz;
     // C: r lz.
@@ -800,7 +818,9 @@ __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
                                                         Local* L) {
   if (!gateBitsOkAvx2(cyl, pose, tri)) return Pre::kGateMiss;
   const double r = double(cyl.radius), H = double(cyl.lz);
-  if (!(r >= 0) || !(H >= 0)) return Pre::kGateMiss;  // finite: no trap
+  if constexpr (sizeof(S) == 4) {  // (double: the gate read the signs)
+    if (!(r >= 0) || !(H >= 0)) return Pre::kGateMiss;  // finite: no trap
+  }
   if constexpr (sizeof(S) == 8) {
     return prologueAvx2Body(pose, tri, r, H, L);
   } else {
