@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "tricyl/fcl_solver.h"
+#include "walk.h"
 
 namespace {
 
@@ -128,6 +129,20 @@ const MeshData& mesh(const std::string& file) {
 
 enum class Which { kTricyl, kSolver, kStock, kTraversal };
 
+/// One collision object per cylinder pose of the mesh's scene.
+std::vector<std::unique_ptr<fcl::CollisionObjectd>> cylinderObjects(
+    const MeshData& d) {
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> cyls;
+  for (std::size_t i = 0; i < d.poses.size(); ++i)
+    cyls.push_back(
+        std::make_unique<fcl::CollisionObjectd>(d.cyls[i], d.poses[i]));
+  return cyls;
+}
+
+// The poses in a new order on every pass (tricyl::bench::Walk): a fixed
+// cycle of 256 calls is a sequence the branch predictor can partly learn.
+static_assert(tricyl::bench::Walk::valid(kPoses));
+
 void BM_Collide(benchmark::State& state, std::string file, Which which,
                 bool exhaustive, bool contact) {
   const MeshData& d = mesh(file);
@@ -137,21 +152,14 @@ void BM_Collide(benchmark::State& state, std::string file, Which which,
   }
   fcl::CollisionRequestd req(exhaustive ? 100000 : 1, contact);
   fcl::CollisionObjectd o_mesh(d.model, Tf::Identity());
-  std::vector<std::unique_ptr<fcl::CollisionObjectd>> cyls;
-  for (std::size_t i = 0; i < d.poses.size(); ++i)
-    cyls.push_back(
-        std::make_unique<fcl::CollisionObjectd>(d.cyls[i], d.poses[i]));
+  const auto cyls = cylinderObjects(d);
   const TraversalOnlySolver null_solver;
   const tricyl::Solver<double> solver;
-  // The poses in a new order on every pass (an odd stride modulo their
-  // power-of-two count, a new stride each pass): a fixed cycle of 256 calls
-  // is a sequence the branch predictor can partly learn, real queries are
-  // not (see Walk in bench_triangle_cylinder.cpp).
-  static_assert(kPoses > 0 && (kPoses & (kPoses - 1)) == 0);
-  std::size_t i = 0, left = kPoses, stride = 1;
+  tricyl::bench::Walk walk(kPoses);
   double hits = 0;
   tricyl::TraversalStats stats;
   for (auto _ : state) {
+    const std::size_t i = walk.next();
     fcl::CollisionResultd res;
     const fcl::CollisionObjectd* o_cyl = cyls[i].get();
     switch (which) {
@@ -176,11 +184,6 @@ void BM_Collide(benchmark::State& state, std::string file, Which which,
     }
     hits += double(res.numContacts());
     benchmark::DoNotOptimize(res);
-    i = (i + stride) & (kPoses - 1);
-    if (--left == 0) {
-      left = kPoses;
-      stride += 2 * 7919;
-    }
   }
   state.counters["hits"] =
       benchmark::Counter(hits, benchmark::Counter::kAvgIterations);
@@ -208,16 +211,14 @@ void BM_PairedCollide(benchmark::State& state, std::string file,
   }
   fcl::CollisionRequestd req(exhaustive ? 100000 : 1, false);
   fcl::CollisionObjectd o_mesh(d.model, Tf::Identity());
-  std::vector<std::unique_ptr<fcl::CollisionObjectd>> cyls;
-  for (std::size_t i = 0; i < d.poses.size(); ++i)
-    cyls.push_back(
-        std::make_unique<fcl::CollisionObjectd>(d.cyls[i], d.poses[i]));
+  const auto cyls = cylinderObjects(d);
   using Clock = std::chrono::steady_clock;
-  std::size_t i = 0, left = kPoses, stride = 1;
+  tricyl::bench::Walk walk(kPoses);
   double t_tricyl = 0, t_stock = 0, n = 0;
   std::vector<double> best_tricyl(kPoses, 1e300), best_stock(kPoses, 1e300);
   bool tricyl_first = true;
   for (auto _ : state) {
+    const std::size_t i = walk.next();
     const fcl::CollisionObjectd* o_cyl = cyls[i].get();
     for (int k = 0; k < 2; ++k) {
       const bool run_tricyl = (k == 0) == tricyl_first;
@@ -237,11 +238,6 @@ void BM_PairedCollide(benchmark::State& state, std::string file,
     }
     tricyl_first = !tricyl_first;
     n += 1;
-    i = (i + stride) & (kPoses - 1);
-    if (--left == 0) {
-      left = kPoses;
-      stride += 2 * 7919;
-    }
   }
   state.counters["tricyl_us"] = t_tricyl / n;
   state.counters["stock_us"] = t_stock / n;

@@ -12,6 +12,7 @@
 
 #include "scenes.h"
 #include "tricyl/triangle_cylinder.h"
+#include "walk.h"
 
 #ifdef TRICYL_BENCH_WITH_FCL
 #include <fcl/geometry/shape/cylinder.h>
@@ -20,37 +21,13 @@
 
 namespace {
 
+using tricyl::bench::Walk;
 using tricyl::scenes::Family;
 using tricyl::scenes::TriCase;
 
 constexpr int kCases = 4096;  // a power of two (Walk)
 
-// The order in which a benchmark visits the cases: every pass over them is a
-// permutation (an odd stride modulo the power-of-two count), with a new
-// stride on each pass. Visited in the same order on every pass, 4096 cases
-// are a sequence that a modern branch predictor learns (on Zen 3 the kernel
-// measured 18 ns per query in a fixed order and 42 ns in a new order each
-// pass: its branches on the outcome were predicted from the history of the
-// previous queries' branches). Real queries never replay one sequence, so
-// the figures here are taken in an order the predictor cannot learn, for
-// tricyl and FCL alike.
-class Walk {
- public:
-  explicit Walk(std::size_t n) : mask_(n - 1), left_(n) {}
-  std::size_t next() {
-    const std::size_t k = i_;
-    i_ = (i_ + stride_) & mask_;
-    if (--left_ == 0) {
-      left_ = mask_ + 1;
-      stride_ += 2 * 7919;  // stays odd: the next pass is a new permutation
-    }
-    return k;
-  }
-
- private:
-  std::size_t mask_, left_, i_ = 0, stride_ = 1;
-};
-static_assert((kCases & (kCases - 1)) == 0);
+static_assert(Walk::valid(kCases));
 
 const std::vector<TriCase>& cases(Family f) {
   static std::vector<TriCase> store[6];

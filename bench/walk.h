@@ -1,0 +1,37 @@
+// The order in which a benchmark visits its cases (shared by the suites).
+#pragma once
+
+#include <cstddef>
+
+namespace tricyl::bench {
+
+// Every pass over n cases (n a power of two) is a permutation, an odd stride
+// modulo n, with a new stride on each pass. Visited in the same order on
+// every pass, a few thousand cases are a sequence that a modern branch
+// predictor learns: on Zen 3 the triangle-cylinder kernel measured 18 ns per
+// query over 4096 cases in a fixed order and 42 ns in a new order each pass,
+// its branches on the outcome predicted from the history of the previous
+// queries' branches (FCL: 372 and 385 ns). Real queries never replay one
+// sequence, so the figures are taken in an order the predictor cannot learn,
+// for tricyl and FCL alike.
+class Walk {
+ public:
+  explicit Walk(std::size_t n) : mask_(n - 1), left_(n) {}
+  static constexpr bool valid(std::size_t n) {
+    return n > 0 && (n & (n - 1)) == 0;
+  }
+  std::size_t next() {
+    const std::size_t k = i_;
+    i_ = (i_ + stride_) & mask_;
+    if (--left_ == 0) {
+      left_ = mask_ + 1;
+      stride_ += 2 * 7919;  // stays odd: the next pass is a new permutation
+    }
+    return k;
+  }
+
+ private:
+  std::size_t mask_, left_, i_ = 0, stride_ = 1;
+};
+
+}  // namespace tricyl::bench
