@@ -378,5 +378,39 @@ TEST(MeshCollideInvalid, NanVertexModelGoesToFcl) {
   EXPECT_EQ(sequence(ours), sequence(theirs));
 }
 
+// A triangle whose world coordinates overflow (tf * v = Inf, the model
+// itself finite) is reported in collision, as the Solver answers it. An
+// AABB mesh (boxes from min/max, finite for these vertices) moved by 10^308:
+// triangle 1 (x = 1.5e308 in the model) goes to x = Inf, triangle 0 lands
+// on the cylinder's centre (1e308 + 1 rounds to 1e308). The margin of the
+// node test is then infinite (|t_m|_1 + |t_c|_1 overflows), so every node
+// is visited and both leaves reach the kernel: one hit, one invalid.
+TEST(MeshCollideInvalid, OverflowingWorldVertexIsReportedInCollision) {
+  Mesh m;
+  m.v = {V3(0, 0, 0),       V3(1, 0, 0),       V3(0, 1, 0),
+         V3(1.5e308, 0, 0), V3(1.5e308, 1, 0), V3(1.5e308, 0, 1)};
+  m.t = {fcl::Triangle(0, 1, 2), fcl::Triangle(3, 4, 5)};
+  test::NoFpTraps no_traps;  // tf * v overflows (FE_OVERFLOW, FE_INEXACT)
+  auto model = fcltest::makeModel<fcl::AABB<double>>(m);
+  auto cyl = std::make_shared<fcl::Cylinderd>(1.0, 1.0);
+  Tf mesh_tf = Tf::Identity();
+  mesh_tf.translation() = V3(1e308, 0, 0);
+  Tf cyl_tf = Tf::Identity();
+  cyl_tf.translation() = V3(1e308, 0, 0);
+  const std::set<std::size_t> truth =
+      bruteForce<fcl::AABB<double>>(m, mesh_tf, 1.0, 1.0, cyl_tf);
+  ASSERT_EQ(truth, (std::set<std::size_t>{0, 1}));
+  ASSERT_EQ(tryIntersect(Cylinder<double>{1, 1}, toPose(cyl_tf),
+                         fcltest::toTri(mesh_tf * m.v[3], mesh_tf * m.v[4],
+                                        mesh_tf * m.v[5])),
+            Answer::kInvalidInput);
+  fcl::CollisionRequestd req(kMany, false);
+  fcl::CollisionResultd res;
+  std::size_t n = 0;
+  ASSERT_TRUE(collideMeshCylinder(model.get(), mesh_tf, cyl.get(), cyl_tf, req,
+                                  res, &n));
+  EXPECT_EQ(fcltest::contactIds(res, cyl.get()), truth);
+}
+
 }  // namespace
 }  // namespace tricyl

@@ -37,11 +37,12 @@
 //    test never skips a node with a colliding triangle.
 //    A node that passes with at most 8 triangles below it sends them all to
 //    the next step untested (cheaper than testing the nodes in between).
-// 3. The surviving leaves' triangles are moved to the world frame and
-//    decided in blocks of 64 by the batch kernel (mesh_cylinder.h), whose
-//    answer for each triangle IS tryIntersect's. Blocks are flushed in
-//    traversal order, and the walk stops as soon as num_max_contacts is
-//    reached.
+// 3. The surviving leaves' triangles are queued in blocks of up to 64,
+//    moved to the world frame together and decided one by one by
+//    tryIntersect (the batch kernel's vertex-code cull rejects few leaves
+//    that passed the node test, and cost more than it saved). Blocks are
+//    flushed in traversal order, and the walk stops as soon as
+//    num_max_contacts is reached.
 //
 // ASSUMED: each node's BV contains its triangles up to rounding, as FCL's
 // builders (fit, refit) make it for finite vertices; FCL's own traversal
@@ -76,7 +77,7 @@ namespace tricyl {
 struct TraversalStats {
   std::size_t nodes_tested = 0;   ///< BV nodes given to the node test
   std::size_t nodes_skipped = 0;  ///< nodes the node test proved disjoint
-  std::size_t leaves = 0;         ///< triangles given to the batch kernel
+  std::size_t leaves = 0;         ///< triangles given to the kernel
   std::size_t hits = 0;           ///< triangles found colliding
 };
 

@@ -1,5 +1,5 @@
 // tricyl's BVHModel/Cylinder traversal (fcl_mesh_cylinder.h): a certified
-// node test over the model's own tree, then the batch kernel on the leaves.
+// node test over the model's own tree, then the scalar kernel on the leaves.
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/math/bv/AABB.h>
@@ -19,7 +19,6 @@
 #include "tricyl/fcl_contact.h"
 #include "tricyl/fcl_mesh_cylinder.h"
 #include "tricyl/fcl_solver.h"
-#include "tricyl/mesh_cylinder.h"
 #include "tricyl/triangle_cylinder.h"
 
 namespace tricyl {
@@ -67,10 +66,10 @@ constexpr double kRelMargin = 0x1p-36;
 constexpr double kMaxNonOrthogonality = 0x1p-20;
 
 // A node that passes the test with at most this many triangles below it
-// sends them all to the batch kernel without testing the nodes in between:
-// on the env.obj and bunny.obj scenes of bench_fcl_collide, 5 in 6 tested
-// nodes pass, and the batch's own cull (a few ns a triangle) is cheaper
-// than a node test. Only speed depends on it.
+// sends them all to the kernel without testing the nodes in between: on the
+// env.obj and bunny.obj scenes of bench_fcl_collide, 5 in 6 tested nodes
+// pass, and the kernel's own early-outs are cheaper than a node test. Only
+// speed depends on it.
 constexpr int kUntestedSubtree = 8;
 
 /// The cylinder in the mesh frame and the per-call constants.
@@ -316,7 +315,17 @@ class NodeStack {
   std::vector<int> spill_;
 };
 
-/// Leaves waiting for the batch kernel, in traversal order.
+/// Leaves waiting for the kernel, in traversal order.
+///
+/// Each is decided by the scalar kernel (tryIntersect), not by the batch
+/// kernel (tryIntersectMask) that decided them until 2026-11: the leaves
+/// reaching a block have passed the node test, so the batch's vertex-code
+/// cull rejected few of them and its setup and code pass (three calls over
+/// at most 64 vertices, about 4 ns a vertex at these sizes) cost more than
+/// the scalar kernel's own early-outs. Medians of six interleaved runs of
+/// bench_fcl_collide's scenes, exhaustive, per call: bunny.obj 3.76 -> 3.35
+/// us, env.obj 10.38 -> 9.17 us. The answers are the same (the batch is
+/// bit-identical to the scalar kernel).
 class LeafBlock {
  public:
   static constexpr std::size_t kSize = 64;
@@ -359,23 +368,17 @@ class LeafBlock {
       const V3& p1 = vertices_[v[1]];
       const V3& p2 = vertices_[v[2]];
       if (raw_) {
-        store(i, p0, p1, p2);
+        tri_[i] = {vec(p0), vec(p1), vec(p2)};
       } else {
-        store(i, tf_mesh_ * p0, tf_mesh_ * p1, tf_mesh_ * p2);
+        tri_[i] = {vec(tf_mesh_ * p0), vec(tf_mesh_ * p1), vec(tf_mesh_ * p2)};
       }
     }
-    const TriangleArrays<double> arrays{ax_, ay_, az_, bx_, by_,
-                                        bz_, cx_, cy_, cz_, n_};
-    std::uint64_t mask[kSize / 64];
-    std::size_t hits = 0;
-    // Cylinder and pose were validated; a triangle with a non-finite world
-    // coordinate gets its bit set ("in collision", as the Solver answers).
-    tryIntersectMask(cyl_, pose_, arrays, mask, &hits);
     if (stats_ != nullptr) stats_->leaves += n_;
     bool done = false;
-    for (std::size_t i = 0; i < n_ && hits > 0; ++i) {
-      if (((mask[i / 64] >> (i % 64)) & 1u) == 0) continue;
-      --hits;
+    for (std::size_t i = 0; i < n_; ++i) {
+      // Cylinder and pose were validated: kInvalidInput means a non-finite
+      // world coordinate, reported "in collision" (as the Solver answers).
+      if (tryIntersect(cyl_, pose_, tri_[i]) == Answer::kDisjoint) continue;
       if (stats_ != nullptr) ++stats_->hits;
       record(i);
       if (request_.isSatisfied(result_)) {
@@ -389,11 +392,7 @@ class LeafBlock {
   }
 
  private:
-  void store(std::size_t i, const V3& a, const V3& b, const V3& c) {
-    ax_[i] = a[0], ay_[i] = a[1], az_[i] = a[2];
-    bx_[i] = b[0], by_[i] = b[1], bz_[i] = b[2];
-    cx_[i] = c[0], cy_[i] = c[1], cz_[i] = c[2];
-  }
+  static Vec3<double> vec(const V3& p) { return {p[0], p[1], p[2]}; }
 
   void record(std::size_t i) {
     if (!request_.enable_contact) {
@@ -404,11 +403,9 @@ class LeafBlock {
     // The Solver's contact path (fcl_solver.cpp), and FCL's storage of it:
     // the solver's normal points from the cylinder to the triangle, the
     // Contact's from the mesh (o1) to the cylinder (o2).
-    const Triangle<double> tri{{ax_[i], ay_[i], az_[i]},
-                               {bx_[i], by_[i], bz_[i]},
-                               {cx_[i], cy_[i], cz_[i]}};
     ContactEstimate<double> est;
-    if (estimateContact(cyl_, pose_, tri, &est) == Answer::kDisjoint) return;
+    if (estimateContact(cyl_, pose_, tri_[i], &est) == Answer::kDisjoint)
+      return;
     result_.addContact(fcl::Contact<double>(
         mesh_, cyl_geom_, id_[i], fcl::Contact<double>::NONE,
         V3(est.point.x, est.point.y, est.point.z),
@@ -434,9 +431,7 @@ class LeafBlock {
            std::min(request_.num_max_contacts, result_.numContacts())),
       4, kSize);
   int id_[kSize];
-  double ax_[kSize], ay_[kSize], az_[kSize];
-  double bx_[kSize], by_[kSize], bz_[kSize];
-  double cx_[kSize], cy_[kSize], cz_[kSize];
+  Triangle<double> tri_[kSize];
 };
 
 template <class BV>
@@ -523,7 +518,7 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
   std::size_t tested = 0, skipped = 0;
   bool done = false;
   // Stack entries >= 0 are nodes to test; ~n (< 0) are nodes inside a
-  // small subtree that passed: their leaves go to the batch untested.
+  // small subtree that passed: their leaves go to the kernel untested.
   while (!stack.empty() && !done) {
     const int entry = stack.pop();
     const bool untested = entry < 0;
