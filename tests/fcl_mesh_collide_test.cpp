@@ -266,6 +266,47 @@ TYPED_TEST(MeshCollideTest, NodeTestPrunes) {
   }
 }
 
+// A box axis within a hair of the cylinder's axis. The cylinder is tilted
+// by theta = 2^-30 about x (R as given: cos theta rounds to 1), so its top
+// rim rises to h + r sin(theta) ~ h + 9.3e-10 r along z, the axis of a flat
+// box around a horizontal triangle at z0 = h + 2^-31 r: the rim's highest
+// point pierces the triangle. The cylinder's support along a box axis a is
+// h |a.u| + r |a x u|; evaluated as r sqrt(1 - (a.u)^2), the rounding of
+// a.u to 1 wipes out the radial term (an error of r sqrt(2 |error of a.u|),
+// not a few ulps of r), and a node holding the colliding triangle was
+// skipped (all eight BV types, before the fix). Several tilts and heights
+// around the rim's top, each checked against the brute force.
+TYPED_TEST(MeshCollideTest, BoxAxisNearlyParallelToTheCylinderAxis) {
+  for (int e : {20, 26, 30, 34}) {
+    const double s = std::ldexp(1.0, -e);  // sin(theta); cos(theta) = 1
+    for (double f : {0.25, 0.5, 0.999, 1.001, 2.0}) {
+      SCOPED_TRACE("theta 2^-" + std::to_string(e) + " height " +
+                   std::to_string(f));
+      const double r = 1, lz = 2, h = 1;
+      const double z0 = h + f * s * r;
+      Mesh m;
+      // Two triangles in the plane z = z0: every fitted box (the covariance
+      // fit of OBB/RSS/kIOS/OBBRSS too) has the axis z exactly.
+      m.v = {V3(-3, -3, z0), V3(3, -3, z0),  V3(0, 3, z0),
+             V3(10, 10, z0), V3(11, 10, z0), V3(10, 11, z0)};
+      m.t = {fcl::Triangle(0, 1, 2), fcl::Triangle(3, 4, 5)};
+      auto model = fcltest::makeModel<TypeParam>(m);
+      auto cyl = std::make_shared<fcl::Cylinderd>(r, lz);
+      Tf cyl_tf = Tf::Identity();
+      cyl_tf.linear() << 1, 0, 0, 0, 1, -s, 0, s, 1;
+      const std::set<std::size_t> truth =
+          bruteForce<TypeParam>(m, Tf::Identity(), r, lz, cyl_tf);
+      EXPECT_EQ(truth.count(0), f < 1 ? 1u : 0u);
+      fcl::CollisionRequestd req(kMany, false);
+      fcl::CollisionResultd res;
+      std::size_t n = 0;
+      ASSERT_TRUE(collideMeshCylinder(model.get(), Tf::Identity(), cyl.get(),
+                                      cyl_tf, req, res, &n));
+      EXPECT_EQ(fcltest::contactIds(res, cyl.get()), truth);
+    }
+  }
+}
+
 // Requests and inputs the traversal leaves to FCL: collideMeshCylinder says
 // so and touches nothing, and tricyl::collide then equals fcl::collide with
 // tricyl::Solver.

@@ -34,7 +34,7 @@ using Tf = fcl::Transform3d;
 // (centre b, axes a_i, half extents e_i) and the cylinder moved into the mesh
 // frame (centre c, unit axis u, radius r, half length h), with d = b - c:
 //   (A) |u.d|   > h + sum_i e_i |u.a_i|                       (cylinder axis)
-//   (B) |a_i.d| > e_i + h |a_i.u| + r sqrt(1 - (a_i.u)^2)     (box axis i)
+//   (B) |a_i.d| > e_i + h |a_i.u| + r |a_i x u|               (box axis i)
 //   (C) |d - (u.d) u| > r + |e|                               (axis line)
 // In exact arithmetic with orthonormal rotations and boxes that contain
 // their triangles, each right-hand side is the sum of the two supports along
@@ -58,6 +58,20 @@ using Tf = fcl::Transform3d;
 //    in norm, which moves every point of the sets compared by at most
 //    2 delta (|x - t_m| + r + h) <= 4 delta L; u is unit to within 2 delta.
 //    16 delta L covers both.
+// Every right-hand side is a 1-Lipschitz function of u and of the box axes
+// (times the lengths it multiplies), which is what lets errors of a few ulps
+// (item 1) or of 2 delta (item 2) in them move it by as little. The radial
+// term of (B) is written r |a_i x u| for that reason: for unit vectors it
+// equals r sqrt(1 - (a_i.u)^2), but that form is not Lipschitz in a_i.u
+// near 1, and an error epsilon there (a.u rounded to 1, or u a hair longer
+// than unit) became an error r sqrt(2 epsilon): a node holding a triangle
+// the tilted rim touches was skipped when a box axis lay within ~2^-26 of
+// the cylinder's axis (before 2026-11, on every BV type for AABB/KDOP;
+// tests/fcl_mesh_collide_test.cpp, BoxAxisNearlyParallelToTheCylinderAxis).
+// |a_i x u| is computed as the square root of the sum of the squared
+// components of the cross product: the components' rounding is absolute
+// (a few ulps of |a_i| |u|), not amplified, and an underflow of the sum
+// loses at most r 2^-500, far inside m.
 // So m = (2^-36 + 16 delta) L, evaluated per node (the |b|_1 + sum e part
 // changes from node to node). NaN or Inf in a box makes m NaN or Inf, and
 // no test with a NaN or an infinite right-hand side skips: such nodes are
@@ -81,7 +95,7 @@ struct Local {
   double rel;     // 2^-36 + 16 delta
   double global;  // rel * (|c|_1 + |t_m|_1 + |t_c|_1 + r + h)
   // Axis-aligned boxes: the cylinder's support along the world axes of the
-  // mesh frame, h |u_i| + r sqrt(1 - u_i^2), and |u_i|.
+  // mesh frame, h |u_i| + r |e_i x u|, and |u_i|.
   double au[3];
   double support[3];
 };
@@ -120,16 +134,21 @@ overlaps(const Box& x, const Local& k) {
   if (gt(std::fabs(ud),
          k.h + x.e[0] * ua[0] + x.e[1] * ua[1] + x.e[2] * ua[2] + m))
     return false;
-  // (B): the box's axes. The radial part r sqrt(1 - (a_i.u)^2) >= 0 is only
-  // computed when the rest does not already pass.
+  // (B): the box's axes. The radial part r |a_i x u| >= 0 is only computed
+  // when the rest does not already pass.
   for (int i = 0; i < 3; ++i) {
     if constexpr (kAligned) {
       if (gt(std::fabs(d[i]), x.e[i] + k.support[i] + m)) return false;
     } else {
       const double ad = x.a[i][0] * d[0] + x.a[i][1] * d[1] + x.a[i][2] * d[2];
       const double excess = std::fabs(ad) - (x.e[i] + k.h * ua[i] + m);
-      if (gt(excess, 0) &&
-          gt(excess, k.r * std::sqrt(std::fmax(0.0, 1.0 - ua[i] * ua[i]))))
+      if (!gt(excess, 0)) continue;
+      // r |a_i x u| (see THE NODE TEST AND ITS MARGIN).
+      const double* a = x.a[i];
+      const double c0 = a[1] * k.u[2] - a[2] * k.u[1],
+                   c1 = a[2] * k.u[0] - a[0] * k.u[2],
+                   c2 = a[0] * k.u[1] - a[1] * k.u[0];
+      if (gt(excess, k.r * std::sqrt(c0 * c0 + c1 * c1 + c2 * c2)))
         return false;
     }
   }
@@ -494,8 +513,10 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
                       norm1(tf_cyl.translation()) + k.r + k.h);
   for (int i = 0; i < 3; ++i) {
     k.au[i] = std::fabs(u[i]);
-    k.support[i] =
-        k.h * k.au[i] + k.r * std::sqrt(std::max(0.0, 1.0 - u[i] * u[i]));
+    // h |u_i| + r |e_i x u| (see THE NODE TEST AND ITS MARGIN): |e_i x u|
+    // is the length of u's other two components.
+    const double uj = u[(i + 1) % 3], uk = u[(i + 2) % 3];
+    k.support[i] = k.h * k.au[i] + k.r * std::sqrt(uj * uj + uk * uk);
   }
 
   // World vertices exactly as the Solver sees them (fcl_solver.h, FRAMES):
