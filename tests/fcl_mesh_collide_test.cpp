@@ -191,7 +191,7 @@ TYPED_TEST(MeshCollideTest, ExactTouchingIsFound) {
                          }()};
   for (const Touch& touch : touches)
     for (const Tf& motion : motions)
-      for (double scale : {1.0, 0x1p-20, 0x1p30}) {
+      for (double scale : {1.0, 0x1p-20, 0x1p30, 0x1p-540, 0x1p-560}) {
         SCOPED_TRACE(std::string(touch.what) + " scale " +
                      std::to_string(scale));
         Mesh ms = m;

@@ -70,13 +70,20 @@ using Tf = fcl::Transform3d;
 // tests/fcl_mesh_collide_test.cpp, BoxAxisNearlyParallelToTheCylinderAxis).
 // |a_i x u| is computed as the square root of the sum of the squared
 // components of the cross product: the components' rounding is absolute
-// (a few ulps of |a_i| |u|), not amplified, and an underflow of the sum
-// loses at most r 2^-500, far inside m.
-// So m = (2^-36 + 16 delta) L, evaluated per node (the |b|_1 + sum e part
-// changes from node to node). NaN or Inf in a box makes m NaN or Inf, and
-// no test with a NaN or an infinite right-hand side skips: such nodes are
-// always visited (and their triangles reported "in collision", below).
+// (a few ulps of |a_i| |u|), not amplified.
+// 3. Underflow, where "a few ulps" fails: a product or square below 2^-1022
+//    is off by up to 2^-1074 absolutely, whatever its size. In the squared
+//    comparisons ((C), and the sum of squares under (B)'s root) that is an
+//    error of at most 2^-536 in the lengths compared (sqrt(a^2 - eps) >=
+//    a - sqrt(eps)); elsewhere less. An absolute 2^-500 covers it; it is
+//    nothing next to any length a mesh has (tests: ExactTouchingIsFound at
+//    scales 2^-540 and 2^-560).
+// So m = (2^-36 + 16 delta) L + 2^-500, evaluated per node (the |b|_1 +
+// sum e part changes from node to node). NaN or Inf in a box makes m NaN or
+// Inf, and no test with a NaN or an infinite right-hand side skips: such nodes
+// are always visited (and their triangles reported "in collision", below).
 constexpr double kRelMargin = 0x1p-36;
+constexpr double kAbsMargin = 0x1p-500;
 constexpr double kMaxNonOrthogonality = 0x1p-20;
 
 // A node that passes the test with at most this many triangles below it
@@ -93,7 +100,7 @@ struct Local {
   double r;
   double h;
   double rel;     // 2^-36 + 16 delta
-  double global;  // rel * (|c|_1 + |t_m|_1 + |t_c|_1 + r + h)
+  double global;  // rel * (|c|_1 + |t_m|_1 + |t_c|_1 + r + h) + 2^-500
   // Axis-aligned boxes: the cylinder's support along the world axes of the
   // mesh frame, h |u_i| + r |e_i x u|, and |u_i|.
   double au[3];
@@ -510,7 +517,8 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
   k.h = 0.5 * lz;
   k.rel = kRelMargin + 16 * delta;
   k.global = k.rel * (norm1(c) + norm1(tf_mesh.translation()) +
-                      norm1(tf_cyl.translation()) + k.r + k.h);
+                      norm1(tf_cyl.translation()) + k.r + k.h) +
+             kAbsMargin;
   for (int i = 0; i < 3; ++i) {
     k.au[i] = std::fabs(u[i]);
     // h |u_i| + r |e_i x u| (see THE NODE TEST AND ITS MARGIN): |e_i x u|
