@@ -70,7 +70,7 @@ using Tf = fcl::Transform3d;
 // near 1, and an error epsilon there (a.u rounded to 1, or u a hair longer
 // than unit) became an error r sqrt(2 epsilon): a node holding a triangle
 // the tilted rim touches was skipped when a box axis lay within ~2^-26 of
-// the cylinder's axis (before 2026-11, on every BV type for AABB/KDOP;
+// the cylinder's axis (before 2026-11, on all eight BV types;
 // tests/fcl_mesh_collide_test.cpp, BoxAxisNearlyParallelToTheCylinderAxis).
 // |a_i x u| is computed as the square root of the sum of the squared
 // components of the cross product: the components' rounding is absolute
@@ -122,9 +122,9 @@ struct Box {
 /// then, so a NaN never skips a node.
 inline bool gt(double a, double b) { return std::isgreater(a, b); }
 
-/// The correctly rounded square root of x >= 0 (or NaN, or +Inf: then NaN or
-/// +Inf, with no FP exception). Not std::sqrt: GCC treats the node test's
-/// rarely taken branches as cold and compiles std::sqrt there as a call
+/// The correctly rounded square root of x >= 0 (or a quiet NaN, or +Inf:
+/// then NaN or +Inf, with no FP exception). Not std::sqrt: GCC treats the node
+/// test's rarely taken branches as cold and compiles std::sqrt there as a call
 /// into libm (errno handling) that also spills the live registers; in the
 /// bunny.obj scene of bench_fcl_collide those calls took about 4% of
 /// tricyl::collide's time.
