@@ -277,11 +277,16 @@ TYPED_TEST(MeshCollideTest, NodeTestPrunes) {
 // skipped (all eight BV types, before the fix). Several tilts and heights
 // around the rim's top, each checked against the brute force.
 TYPED_TEST(MeshCollideTest, BoxAxisNearlyParallelToTheCylinderAxis) {
+  // The scene as built, then under exact signed axis permutations P (so the
+  // box axis is x or y, and the triangle below or above the cylinder), both
+  // applied to the data (P v, P R) and given as the mesh's transform.
+  std::vector<fcl::Matrix3d> motions(3);
+  motions[0].setIdentity();
+  motions[1] << 0, 0, 1, 1, 0, 0, 0, 1, 0;    // z -> x, x -> y, y -> z
+  motions[2] << 0, -1, 0, 0, 0, -1, 1, 0, 0;  // z -> -y, with a flip
   for (int e : {20, 26, 30, 34}) {
     const double s = std::ldexp(1.0, -e);  // sin(theta); cos(theta) = 1
     for (double f : {0.25, 0.5, 0.999, 1.001, 2.0}) {
-      SCOPED_TRACE("theta 2^-" + std::to_string(e) + " height " +
-                   std::to_string(f));
       const double r = 1, lz = 2, h = 1;
       const double z0 = h + f * s * r;
       Mesh m;
@@ -290,19 +295,35 @@ TYPED_TEST(MeshCollideTest, BoxAxisNearlyParallelToTheCylinderAxis) {
       m.v = {V3(-3, -3, z0), V3(3, -3, z0),  V3(0, 3, z0),
              V3(10, 10, z0), V3(11, 10, z0), V3(10, 11, z0)};
       m.t = {fcl::Triangle(0, 1, 2), fcl::Triangle(3, 4, 5)};
-      auto model = fcltest::makeModel<TypeParam>(m);
-      auto cyl = std::make_shared<fcl::Cylinderd>(r, lz);
-      Tf cyl_tf = Tf::Identity();
-      cyl_tf.linear() << 1, 0, 0, 0, 1, -s, 0, s, 1;
-      const std::set<std::size_t> truth =
-          bruteForce<TypeParam>(m, Tf::Identity(), r, lz, cyl_tf);
-      EXPECT_EQ(truth.count(0), f < 1 ? 1u : 0u);
-      fcl::CollisionRequestd req(kMany, false);
-      fcl::CollisionResultd res;
-      std::size_t n = 0;
-      ASSERT_TRUE(collideMeshCylinder(model.get(), Tf::Identity(), cyl.get(),
-                                      cyl_tf, req, res, &n));
-      EXPECT_EQ(fcltest::contactIds(res, cyl.get()), truth);
+      fcl::Matrix3d tilt;
+      tilt << 1, 0, 0, 0, 1, -s, 0, s, 1;
+      for (std::size_t k = 0; k < motions.size(); ++k)
+        for (bool as_transform : {false, true}) {
+          SCOPED_TRACE("theta 2^-" + std::to_string(e) + " height " +
+                       std::to_string(f) + " motion " + std::to_string(k) +
+                       (as_transform ? " (mesh transform)" : " (data)"));
+          const fcl::Matrix3d& P = motions[k];
+          Mesh mk = m;
+          Tf mesh_tf = Tf::Identity();
+          if (as_transform) {
+            mesh_tf.linear() = P;
+          } else {
+            for (V3& v : mk.v) v = P * v;
+          }
+          auto model = fcltest::makeModel<TypeParam>(mk);
+          auto cyl = std::make_shared<fcl::Cylinderd>(r, lz);
+          Tf cyl_tf = Tf::Identity();
+          cyl_tf.linear() = P * tilt;
+          const std::set<std::size_t> truth =
+              bruteForce<TypeParam>(mk, mesh_tf, r, lz, cyl_tf);
+          EXPECT_EQ(truth.count(0), f < 1 ? 1u : 0u);
+          fcl::CollisionRequestd req(kMany, false);
+          fcl::CollisionResultd res;
+          std::size_t n = 0;
+          ASSERT_TRUE(collideMeshCylinder(model.get(), mesh_tf, cyl.get(),
+                                          cyl_tf, req, res, &n));
+          EXPECT_EQ(fcltest::contactIds(res, cyl.get()), truth);
+        }
     }
   }
 }
