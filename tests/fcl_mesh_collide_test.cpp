@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <random>
 #include <set>
 #include <vector>
 
@@ -326,6 +327,63 @@ TYPED_TEST(MeshCollideTest, BoxAxisNearlyParallelToTheCylinderAxis) {
         }
     }
   }
+}
+
+// Seeded: a flat grid (z = 0) and cylinders whose axis is tilted from z by
+// 2^-16 .. 2^-44 about a random horizontal direction, placed above or below
+// the grid so that the lowest (or highest) point of a rim lies within a few
+// times r sin(theta) of the plane, on either side. Every box axis z of the
+// grid's tree is then nearly parallel to the cylinder's axis; the contacts
+// must be the brute force's.
+TYPED_TEST(MeshCollideTest, NearlyAlignedCylindersOverAFlatGrid) {
+  const std::uint64_t seed = test::baseSeed() ^ 0x616c69676eu;
+  SCOPED_TRACE(test::seedTrace(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u01(0, 1);
+  Mesh m;
+  const int n = 8;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j)
+      m.v.emplace_back(-1 + 2.0 * i / n, -1 + 2.0 * j / n, 0.0);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const int a = i * (n + 1) + j, b = a + 1, c = a + n + 1, d = c + 1;
+      m.t.emplace_back(a, c, b);
+      m.t.emplace_back(b, c, d);
+    }
+  auto model = fcltest::makeModel<TypeParam>(m);
+  int hits = 0, cases = 0;
+  for (int k = 0; k < 300; ++k) {
+    const double r = 0.05 + 0.25 * u01(rng), lz = 0.1 + 0.9 * u01(rng);
+    const double s = std::ldexp(1.0, -16 - int(29 * u01(rng)));
+    const double phi = 6.283185307179586 * u01(rng);
+    fcl::Matrix3d tilt, spin;
+    tilt << 1, 0, 0, 0, 1, -s, 0, s, 1;  // cos(theta) rounds to 1
+    spin << std::cos(phi), -std::sin(phi), 0, std::sin(phi), std::cos(phi), 0,
+        0, 0, 1;
+    // The rim's lowest point is h + r s below the centre (cos theta = 1):
+    // put it f r s above the plane, f in (-2, 2) (and mirrored below).
+    const double f = 4 * u01(rng) - 2;
+    const double above = u01(rng) < 0.5 ? 1.0 : -1.0;
+    Tf cyl_tf = Tf::Identity();
+    cyl_tf.linear() = spin * tilt;
+    cyl_tf.translation() = V3(1.4 * u01(rng) - 0.7, 1.4 * u01(rng) - 0.7,
+                              above * (0.5 * lz + (1 + f) * r * s));
+    const std::set<std::size_t> truth =
+        bruteForce<TypeParam>(m, Tf::Identity(), r, lz, cyl_tf);
+    auto cyl = std::make_shared<fcl::Cylinderd>(r, lz);
+    fcl::CollisionRequestd req(kMany, false);
+    fcl::CollisionResultd res;
+    std::size_t count = 0;
+    ASSERT_TRUE(collideMeshCylinder(model.get(), Tf::Identity(), cyl.get(),
+                                    cyl_tf, req, res, &count));
+    EXPECT_EQ(fcltest::contactIds(res, cyl.get()), truth) << "case " << k;
+    hits += !truth.empty();
+    ++cases;
+  }
+  // Both outcomes occur (the placement straddles the touching height).
+  EXPECT_GT(hits, cases / 5);
+  EXPECT_LT(hits, cases - cases / 5);
 }
 
 // Requests and inputs the traversal leaves to FCL: collideMeshCylinder says
