@@ -329,10 +329,11 @@ TYPED_TEST(MeshCollideTest, BoxAxisNearlyParallelToTheCylinderAxis) {
   }
 }
 
-// Seeded: a flat grid (z = 0) and cylinders whose axis is tilted from z by
-// 2^-16 .. 2^-44 about a random horizontal direction, placed above or below
-// the grid so that the lowest (or highest) point of a rim lies within a few
-// times r sin(theta) of the plane, on either side. Every box axis z of the
+// Seeded (300 cases, times TRICYL_CASES_SCALE): a flat grid (z = 0) and
+// cylinders whose axis is tilted from z by 2^-16 .. 2^-44 about a random
+// horizontal direction, placed above or below the grid so that the lowest
+// (or highest) point of a rim lies within a few times r sin(theta) of the
+// plane, on either side. Every box axis z of the
 // grid's tree is then nearly parallel to the cylinder's axis; the contacts
 // must be the brute force's.
 TYPED_TEST(MeshCollideTest, NearlyAlignedCylindersOverAFlatGrid) {
@@ -353,7 +354,7 @@ TYPED_TEST(MeshCollideTest, NearlyAlignedCylindersOverAFlatGrid) {
     }
   auto model = fcltest::makeModel<TypeParam>(m);
   int hits = 0, cases = 0;
-  for (int k = 0; k < 300; ++k) {
+  for (long k = 0; k < test::scaled(300); ++k) {
     const double r = 0.05 + 0.25 * u01(rng), lz = 0.1 + 0.9 * u01(rng);
     const double s = std::ldexp(1.0, -16 - int(29 * u01(rng)));
     const double phi = 6.283185307179586 * u01(rng);
