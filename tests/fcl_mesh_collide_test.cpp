@@ -153,16 +153,7 @@ TYPED_TEST(MeshCollideTest, SameContactsAsFclTraversalWithSolver) {
 // and power-of-two scalings. The traversal must report exactly the
 // brute-force set, which is never empty.
 TYPED_TEST(MeshCollideTest, ExactTouchingIsFound) {
-  Mesh m;
-  constexpr int n = 8;
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; j <= n; ++j) m.v.emplace_back(i, j, 0);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const int a = i * (n + 1) + j, b = a + 1, c = a + n + 1, d = c + 1;
-      m.t.emplace_back(a, c, b);
-      m.t.emplace_back(b, c, d);
-    }
+  const Mesh m = fcltest::flatGridMesh(8, 0, 1);  // integer vertices
   auto model = fcltest::makeModel<TypeParam>(m);
   struct Touch {
     double r, lz;
@@ -341,17 +332,7 @@ TYPED_TEST(MeshCollideTest, NearlyAlignedCylindersOverAFlatGrid) {
   SCOPED_TRACE(test::seedTrace(seed));
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u01(0, 1);
-  Mesh m;
-  const int n = 8;
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; j <= n; ++j)
-      m.v.emplace_back(-1 + 2.0 * i / n, -1 + 2.0 * j / n, 0.0);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const int a = i * (n + 1) + j, b = a + 1, c = a + n + 1, d = c + 1;
-      m.t.emplace_back(a, c, b);
-      m.t.emplace_back(b, c, d);
-    }
+  const Mesh m = fcltest::flatGridMesh(8, -1, 0.25);  // on [-1, 1]^2
   auto model = fcltest::makeModel<TypeParam>(m);
   int hits = 0, cases = 0;
   for (long k = 0; k < test::scaled(300); ++k) {

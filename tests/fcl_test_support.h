@@ -69,6 +69,18 @@ inline std::string meshPath(const std::string& file) {
   return std::string(TRICYL_MESH_DIR) + "/" + file;
 }
 
+/// The 2 n^2 triangles of an (n + 1) x (n + 1) vertex grid, vertex (i, j) at
+/// index i (n + 1) + j.
+inline void addGridTriangles(int n, Mesh* m) {
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const std::size_t a = i * (n + 1) + j, b = a + 1, c = a + n + 1,
+                        d = c + 1;
+      m->t.emplace_back(a, c, b);
+      m->t.emplace_back(b, c, d);
+    }
+}
+
 /// A wavy height field on [-1, 1]^2 (n x n quads, 2 n^2 triangles).
 inline Mesh gridMesh(int n) {
   Mesh m;
@@ -78,13 +90,19 @@ inline Mesh gridMesh(int n) {
       const double x = -1 + 2.0 * i / n, y = -1 + 2.0 * j / n;
       m.v.emplace_back(x, y, 0.1 * std::sin(3 * x) * std::cos(2 * y));
     }
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const std::size_t a = i * (n + 1) + j, b = a + 1, c = a + n + 1,
-                        d = c + 1;
-      m.t.emplace_back(a, c, b);
-      m.t.emplace_back(b, c, d);
-    }
+  addGridTriangles(n, &m);
+  return m;
+}
+
+/// A flat grid in the plane z = 0: vertices (lo + step i, lo + step j, 0),
+/// i, j = 0 .. n, and 2 n^2 triangles.
+inline Mesh flatGridMesh(int n, double lo, double step) {
+  Mesh m;
+  m.name = "flat grid";
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j)
+      m.v.emplace_back(lo + step * i, lo + step * j, 0);
+  addGridTriangles(n, &m);
   return m;
 }
 
