@@ -260,7 +260,8 @@ TRICYL_TARGET_AVX2 TRICYL_ALWAYS_INLINE __m256i axisBits(__m256d v, __m256d c,
 // and the six plane tests as three (axisBits: the same bits), so the codes
 // are those of the portable pass bit for bit; the tail (< 4 vertices) runs
 // localCode. (Three tests instead of six: 2.84 -> 2.41 ns per triangle on
-// the 65k grid, cull off, four alternating runs.)
+// the 65k grid, cull off, four alternating runs; FCL's MPR takes 178 ns per
+// triangle on that grid in the same recording, 74x.)
 // The gate is applied to the bits before any arithmetic: |v| <= 2^40 (as an
 // integer compare of the sign-cleared bits, which also rejects NaN and Inf),
 // else all three coordinates become +0 and the code 0, as in localCode.
