@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -60,8 +61,8 @@ std::string pct(double v) { return fmt("%.3g %%", 100 * v); }
 
 json jnum(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-const char* kStageNames[] = {"early_out", "fast_path", "exact", "invalid",
-                             "extended"};
+const char* kStageNames[] = {"early_out", "fast_path", "exact",
+                             "invalid",   "extended",  "tracked"};
 
 void mkdirs(const std::string& dir) {
   std::string cur;
@@ -337,7 +338,7 @@ std::vector<std::string> writeReport(const std::string& dir,
              {"oracle_hits", st.hits}};
       std::uint64_t staged = 0;
       for (auto v : st.stage) staged += v;
-      for (int k = 0; k < 5; ++k)
+      for (int k = 0; k < int(std::size(kStageNames)); ++k)
         e[kStageNames[k]] = staged ? double(st.stage[k]) / double(staged) : 0.0;
       e["staged_queries"] = staged;
       js.push_back(e);
@@ -593,7 +594,8 @@ std::vector<std::string> writeReport(const std::string& dir,
      << "Share of the `tricyl` queries per deciding stage (mesh cases are "
         "many kernel calls and are not staged).\n\n"
      << "| family | cases | oracle hits | early-out | fast path | extended "
-        "| exact fallback |\n|---|---:|---:|---:|---:|---:|---:|\n";
+        "| tracked | exact fallback |\n|---|---:|---:|---:|---:|---:|---:|---:|"
+        "\n";
   for (std::size_t s : family_sets) {
     const SetStats& st = result.sets[s];
     std::uint64_t staged = 0;
@@ -604,7 +606,8 @@ std::vector<std::string> writeReport(const std::string& dir,
     };
     md << "| " << sets[s].name << " | " << st.cases << " | " << st.hits << " | "
        << share(Stage::kEarlyOut) << " | " << share(Stage::kFastPath) << " | "
-       << share(Stage::kExtended) << " | " << share(Stage::kExact) << " |\n";
+       << share(Stage::kExtended) << " | " << share(Stage::kTracked) << " | "
+       << share(Stage::kExact) << " |\n";
   }
   md << "\n## Agreement with tricyl\n\n"
      << "tricyl's answer is exact, so where another method disagrees with "

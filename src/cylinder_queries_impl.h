@@ -1,7 +1,8 @@
 // The cylinder query family (issue 5), each predicate written ONCE over a
-// kernel K of src/filter.h and run through the same three stages as the
+// kernel K of src/filter.h and run through the same four stages as the
 // triangle kernel: FilterKernel (certified double), ExtendedKernel
-// (certified long double, running error bound), ExactKernel (GMP dyadic).
+// (certified long double, running error bound), TrackedKernel (double with
+// every operation checked for rounding), ExactKernel (GMP dyadic).
 //
 // Frame: the cylinder frame of the triangle kernel, produced by the same
 // toLocal<K> (src/triangle_cylinder_impl.h): y = R^T (x - t) evaluated
@@ -91,9 +92,9 @@ inline Answer toAnswer(Tri t) {
   return t == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint;
 }
 
-/// Runs `pred(KernelTag<K>{}, &early) -> Tri` through the three stages: the
-/// double filter and the extended filter inside the range gate, then the
-/// exact kernel, which never answers kUnknown.
+/// Runs `pred(KernelTag<K>{}, &early) -> Tri` through the four stages: the
+/// double filter, the extended filter and the tracked double stage inside
+/// the range gate, then the exact kernel, which never answers kUnknown.
 template <class Pred>
 Decision runStages(const Pred& pred, double max_len, double max_unitless) {
   bool early = false;
@@ -103,6 +104,8 @@ Decision runStages(const Pred& pred, double max_len, double max_unitless) {
       return {toAnswer(t), early ? Stage::kEarlyOut : Stage::kFastPath};
     const Tri e = pred(KernelTag<ExtendedKernel>{}, &early);
     if (e != Tri::kUnknown) return {toAnswer(e), Stage::kExtended};
+    const Tri x = pred(KernelTag<TrackedKernel>{}, &early);
+    if (x != Tri::kUnknown) return {toAnswer(x), Stage::kTracked};
   }
   return {toAnswer(pred(KernelTag<ExactKernel>{}, &early)), Stage::kExact};
 }

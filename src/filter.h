@@ -5,17 +5,22 @@
 //   FilterKernel  Num = Fd (double value + magnitude), sign() certified by a
 //                 derived error bound, kUnknown when the bound cannot decide;
 //   ExtendedKernel  the same filter in long double (second stage);
+//   TrackedKernel   the double filter with every operation checked for
+//                 rounding: exact signs, zero included (third stage);
 //   ExactKernel   Num = Dyadic (GMP integer times a power of two), exact;
 //   NaiveKernel   Num = double, sign() of the rounded value (diagnostic only).
-// The query returns a three-valued Tri; kUnknown from the filter sends the
-// query to the exact kernel. See docs/exactness.md for the derivation of the
-// bound used in FilterKernel::sign().
+// The query returns a three-valued Tri; kUnknown from a filter stage sends
+// the query to the next one, and finally to the exact kernel. See
+// docs/exactness.md for the derivation of the bound used in
+// FilterKernel::sign().
 #pragma once
 
 #include <gmpxx.h>
 
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 namespace tricyl::detail {
@@ -186,6 +191,108 @@ struct ExtendedKernel {
     if (a.v > bound) return Sign::kPos;
     if (a.v < -bound) return Sign::kNeg;
     return Sign::kUnknown;
+  }
+};
+
+/// The third stage: the double filter again, with every operation checked
+/// for rounding by an error-free transformation. Why: a sign that is exactly
+/// zero (a vertex exactly on a rim, a triangle exactly in a cap plane, a
+/// cylinder standing exactly on a floor) is never certified by a bound,
+/// however tight, so the two filters send it to GMP (about 9 us a query).
+/// But in such scenes the arithmetic is often exact in double (small
+/// dyadic coordinates, signed-permutation rotations, exact translations),
+/// and then the computed value IS the exact value, zero included.
+///
+/// Fx carries the Fd pair (v, m), computed by exactly the same operations
+/// as FilterKernel's, and a flag: `exact` implies v = E, the exact value of
+/// the expression. Rules:
+///   input x:         exact.
+///   s = fl(a + b):   exact iff a and b are, and the TwoSum error
+///                    (a - a') + (b - b'), with b' = s - a, a' = s - b', is
+///                    0. Knuth's TwoSum computes a + b - s exactly for any
+///                    finite a, b in round-to-nearest binary floating point
+///                    (no precondition on their order; underflow cannot
+///                    make it inexact: a sum's error is always
+///                    representable). Overflow would give Inf or NaN, and
+///                    an overflowed s is flagged inexact; under the range
+///                    gate nothing overflows anyway (magnitudes <= 2^380).
+///   p = fl(a * b):   flagged exact if one factor is an exact 0 (then
+///                    E = 0 whatever the other's error, and p = +-0), or
+///                    if a and b are exact and either p = 0 with a = 0 or
+///                    b = 0 (p = 0 otherwise is an underflow), or
+///                    2^-900 <= |p| <= DBL_MAX and the significands of a
+///                    and b (53 - trailing zeros bits each) have at most 53
+///                    bits together: their integer product then has at most
+///                    53 bits, and a b, a normal number, is a double, so
+///                    p = a b. (Sufficient, not necessary: a product of 54
+///                    significant bits that happens to fit is flagged
+///                    inexact, which only costs the exact stage. Products
+///                    of small dyadic numbers, and by 0, +-1 or powers of
+///                    two, pass.)
+///   input difference a - b: the sum rule (b negated: exact).
+/// sign(): an exact value's sign is its own (kZero included). Otherwise the
+/// value and magnitude are FilterKernel's, so FilterKernel::sign's bound
+/// applies unchanged: this stage decides at least what the double filter
+/// decides, plus every sign whose computation never rounded.
+/// Cost: TwoSum is 6 operations, the product test a few integer ones; the
+/// stage runs only where both filters failed.
+struct Fx {
+  double v;
+  double m;
+  bool exact;
+};
+inline bool sumIsExact(double a, double b, double s) {
+  if (!(std::fabs(s) <= DBL_MAX)) return false;  // overflow (Inf - Inf next)
+  const double b1 = s - a;
+  const double a1 = s - b1;
+  return (a - a1) + (b - b1) == 0;
+}
+/// The number of significant bits of a normal double (1 for powers of two,
+/// 53 at most); 64 for zero and subnormals, which the product rule treats
+/// separately.
+inline int significantBits(double x) {
+  std::uint64_t b;
+  std::memcpy(&b, &x, sizeof b);
+  if ((b & 0x7ff0000000000000ULL) == 0) return 64;
+  const std::uint64_t f = (b & 0x000fffffffffffffULL) | 0x0010000000000000ULL;
+  return 53 - __builtin_ctzll(f);
+}
+inline bool productIsExact(double a, double b, double p) {
+  if (p == 0) return a == 0 || b == 0;
+  const double ap = std::fabs(p);
+  return ap >= 0x1p-900 && ap <= DBL_MAX &&
+         significantBits(a) + significantBits(b) <= 53;
+}
+inline Fx operator+(Fx a, Fx b) {
+  const double s = a.v + b.v;
+  return {s, a.m + b.m, a.exact && b.exact && sumIsExact(a.v, b.v, s)};
+}
+inline Fx operator-(Fx a) { return {-a.v, a.m, a.exact}; }
+inline Fx operator-(Fx a, Fx b) {
+  const double s = a.v - b.v;
+  return {s, a.m + b.m, a.exact && b.exact && sumIsExact(a.v, -b.v, s)};
+}
+inline Fx operator*(Fx a, Fx b) {
+  const double p = a.v * b.v;
+  const bool zero = (a.exact && a.v == 0) || (b.exact && b.v == 0);
+  return {p, a.m * b.m,
+          zero || (a.exact && b.exact && productIsExact(a.v, b.v, p))};
+}
+
+struct TrackedKernel {
+  using Num = Fx;
+  static constexpr bool kExact = false;
+  static Num lift(double x) { return {x, std::fabs(x), true}; }
+  /// FilterKernel's input difference (magnitude |fl(a - b)|, the extra
+  /// rounding counted in the depth), flagged exact iff no rounding.
+  static Num inputDiff(double a, double b) {
+    const double d = a - b;
+    return {d, std::fabs(d), sumIsExact(a, -b, d)};
+  }
+  static Sign sign(const Fx& a) {
+    if (a.exact)
+      return a.v > 0 ? Sign::kPos : (a.v < 0 ? Sign::kNeg : Sign::kZero);
+    return FilterKernel::sign(Fd{a.v, a.m});
   }
 };
 

@@ -243,7 +243,12 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
   // parameter mu = g / L with L = |e|^2, g = -A.e (A = (x_i, y_i),
   // e = B - A), is interior (0 <= g <= L), at squared distance
   // c^2 / L <= r^2 (c = A x B, by Lagrange's identity), and inside the slab:
-  // |Z_i + mu (Z_j - Z_i)| <= H, i.e. |Z_i L + g (Z_j - Z_i)| <= H L.
+  // |Z_i + mu (Z_j - Z_i)| <= H, i.e. |Z_i L + g (Z_j - Z_i)| <= H L,
+  // evaluated as (H -+ Z_i) L -+ g (Z_j - Z_i) >= 0: the same polynomials,
+  // grouped so that an edge lying in a cap plane (Z_i = Z_j = +-H) gives
+  // products of exact zeros, an exact 0 that the tracked stage certifies
+  // (a wall standing on the floor plane of a cylinder's cap), where
+  // H L - Z_i L would cancel two rounded products.
   // L = 0 (an edge parallel to the axis) is covered by (V) and (X).
   for (const auto& e : kEdge) {
     const int i = e[0], j = e[1];
@@ -260,11 +265,10 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
     if (t == Tri::kFalse) continue;
     t = kAnd(t, isNonNeg(K::sign(L - g)));
     if (t == Tri::kFalse) continue;
-    const N zL = Z[i] * L + g * (Z[j] - Z[i]);
-    const N HL = H * L;
-    t = kAnd(t, isNonNeg(K::sign(HL - zL)));
+    const N gz = g * (Z[j] - Z[i]);
+    t = kAnd(t, isNonNeg(K::sign((H - Z[i]) * L - gz)));
     if (t == Tri::kFalse) continue;
-    t = kAnd(t, isNonNeg(K::sign(HL + zL)));
+    t = kAnd(t, isNonNeg(K::sign((H + Z[i]) * L + gz)));
     if (any.add(t)) return Tri::kTrue;
   }
 
@@ -273,8 +277,14 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
   // the signed projected area), the origin is in the projected triangle iff
   // every o_ij has the sign of A2 or is zero; its barycentric coordinates
   // are (o12, o20, o01) / A2, so the axis meets the triangle's plane at
-  // Z* = (o12 Z0 + o20 Z1 + o01 Z2) / A2, and |Z*| <= H is
-  // |o12 Z0 + o20 Z1 + o01 Z2| <= H |A2|. A2 = 0: see the header comment.
+  // Z* = (o12 Z0 + o20 Z1 + o01 Z2) / A2 = Z0 + (o20 (Z1 - Z0) +
+  // o01 (Z2 - Z0)) / A2 (o12 = A2 - o20 - o01), and |Z*| <= H is, with A2
+  // oriented positive and w = o20 (Z1 - Z0) + o01 (Z2 - Z0),
+  //   (H - Z0) A2 - w >= 0  and  (H + Z0) A2 + w >= 0.
+  // This grouping makes a triangle lying in a cap plane (the floor under a
+  // standing cylinder) an exact 0 from exact zeros, which the tracked stage
+  // certifies; H A2 - (o12 Z0 + ...) would cancel rounded products.
+  // A2 = 0: see the header comment.
   {
     const N o01 = x[0] * y[1] - x[1] * y[0];
     const N o12 = x[1] * y[2] - x[2] * y[1];
@@ -290,10 +300,11 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
       if (t != Tri::kFalse) t = kAnd(t, isNonNeg(K::sign(oriented(o12))));
       if (t != Tri::kFalse) t = kAnd(t, isNonNeg(K::sign(oriented(o20))));
       if (t != Tri::kFalse) {
-        const N zs = oriented(o12 * Z[0] + o20 * Z[1] + o01 * Z[2]);
-        const N HA = H * oriented(A2);
-        t = kAnd(t, isNonNeg(K::sign(HA - zs)));
-        if (t != Tri::kFalse) t = kAnd(t, isNonNeg(K::sign(HA + zs)));
+        const N w = oriented(o20 * (Z[1] - Z[0]) + o01 * (Z[2] - Z[0]));
+        const N A = oriented(A2);
+        t = kAnd(t, isNonNeg(K::sign((H - Z[0]) * A - w)));
+        if (t != Tri::kFalse)
+          t = kAnd(t, isNonNeg(K::sign((H + Z[0]) * A + w)));
       }
       if (any.add(t)) return Tri::kTrue;
     }

@@ -92,7 +92,7 @@ QueryCase roundedTo(const QueryCase& k) {
 
 struct AgreementStats {
   long cases = 0, hits = 0, float_cases = 0, failures = 0;
-  std::array<long, 5> stages{};
+  std::array<long, 6> stages{};
 };
 
 /// `decide(Typed<S>) -> Decision` for S = double and float (a generic
@@ -130,9 +130,9 @@ AgreementStats runAgreement(Query qy, Family fam, long n, const Decide& decide,
   std::printf(
       "[ stats    ] %s: %ld cases (+%ld float), %ld hits, 0 expected "
       "disagreements, %ld found; early-out %ld, fast %ld, extended %ld, "
-      "exact %ld (%.3f%%)\n",
+      "tracked %ld, exact %ld (%.3f%%)\n",
       qscenes::familyName(fam), st.cases, st.float_cases, st.hits, st.failures,
-      st.stages[0], st.stages[1], st.stages[4], st.stages[2],
+      st.stages[0], st.stages[1], st.stages[4], st.stages[5], st.stages[2],
       100.0 * double(st.stages[2]) / double(st.cases ? st.cases : 1));
   return st;
 }

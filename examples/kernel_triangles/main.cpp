@@ -31,6 +31,8 @@ const char* name(tricyl::Stage s) {
       return "double filter";
     case tricyl::Stage::kExtended:
       return "extended filter";
+    case tricyl::Stage::kTracked:
+      return "tracked double (no rounding)";
     case tricyl::Stage::kExact:
       return "exact (GMP)";
     case tricyl::Stage::kInvalid:

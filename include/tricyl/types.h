@@ -115,6 +115,8 @@ enum class Stage : unsigned char {
   kExact = 2,     ///< the exact rational fallback (GMP)
   kInvalid = 3,   ///< input rejected before any arithmetic
   kExtended = 4,  ///< the certified filter re-run in extended precision
+  kTracked = 5,   ///< double arithmetic checked operation by operation:
+                  ///< signs whose computation never rounded (zero too)
 };
 
 /// The answer of a query and the kernel stage that decided it.
