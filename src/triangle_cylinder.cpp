@@ -109,8 +109,9 @@ bool validate(const Inputs& in, double* max_len, double* max_unitless) {
 }
 
 // The full sequence: validate, double filter (unless the fast path already
-// ran it and it could not decide), extended filter, tracked double, exact. The
-// inputs' own range gate (rangeGateOk on the inputs) guards both filters here.
+// ran it and it could not decide), extended filter and tracked double (in
+// the order chosen below), exact. The inputs' own range gate (rangeGateOk on
+// the inputs) guards the three filter stages.
 Decision decide(const Inputs& in, bool filter_done) {
   double max_len = 0, max_unitless = 0;
   if (!validate(in, &max_len, &max_unitless))
