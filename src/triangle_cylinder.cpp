@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <type_traits>
 
 #if defined(__SSE2__)
@@ -142,9 +143,14 @@ Decision decide(const Inputs& in, bool filter_done) {
       for (double v : row)
         short_rotation =
             short_rotation && (v == 0 || detail::significantBits(v) <= 26);
-    auto trackedFrame = [&]() {
-      return detail::makeLocal<TrackedKernel>(in.cyl, in.pose, in.tri,
+    // Built at most once: first when the rotation is short, else only if
+    // the extended stage fails.
+    std::optional<detail::TriCylLocal<TrackedKernel>> qt;
+    auto trackedFrame = [&]() -> const detail::TriCylLocal<TrackedKernel>& {
+      if (!qt)
+        qt = detail::makeLocal<TrackedKernel>(in.cyl, in.pose, in.tri,
                                               max_unitless);
+      return *qt;
     };
     auto decided = [](Tri x) {
       return Decision{x == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
@@ -152,14 +158,14 @@ Decision decide(const Inputs& in, bool filter_done) {
     };
     bool tried = false;
     if (short_rotation) {
-      const auto qt = trackedFrame();
+      const auto& f = trackedFrame();
       bool exact_frame = true;
       for (int i = 0; i < 3; ++i)
         exact_frame =
-            exact_frame && qt.x[i].exact && qt.y[i].exact && qt.Z[i].exact;
+            exact_frame && f.x[i].exact && f.y[i].exact && f.Z[i].exact;
       if (exact_frame) {
         tried = true;
-        const Tri x = detail::triangleCylinder<TrackedKernel>(qt, &early);
+        const Tri x = detail::triangleCylinder<TrackedKernel>(f, &early);
         if (x != Tri::kUnknown) return decided(x);
       }
     }
@@ -607,8 +613,12 @@ __attribute__((target("avx2"), always_inline)) inline EdgeLanes edgeLanes(
 // magnitude `me` per vertex (Z: 2 me): the closest point of edge (i, j)'s
 // projection to the axis is interior, within r of it, and inside the slab.
 // The same Fd expressions as triangleCylinderTests, values and magnitudes in
-// separate registers; every one of the six signs must be certain. (Eberly's
-// polygon test "an edge within r of the origin", on an unclipped edge.)
+// separate registers, except the slab condition: here H L -+ (Z_i L +
+// g (Z_j - Z_i)), the kernel's (H -+ Z_i) L -+ g (Z_j - Z_i), the same
+// polynomial grouped for the tracked stage. Each is a certified sign of that
+// polynomial, so the lanes still decide only what is true; every one of the
+// six signs must be certain. (Eberly's polygon test "an edge within r of
+// the origin", on an unclipped edge.)
 __attribute__((target("avx2"), always_inline)) inline bool edgeHitAvx2(
     const EdgeLanes& e, __m256d x, __m256d y, __m256d Z, __m256d me, __m256d r2,
     __m256d HH) {
