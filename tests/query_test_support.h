@@ -211,8 +211,6 @@ void expectIntervalInvariances(Query qy, Family fam, const Close& close) {
                    const Vec3<double>& p, const Vec3<double>& q) {
     return clip(cyl, pose, Shape<double>{p, q});
   };
-  static constexpr int kPerm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
-                                      {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   long failures = 0;
   for (long i = 0; i < n && failures < 5; ++i) {
     const QueryCase k = qscenes::generate(qy, fam, seed, std::uint64_t(i));
@@ -231,19 +229,8 @@ void expectIntervalInvariances(Query qy, Family fam, const Close& close) {
       }
     };
     same(clipPQ(k.cyl, k.pose, k.q, k.p), true, "reversed");
-    const int perm = int(i % 6);
-    const double sg[3] = {i & 1 ? -1.0 : 1.0, i & 2 ? -1.0 : 1.0,
-                          i & 4 ? -1.0 : 1.0};
-    auto move = [&](const Vec3<double>& x) {
-      const double c[3] = {x.x, x.y, x.z};
-      return Vec3<double>{sg[0] * c[kPerm[perm][0]], sg[1] * c[kPerm[perm][1]],
-                          sg[2] * c[kPerm[perm][2]]};
-    };
-    Pose<double> moved = k.pose;
-    for (int r = 0; r < 3; ++r)
-      for (int col = 0; col < 3; ++col)
-        moved.R[r][col] = sg[r] * k.pose.R[kPerm[perm][r]][col];
-    moved.t = move(k.pose.t);
+    const SignedPermutation move = SignedPermutation::nth(i);
+    const Pose<double> moved = move(k.pose);
     same(clipPQ(k.cyl, moved, move(k.p), move(k.q)), false, "rigid motion");
     // Scaling by 2^e is exact unless something becomes subnormal or
     // overflows, so cases with such values are skipped.

@@ -9,6 +9,8 @@
 #include <random>
 #include <string>
 
+#include "tricyl/types.h"
+
 namespace tricyl::test {
 
 /// The run's base seed: TRICYL_SEED from the environment, else a fixed
@@ -27,6 +29,35 @@ inline long scaled(long n) {
     return n * std::atol(s);
   return n;
 }
+
+/// An exact rigid motion of the world, x -> P x with P a signed axis
+/// permutation: (P x)_i = sign_i x_{perm_i}. On a pose R' = P R, t' = P t,
+/// so the local frame, and every answer, is unchanged bit for bit.
+struct SignedPermutation {
+  int perm[3];
+  double sign[3];
+
+  /// The motion number k of 48: the 6 permutations times the 8 signs.
+  static SignedPermutation nth(long k) {
+    static constexpr int kPerm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
+                                        {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    const int p = int(k % 6);
+    return {{kPerm[p][0], kPerm[p][1], kPerm[p][2]},
+            {k & 1 ? -1.0 : 1.0, k & 2 ? -1.0 : 1.0, k & 4 ? -1.0 : 1.0}};
+  }
+  Vec3<double> operator()(const Vec3<double>& x) const {
+    const double c[3] = {x.x, x.y, x.z};
+    return {sign[0] * c[perm[0]], sign[1] * c[perm[1]], sign[2] * c[perm[2]]};
+  }
+  Pose<double> operator()(const Pose<double>& p) const {
+    Pose<double> q;
+    for (int r = 0; r < 3; ++r)
+      for (int col = 0; col < 3; ++col)
+        q.R[r][col] = sign[r] * p.R[perm[r]][col];
+    q.t = (*this)(p.t);
+    return q;
+  }
+};
 
 inline std::string seedTrace(std::uint64_t seed) {
   return "seed=" + std::to_string(seed) +

@@ -133,32 +133,27 @@ Pose<double> floorPose() {
   return {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {0.35, -1.2, 0.7}};
 }
 
-// Signed axis permutations of the world (exact), with power-of-two scalings.
+// Exact motions of the world: signed axis permutations (test_support.h),
+// each with a power-of-two scaling.
 struct Motion {
-  int perm[3];
-  double sign[3];
+  test::SignedPermutation p;
   int scale_exp;
 };
 const Motion kMotions[] = {
-    {{0, 1, 2}, {1, 1, 1}, 0},    {{2, 0, 1}, {1, 1, 1}, 0},
-    {{1, 0, 2}, {-1, 1, 1}, 0},   {{0, 2, 1}, {1, -1, -1}, 3},
-    {{2, 1, 0}, {-1, -1, 1}, -7}, {{1, 2, 0}, {1, 1, -1}, 20},
+    {{{0, 1, 2}, {1, 1, 1}}, 0},    {{{2, 0, 1}, {1, 1, 1}}, 0},
+    {{{1, 0, 2}, {-1, 1, 1}}, 0},   {{{0, 2, 1}, {1, -1, -1}}, 3},
+    {{{2, 1, 0}, {-1, -1, 1}}, -7}, {{{1, 2, 0}, {1, 1, -1}}, 20},
 };
 
-Vec3<double> move(const Motion& m, const Vec3<double>& v) {
-  const double in[3] = {v.x, v.y, v.z};
-  double out[3];
-  for (int i = 0; i < 3; ++i)
-    out[i] = std::ldexp(m.sign[i] * in[m.perm[i]], m.scale_exp);
-  return {out[0], out[1], out[2]};
+Vec3<double> scaled(const Vec3<double>& v, int e) {
+  return {std::ldexp(v.x, e), std::ldexp(v.y, e), std::ldexp(v.z, e)};
 }
-
-Pose<double> move(const Motion& m, const Pose<double>& p) {
-  // World' = P world, so R' = P R (row i of R' is sign_i * row perm_i).
-  Pose<double> q;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) q.R[i][j] = m.sign[i] * p.R[m.perm[i]][j];
-  q.t = move(m, p.t);
+Vec3<double> move(const Motion& m, const Vec3<double>& v) {
+  return scaled(m.p(v), m.scale_exp);
+}
+Pose<double> move(const Motion& m, const Pose<double>& pose) {
+  Pose<double> q = m.p(pose);
+  q.t = scaled(q.t, m.scale_exp);
   return q;
 }
 
@@ -170,9 +165,10 @@ TEST(TrackedStage, CylinderStandingOnAFloorIsDecidedWithoutGmp) {
     const Pose<double> pose = move(m, floorPose());
     for (const FloorCase& c : kFloor) {
       const Triangle<double> tri{move(m, c.a), move(m, c.b), move(m, c.c)};
-      SCOPED_TRACE(std::string(c.name) + " perm " + std::to_string(m.perm[0]) +
-                   std::to_string(m.perm[1]) + std::to_string(m.perm[2]) +
-                   " scale 2^" + std::to_string(m.scale_exp));
+      SCOPED_TRACE(std::string(c.name) + " perm " +
+                   std::to_string(m.p.perm[0]) + std::to_string(m.p.perm[1]) +
+                   std::to_string(m.p.perm[2]) + " scale 2^" +
+                   std::to_string(m.scale_exp));
       ASSERT_EQ(oracle::triangleCylinder(cyl, pose, tri), c.expected);
       const Decision d = decideIntersect(cyl, pose, tri);
       EXPECT_EQ(d.answer, c.expected ? Answer::kIntersect : Answer::kDisjoint);

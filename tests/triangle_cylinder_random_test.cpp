@@ -143,19 +143,8 @@ TEST_P(FamilyTest, Invariances) {
     }
     // World motion x -> P x with P a signed permutation: R' = P R, t' = P t.
     const int perm = int(i % 6);
-    const double sgn[3] = {i & 1 ? -1.0 : 1.0, i & 2 ? -1.0 : 1.0,
-                           i & 4 ? -1.0 : 1.0};
-    auto move = [&](const Vec3<double>& x) {
-      const double c[3] = {x.x, x.y, x.z};
-      return Vec3<double>{sgn[0] * c[kPerm[perm][0]],
-                          sgn[1] * c[kPerm[perm][1]],
-                          sgn[2] * c[kPerm[perm][2]]};
-    };
-    Pose<double> moved = k.pose;
-    for (int r = 0; r < 3; ++r)
-      for (int col = 0; col < 3; ++col)
-        moved.R[r][col] = sgn[r] * k.pose.R[kPerm[perm][r]][col];
-    moved.t = move(k.pose.t);
+    const test::SignedPermutation move = test::SignedPermutation::nth(i);
+    const Pose<double> moved = move(k.pose);
     if ((tryIntersect(k.cyl, moved,
                       Triangle<double>{move(k.tri.a), move(k.tri.b),
                                        move(k.tri.c)}) == Answer::kIntersect) !=
