@@ -1,7 +1,8 @@
 // The cylinder query family (issue 5), each predicate written ONCE over a
 // kernel K of src/filter.h and run through the same four stages as the
-// triangle kernel: FilterKernel (certified double), ExtendedKernel
-// (certified long double, running error bound), TrackedKernel (double with
+// triangle kernel: FilterKernel (certified double), RunningDoubleKernel
+// then ExtendedKernel (running error bound in double, then long double),
+// TrackedKernel (double with
 // every operation checked for rounding), ExactKernel (GMP dyadic).
 //
 // Frame: the cylinder frame of the triangle kernel, produced by the same
@@ -93,7 +94,8 @@ inline Answer toAnswer(Tri t) {
 }
 
 /// Runs `pred(KernelTag<K>{}, &early) -> Tri` through the four stages: the
-/// double filter, the extended filter and the tracked double stage inside
+/// double filter, the extended filter (running bound in double, then in
+/// long double) and the tracked double stage inside
 /// the range gate, then the exact kernel, which never answers kUnknown.
 template <class Pred>
 Decision runStages(const Pred& pred, double max_len, double max_unitless) {
@@ -102,7 +104,9 @@ Decision runStages(const Pred& pred, double max_len, double max_unitless) {
     const Tri t = pred(KernelTag<FilterKernel>{}, &early);
     if (t != Tri::kUnknown)
       return {toAnswer(t), early ? Stage::kEarlyOut : Stage::kFastPath};
-    const Tri e = pred(KernelTag<ExtendedKernel>{}, &early);
+    // The extended stage: the running bound in double, then long double.
+    Tri e = pred(KernelTag<RunningDoubleKernel>{}, &early);
+    if (e == Tri::kUnknown) e = pred(KernelTag<ExtendedKernel>{}, &early);
     if (e != Tri::kUnknown) return {toAnswer(e), Stage::kExtended};
     const Tri x = pred(KernelTag<TrackedKernel>{}, &early);
     if (x != Tri::kUnknown) return {toAnswer(x), Stage::kTracked};

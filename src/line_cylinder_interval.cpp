@@ -72,38 +72,12 @@ namespace {
 // ---------------------------------------------------------------------------
 // Stage 1: running error bounds, double then long double.
 
-// The running error bound of ExtendedKernel (src/filter.h) in plain double,
-// for a cheaper first attempt: the same rules with u = 2^-53, plus an
-// absolute 2^-1074 on every product and quotient for a possible underflow
-// (sums of doubles are exact in the subnormal range), so no range argument
-// is needed for it. The long double stage (filter.h's Fl, covered there by
-// the range gate) runs only when this one cannot reach the accuracy.
-struct Rd {
-  double v, e;
-};
-constexpr double kU1d = 0x1p-53 * (1 + 0x1p-52);  // u' for double
-inline Rd operator+(Rd a, Rd b) {
-  const double v = a.v + b.v;
-  return {v, a.e + b.e + kU1d * std::fabs(v)};
-}
-inline Rd operator-(Rd a, Rd b) {
-  const double v = a.v - b.v;
-  return {v, a.e + b.e + kU1d * std::fabs(v)};
-}
-inline Rd operator-(Rd a) { return {-a.v, a.e}; }
-inline Rd operator*(Rd a, Rd b) {
-  const double v = a.v * b.v;
-  return {v, std::fabs(a.v) * b.e + std::fabs(b.v) * a.e + a.e * b.e +
-                 kU1d * std::fabs(v) + 0x1p-1074};
-}
-struct RunningDoubleKernel {
-  using Num = Rd;
-  static Num lift(double x) { return {x, 0}; }
-  static Num inputDiff(double a, double b) {
-    const double d = a - b;
-    return {d, kU1d * std::fabs(d)};
-  }
-};
+// The running error bound in plain double is filter.h's Rd
+// (RunningDoubleKernel): ExtendedKernel's rules with u = 2^-53, plus an
+// absolute 2^-1074 on every product (here also on every quotient) for a
+// possible underflow, for a cheaper first attempt. The long double stage
+// (filter.h's Fl, covered there by the range gate) runs only when this one
+// cannot reach the accuracy.
 
 /// Per running type: u', the absolute underflow allowance of a product or
 /// quotient, and the floating type.

@@ -32,6 +32,8 @@
 // (E),(B) alone are complete; the proof is in docs/exactness.md.
 #pragma once
 
+#include <limits>
+
 #include "filter.h"
 #include "tricyl/types.h"
 
@@ -84,6 +86,65 @@ inline void toLocal<FilterKernel>(const Pose<double>& pose,
   y = {R[0][1] * d0 + R[1][1] * d1 + R[2][1] * d2, m};
   const double z = R[0][2] * d0 + R[1][2] * d1 + R[2][2] * d2;
   Z = {z + z, m + m};
+}
+
+/// The running kernels' version (RunningDoubleKernel, ExtendedKernel; value
+/// type T with unit roundoff u and smallest subnormal eta): the values
+/// computed exactly as the generic toLocal computes them, in T, and the
+/// per-operation rules folded into one bound per coordinate (a third of the
+/// operations, the same bound to first order). Derivation, for
+///   x = R_00 (p_0 - t_0) + R_10 (p_1 - t_1) + R_20 (p_2 - t_2)
+/// computed as d_k = fl(p_k - t_k), P_k = fl(R_k0 d_k), s1 = fl(P_0 + P_1),
+/// x^ = fl(s1 + P_2). With u' = u (1 + 2 u) (an operation's error relative
+/// to its rounded result) and an underflow loss of at most eta / 2 per
+/// product:
+///   |x^ - x| <= u' |x^| + u' |s1| + sum_k (u' |P_k| + eta / 2)
+///               + sum_k |R_k0| u' |d_k|,
+/// and |P_k| <= (1 + u) |R_k0| |d_k| + eta / 2. With S = sum_k |R_k0| |d_k|
+/// and S^ its computed value (non-negative terms: S <= (S^ + 2 eta) /
+/// (1 - u)^3),
+///   |x^ - x| <= u (1 + 8.5 u) (2 S^ + |s1| + |x^|) + 2 eta
+///            <= e = fl(fl(fl(2 S^ + |s1|) + |x^|) * c) + 4 eta,
+/// c = u (1 + 2^-40): the three roundings of e lose at most a factor
+/// (1 - u)^3, and 2^-40 >> 12 u. Z = z + z is exact (no overflow under the
+/// range gate), and so is e_Z = 2 e_z.
+template <class K>
+inline void toLocalRunning(const Pose<double>& pose, const Vec3<double>& p,
+                           typename K::Num& x, typename K::Num& y,
+                           typename K::Num& Z) {
+  using T = decltype(x.v);
+  constexpr T u = std::numeric_limits<T>::epsilon() / 2;
+  constexpr T c = u + u * T(0x1p-40);
+  constexpr T eta = std::numeric_limits<T>::denorm_min();
+  auto abs = [](T v) { return v < 0 ? -v : v; };
+  const T d[3] = {T(p.x) - T(pose.t.x), T(p.y) - T(pose.t.y),
+                  T(p.z) - T(pose.t.z)};
+  const T a[3] = {abs(d[0]), abs(d[1]), abs(d[2])};
+  const auto& R = pose.R;
+  auto coord = [&](int j, typename K::Num& out) {
+    const T r0 = T(R[0][j]), r1 = T(R[1][j]), r2 = T(R[2][j]);
+    const T s1 = r0 * d[0] + r1 * d[1];
+    out.v = s1 + r2 * d[2];
+    const T S = abs(r0) * a[0] + abs(r1) * a[1] + abs(r2) * a[2];
+    out.e = (((S + S) + abs(s1)) + abs(out.v)) * c + 4 * eta;
+  };
+  coord(0, x);
+  coord(1, y);
+  coord(2, Z);
+  Z.v = Z.v + Z.v;
+  Z.e = Z.e + Z.e;
+}
+template <>
+inline void toLocal<RunningDoubleKernel>(const Pose<double>& pose,
+                                         const Vec3<double>& p, double /*rho*/,
+                                         Rd& x, Rd& y, Rd& Z) {
+  toLocalRunning<RunningDoubleKernel>(pose, p, x, y, Z);
+}
+template <>
+inline void toLocal<ExtendedKernel>(const Pose<double>& pose,
+                                    const Vec3<double>& p, double /*rho*/,
+                                    Fl& x, Fl& y, Fl& Z) {
+  toLocalRunning<ExtendedKernel>(pose, p, x, y, Z);
 }
 
 template <class K>
