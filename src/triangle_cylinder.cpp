@@ -22,6 +22,7 @@
 
 #include "filter.h"
 #include "triangle_cylinder_impl.h"
+#include "tricyl/segment_cylinder.h"
 
 #if defined(__GNUC__) || defined(__clang__)
 #define TRICYL_ALWAYS_INLINE inline __attribute__((always_inline))
@@ -110,6 +111,70 @@ bool validate(const Inputs& in, double* max_len, double* max_unitless) {
   return in.cyl.radius >= 0 && in.cyl.lz >= 0;  // -0 passes
 }
 
+// A degenerate triangle's hull (docs/exactness.md, section 6). Three
+// exactly collinear vertices span the segment between the two extreme ones
+// (a repeated vertex and a single point included); the answer is then the
+// segment query's. The triangle kernel meets such input through signs that
+// are exactly zero (the projected area; for a repeated vertex an edge of
+// length zero), which in a general pose no filter certifies: before this,
+// every one went to GMP (all 1335 exact queries of 10^5 sliver cases, about
+// 14 us each). The segment kernel has no such sign; its own stages decide
+// them (in its fast path, for all of those 1335).
+//   Collinear: (b - a) x (c - a) = 0 exactly. Under the range gate,
+// FilterKernel certifies a non-zero component (degree 2, depth 3,
+// magnitude <= 2^84: inside its budget), and TrackedKernel an exactly zero
+// one when no operation rounds (a repeated vertex, dyadic grids); with
+// `exact`, what both leave is decided with dyadic (GMP) integers, as is
+// everything outside the gate.
+//   Ends: if the vertices differ in coordinate k, the line's direction has a
+// non-zero k component, so coordinate k orders the points along it, and the
+// vertices with the least and greatest coordinate k are the ends (exact
+// comparisons of doubles). If they differ in no coordinate, the hull is the
+// point a.
+enum class Degenerate { kNo, kYes, kUnknown };
+
+Degenerate degenerateHull(const Triangle<double>& t, bool gate, bool exact,
+                          Segment<double>* hull) {
+  auto crossIsZero = [&t](auto kernel) {
+    using K = decltype(kernel);
+    auto d = [](double p, double q) { return K::inputDiff(p, q); };
+    const auto ux = d(t.b.x, t.a.x), uy = d(t.b.y, t.a.y), uz = d(t.b.z, t.a.z);
+    const auto vx = d(t.c.x, t.a.x), vy = d(t.c.y, t.a.y), vz = d(t.c.z, t.a.z);
+    bool zero = true;
+    for (const auto& c :
+         {uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx}) {
+      const Sign s = K::sign(c);
+      if (s == Sign::kPos || s == Sign::kNeg) return Degenerate::kNo;
+      zero = zero && s == Sign::kZero;
+    }
+    return zero ? Degenerate::kYes : Degenerate::kUnknown;
+  };
+  Degenerate k = Degenerate::kUnknown;
+  if (gate) {
+    k = crossIsZero(FilterKernel{});
+    if (k == Degenerate::kUnknown) k = crossIsZero(TrackedKernel{});
+  }
+  if (k == Degenerate::kUnknown && exact) k = crossIsZero(ExactKernel{});
+  if (k != Degenerate::kYes) return k;
+  const Vec3<double>* v[3] = {&t.a, &t.b, &t.c};
+  for (int axis = 0; axis < 3; ++axis) {
+    auto at = [axis](const Vec3<double>* p) {
+      return axis == 0 ? p->x : (axis == 1 ? p->y : p->z);
+    };
+    int lo = 0, hi = 0;
+    for (int i = 1; i < 3; ++i) {
+      if (at(v[i]) < at(v[lo])) lo = i;
+      if (at(v[i]) > at(v[hi])) hi = i;
+    }
+    if (at(v[lo]) < at(v[hi])) {
+      *hull = {*v[lo], *v[hi]};
+      return k;
+    }
+  }
+  *hull = {t.a, t.a};
+  return k;
+}
+
 // The full sequence: validate, double filter (unless the fast path already
 // ran it and it could not decide), extended filter and tracked double (in
 // the order chosen below), exact. The inputs' own range gate (rangeGateOk on
@@ -119,6 +184,7 @@ Decision decide(const Inputs& in, bool filter_done) {
   if (!validate(in, &max_len, &max_unitless))
     return {Answer::kInvalidInput, Stage::kInvalid};
   bool early = false;
+  bool degenerate_checked = false;  // certainly not degenerate
   if (!filter_done && detail::rangeGateOk(max_len, max_unitless)) {
     const auto q =
         detail::makeLocal<FilterKernel>(in.cyl, in.pose, in.tri, max_unitless);
@@ -177,6 +243,12 @@ Decision decide(const Inputs& in, bool filter_done) {
         in.cyl, in.pose, in.tri, max_unitless);
     Tri t = detail::triangleCylinder<RunningDoubleKernel>(qd, &early);
     if (t == Tri::kUnknown) {
+      // Degenerate input first where that is cheap to certify (no GMP):
+      // the long double stage cannot decide its zero signs either.
+      Segment<double> hull;
+      const Degenerate g = degenerateHull(in.tri, true, false, &hull);
+      if (g == Degenerate::kYes) return decideIntersect(in.cyl, in.pose, hull);
+      degenerate_checked = g == Degenerate::kNo;
       const auto q = detail::makeLocal<ExtendedKernel>(in.cyl, in.pose, in.tri,
                                                        max_unitless);
       t = detail::triangleCylinder<ExtendedKernel>(q, &early);
@@ -190,6 +262,13 @@ Decision decide(const Inputs& in, bool filter_done) {
       if (x != Tri::kUnknown) return decided(x);
     }
   }
+  // Degenerate input: the segment (or point) query, whose stages decide
+  // what the zero signs above left open.
+  Segment<double> hull;
+  if (!degenerate_checked &&
+      degenerateHull(in.tri, detail::rangeGateOk(max_len, max_unitless), true,
+                     &hull) == Degenerate::kYes)
+    return decideIntersect(in.cyl, in.pose, hull);
   const auto q =
       detail::makeLocal<ExactKernel>(in.cyl, in.pose, in.tri, max_unitless);
   const Tri t = detail::triangleCylinder<ExactKernel>(q, &early);
