@@ -24,26 +24,6 @@
 namespace tricyl {
 namespace {
 
-// A rotation from a random unit quaternion, rounded to double: a general
-// pose, whose local frame is never exact.
-void randomRotation(std::mt19937_64& g, double R[3][3]) {
-  std::normal_distribution<double> n(0, 1);
-  double q[4], s = 0;
-  for (double& c : q) {
-    c = n(g);
-    s += c * c;
-  }
-  s = std::sqrt(s);
-  for (double& c : q) c /= s;
-  const double w = q[0], x = q[1], y = q[2], z = q[3];
-  const double M[3][3] = {
-      {1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
-      {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
-      {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) R[i][j] = M[i][j];
-}
-
 // Vertices at s = 0, 1 and 3 on the line a + s u (dyadic, so exactly
 // collinear), the cylinder (r = 1/4, lz = 1, bounding radius < 0.56)
 // centred beside s = 2, at distance 1 from the line, with a random axis: a
@@ -67,8 +47,7 @@ TEST(DegenerateHull, MissesInAGeneralPoseNeedNoGmpInEveryVertexOrder) {
   const Vec3<double> p[3] = {at(0), at(1), at(3)};
   long exact = 0;
   for (int trial = 0; trial < 50; ++trial) {
-    Pose<double> pose{};
-    randomRotation(g, pose.R);
+    Pose<double> pose = test::randomPose(g, 1.0);  // a general rotation
     const Vec3<double> c = at(2);
     pose.t = {c.x + n.x, c.y + n.y, c.z + n.z};
     const int order[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},

@@ -36,24 +36,6 @@ V toLocal(const Pose<double>& p, V x) {
           p.R[0][2] * d.x + p.R[1][2] * d.y + p.R[2][2] * d.z};
 }
 
-Pose<double> randomPose(std::mt19937_64& rng, double spread) {
-  std::normal_distribution<double> g;
-  double q[4] = {g(rng), g(rng), g(rng), g(rng)};
-  const double n =
-      std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  for (double& x : q) x /= n;
-  const double w = q[0], x = q[1], y = q[2], z = q[3];
-  Pose<double> p;
-  const double R[3][3] = {
-      {1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
-      {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
-      {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) p.R[i][j] = R[i][j];
-  p.t = {spread * g(rng), spread * g(rng), spread * g(rng)};
-  return p;
-}
-
 /// Distance from p to the closed triangle, by dense barycentric clamping is
 /// overkill; a segment/face projection suffices for a tolerance check.
 double distToTriangle(V p, const Triangle<double>& t) {
@@ -131,7 +113,7 @@ TEST(FclContact, RandomScenesSatisfyTheContract) {
   for (long k = 0; k < n; ++k) {
     const Cylinder<double> cyl{0.05 + std::fabs(u(rng)),
                                0.05 + 2 * std::fabs(u(rng))};
-    const Pose<double> pose = randomPose(rng, 0.3);
+    const Pose<double> pose = test::randomPose(rng, 0.3);
     const Triangle<double> tri{{u(rng), u(rng), u(rng)},
                                {u(rng), u(rng), u(rng)},
                                {u(rng), u(rng), u(rng)}};
@@ -168,7 +150,7 @@ TEST(FclContact, FarFromOriginSatisfiesTheContract) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1, 1);
   for (int k = 0; k < 500; ++k) {
-    Pose<double> pose = randomPose(rng, 0);
+    Pose<double> pose = test::randomPose(rng, 0);
     pose.t = {1e6, -2e6, 3e5};
     const Cylinder<double> cyl{0.5, 1};
     const V c = pose.t;

@@ -49,26 +49,6 @@ Q exactly(long double v) {
   return v < 0 ? Q(-q) : q;
 }
 
-// A rotation from a random unit quaternion, rounded to double (so not
-// exactly orthonormal: the bound must hold for R as given).
-Pose<double> randomPose(std::mt19937_64& g, double t_scale) {
-  std::normal_distribution<double> n(0, 1);
-  double q[4], s = 0;
-  for (double& c : q) {
-    c = n(g);
-    s += c * c;
-  }
-  s = std::sqrt(s);
-  for (double& c : q) c /= s;
-  const double w = q[0], x = q[1], y = q[2], z = q[3];
-  Pose<double> p{
-      {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
-       {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
-       {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}},
-      {n(g) * t_scale, n(g) * t_scale, n(g) * t_scale}};
-  return p;
-}
-
 template <class K>
 struct RunningFrameTest : ::testing::Test {};
 using RunningKernels = ::testing::Types<RunningDoubleKernel, ExtendedKernel>;
@@ -88,20 +68,20 @@ TYPED_TEST(RunningFrameTest, BoundEnclosesTheExactLocalCoordinates) {
     Pose<double> pose;
     Vec3<double> p;
     if (regime == 0) {  // general position
-      pose = randomPose(g, 100);
+      pose = test::randomPose(g, 100);
       p = {100 * U(g), 100 * U(g), 100 * U(g)};
     } else if (regime == 1) {  // p = t + R y with tiny y: cancellation
-      pose = randomPose(g, 1e3);
+      pose = test::randomPose(g, 1e3);
       const double y[3] = {1e-9 * U(g), 1e-9 * U(g), 1e-9 * U(g)};
       const auto& R = pose.R;
       p = {pose.t.x + (R[0][0] * y[0] + R[0][1] * y[1] + R[0][2] * y[2]),
            pose.t.y + (R[1][0] * y[0] + R[1][1] * y[1] + R[1][2] * y[2]),
            pose.t.z + (R[2][0] * y[0] + R[2][1] * y[1] + R[2][2] * y[2])};
     } else if (regime == 2) {  // mixed exponents
-      pose = randomPose(g, 1e-10);
+      pose = test::randomPose(g, 1e-10);
       p = {1e10 * U(g), 1e-10 * U(g), U(g)};
     } else {  // tiny: in double, products fall below 2^-1022
-      pose = randomPose(g, 1e-305);
+      pose = test::randomPose(g, 1e-305);
       for (auto& row : pose.R)
         for (double& r : row) r *= 1e-12;
       p = {1e-305 * U(g), 1e-305 * U(g), 1e-305 * U(g)};

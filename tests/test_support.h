@@ -4,6 +4,7 @@
 #include <fenv.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <random>
@@ -58,6 +59,28 @@ struct SignedPermutation {
     return q;
   }
 };
+
+/// A pose with the rotation of a random unit quaternion, rounded to double
+/// (so a general pose: its local frame rounds, and R is orthonormal only to
+/// about 1e-16, which the kernels use exactly as given), and a translation
+/// with normal coordinates of standard deviation `spread`.
+inline Pose<double> randomPose(std::mt19937_64& rng, double spread) {
+  std::normal_distribution<double> g;
+  double q[4] = {g(rng), g(rng), g(rng), g(rng)};
+  const double n =
+      std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  for (double& x : q) x /= n;
+  const double w = q[0], x = q[1], y = q[2], z = q[3];
+  const double R[3][3] = {
+      {1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
+      {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
+      {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
+  Pose<double> p;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) p.R[i][j] = R[i][j];
+  p.t = {spread * g(rng), spread * g(rng), spread * g(rng)};
+  return p;
+}
 
 inline std::string seedTrace(std::uint64_t seed) {
   return "seed=" + std::to_string(seed) +
