@@ -5,7 +5,8 @@
 //   FilterKernel  Num = Fd (double value + magnitude), sign() certified by a
 //                 derived error bound, kUnknown when the bound cannot decide;
 //   RunningDoubleKernel, ExtendedKernel  the filter with a running error
-//                 bound, in double, then in long double (second stage);
+//                 bound, in double (cylinder queries), then in long double
+//                 (second stage);
 //   TrackedKernel   the double filter with every operation checked for
 //                 rounding: exact signs, zero included (third stage);
 //   ExactKernel   Num = Dyadic (GMP integer times a power of two), exact;
@@ -195,23 +196,27 @@ struct ExtendedKernel {
   }
 };
 
-/// The extended stage's first attempt: the same running error bound in
-/// plain double (u = 2^-53), about four times cheaper than x87 long double
-/// (SSE registers, no stack shuffling). Not as precise, but the magnitude
-/// bound of FilterKernel is pessimistic after cancellation, and a running
-/// bound, which follows the actual values, decides about half of the queries
-/// the double filter leaves (near family: 52%, far: 93%, thin: 48%;
-/// docs/exactness.md, "Running bounds"). Rules as for Fl, with u' =
-/// 2^-53 (1 + 2^-52), plus an absolute 2^-1074 on every product for a
-/// possible underflow (sums of doubles are exact in the subnormal range).
-/// The rounding of the bound computations themselves: as for Fl, each e is
-/// short of its exact value by at most a factor (1 - u)^k with k <= 4 per
-/// operation and depth <= 56, i.e. below 1 + 2^-44 in relative terms, which
-/// kInflate covers; and by absolute underflow losses of at most 2^-1075 per
-/// rounded product, which propagate like FilterKernel's and stay far below
-/// kAbs = 2^-600 under the range gate (docs/exactness.md, "Underflow"). The
-/// line-cylinder interval (src/line_cylinder_interval.cpp) uses the same
-/// type for its own enclosures.
+/// The extended stage's first attempt in the cylinder queries (runStages,
+/// src/cylinder_queries_impl.h) and in the line interval: the running error
+/// bound of Fl in plain double (u = 2^-53), in SSE registers, about four
+/// times cheaper than x87. Not as precise, but the magnitude bound of
+/// FilterKernel is pessimistic after cancellation, and a running bound,
+/// which follows the actual values, decides much of what the double filter
+/// leaves (bench_queries, near: point-in-cylinder 81 -> 47 ns, segment
+/// 354 -> 283 ns). The triangle kernel does not use it: there it decided
+/// half of what reached the extended stage (near 52%, far 93%, thin 48%),
+/// but in bench/ (cases in an unlearnable order, caches cold) near and thin
+/// were no faster (448 vs 450 ns) and aligned slower (232 -> 275 ns): one
+/// more instantiation of the whole kernel, cold, costs about what it saves.
+/// Rules as for Fl, with u' = 2^-53 (1 + 2^-52), plus an absolute 2^-1074
+/// on every product for a possible underflow (sums of doubles are exact in
+/// the subnormal range). The rounding of the bound computations
+/// themselves: as for Fl, each e is short of its exact value by at most a
+/// factor (1 - u)^k with k <= 4 per operation and depth <= 56, i.e. below
+/// 1 + 2^-44 in relative terms, which kInflate covers; and by absolute
+/// underflow losses of at most 2^-1075 per rounded product, which propagate
+/// like FilterKernel's and stay far below kAbs = 2^-600 under the range
+/// gate (docs/exactness.md, "Underflow").
 struct Rd {
   double v;
   double e;

@@ -39,7 +39,6 @@ using detail::ExactKernel;
 using detail::ExtendedKernel;
 using detail::FilterKernel;
 using detail::NaiveKernel;
-using detail::RunningDoubleKernel;
 using detail::Sign;
 using detail::TrackedKernel;
 using detail::Tri;
@@ -123,9 +122,10 @@ bool validate(const Inputs& in, double* max_len, double* max_unitless) {
 //   Collinear: (b - a) x (c - a) = 0 exactly. Under the range gate,
 // FilterKernel certifies a non-zero component (degree 2, depth 3,
 // magnitude <= 2^84: inside its budget), and TrackedKernel an exactly zero
-// one when no operation rounds (a repeated vertex, dyadic grids); with
-// `exact`, what both leave is decided with dyadic (GMP) integers, as is
-// everything outside the gate.
+// one when no operation rounds (a repeated vertex, dyadic grids); this
+// cheap part runs before the extended stage. With `exact` (before the
+// exact stage), what both leave is decided with dyadic (GMP) integers, as
+// is everything outside the gate.
 //   Ends: if the vertices differ in coordinate k, the line's direction has a
 // non-zero k component, so coordinate k orders the points along it, and the
 // vertices with the least and greatest coordinate k are the ends (exact
@@ -236,23 +236,15 @@ Decision decide(const Inputs& in, bool filter_done) {
         if (x != Tri::kUnknown) return decided(x);
       }
     }
-    // The extended stage: the running error bound in double, then in long
-    // double (filter.h, docs/exactness.md section 4). The double attempt
-    // decides about half of what reaches it, at a quarter of the cost.
-    const auto qd = detail::makeLocal<RunningDoubleKernel>(
-        in.cyl, in.pose, in.tri, max_unitless);
-    Tri t = detail::triangleCylinder<RunningDoubleKernel>(qd, &early);
-    if (t == Tri::kUnknown) {
-      // Degenerate input first where that is cheap to certify (no GMP):
-      // the long double stage cannot decide its zero signs either.
-      Segment<double> hull;
-      const Degenerate g = degenerateHull(in.tri, true, false, &hull);
-      if (g == Degenerate::kYes) return decideIntersect(in.cyl, in.pose, hull);
-      degenerate_checked = g == Degenerate::kNo;
-      const auto q = detail::makeLocal<ExtendedKernel>(in.cyl, in.pose, in.tri,
-                                                       max_unitless);
-      t = detail::triangleCylinder<ExtendedKernel>(q, &early);
-    }
+    // Degenerate input first where that is cheap to certify (no GMP): the
+    // extended stage cannot decide its zero signs either.
+    Segment<double> hull;
+    const Degenerate g = degenerateHull(in.tri, true, false, &hull);
+    if (g == Degenerate::kYes) return decideIntersect(in.cyl, in.pose, hull);
+    degenerate_checked = g == Degenerate::kNo;
+    const auto q = detail::makeLocal<ExtendedKernel>(in.cyl, in.pose, in.tri,
+                                                     max_unitless);
+    const Tri t = detail::triangleCylinder<ExtendedKernel>(q, &early);
     if (t != Tri::kUnknown)
       return {t == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
               Stage::kExtended};

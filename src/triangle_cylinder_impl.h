@@ -106,7 +106,8 @@ inline void toLocal<FilterKernel>(const Pose<double>& pose,
 ///   |x^ - x| <= u (1 + 8.5 u) (2 S^ + |s1| + |x^|) + 2 eta
 ///            <= e = fl(fl(fl(2 S^ + |s1|) + |x^|) * c) + 4 eta,
 /// c = u (1 + 2^-40): the three roundings of e lose at most a factor
-/// (1 - u)^3, and 2^-40 >> 12 u. Z = z + z is exact (no overflow under the
+/// (1 - u)^3, and 2^-40 >> 12 u. Where every term has a zero factor the
+/// value is an exact 0 and e = 0. Z = z + z is exact (no overflow under the
 /// range gate), and so is e_Z = 2 e_z.
 template <class K>
 inline void toLocalRunning(const Pose<double>& pose, const Vec3<double>& p,
@@ -126,7 +127,13 @@ inline void toLocalRunning(const Pose<double>& pose, const Vec3<double>& p,
     const T s1 = r0 * d[0] + r1 * d[1];
     out.v = s1 + r2 * d[2];
     const T S = abs(r0) * a[0] + abs(r1) * a[1] + abs(r2) * a[2];
-    out.e = (((S + S) + abs(s1)) + abs(out.v)) * c + 4 * eta;
+    // Every term an exact zero (a zero factor: fl(p - t) = 0 iff p == t
+    // under gradual underflow): then x^ = x = 0 and nothing underflowed,
+    // and e = 0 keeps that zero certified (the per-operation rules gave it
+    // too; the line interval tests A = 0 and DZ = 0 that way).
+    const bool zero = (r0 == 0 || d[0] == 0) && (r1 == 0 || d[1] == 0) &&
+                      (r2 == 0 || d[2] == 0);
+    out.e = (((S + S) + abs(s1)) + abs(out.v)) * c + (zero ? T(0) : 4 * eta);
   };
   coord(0, x);
   coord(1, y);

@@ -110,11 +110,11 @@ TYPED_TEST(RunningFrameTest, BoundEnclosesTheExactLocalCoordinates) {
   EXPECT_GT(worst, 1.0 / 16);
 }
 
-// Each running kernel alone, through the whole triangle kernel, on every
-// case of the families that reach it (not only those the double filter
-// leaves): whatever it decides is the oracle's answer. In decide() the
-// double one runs first and its answers are final, so its soundness is
-// tested here directly, not only through the pipeline.
+// Each running kernel alone, through the whole triangle kernel (the
+// largest predicate set in tricyl), on every case of the families (not only
+// those the double filter leaves): whatever it decides is the oracle's
+// answer. The double one decides the cylinder queries' extended stage;
+// its sign() is tested here on far more predicates than those use.
 template <class K>
 void agreesWithOracle(scenes::Family family, long n, std::uint64_t seed) {
   long decided = 0, failures = 0;
