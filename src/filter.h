@@ -158,43 +158,88 @@ constexpr long double pow2neg(int k) {
 }
 constexpr long double kUL = pow2neg(LDBL_MANT_DIG);  // u_L
 constexpr long double kUL1 = kUL + 2 * kUL * kUL;    // u'
-inline long double absl(long double x) { return x < 0 ? -x : x; }
+constexpr double kU1d = 0x1p-53 * (1 + 0x1p-52);     // u' for double
 
-struct Fl {
-  long double v;
-  long double e;
+/// Per floating type of a running bound: u' (kU1), the absolute underflow
+/// allowance of a product or quotient (kTiny: 0 in long double, whose
+/// exponent range makes the loss negligible under the range gate; 2^-1074
+/// in double, see RunningDoubleKernel) and the inflation of sign() for the
+/// rounding of the bound computations themselves (kInflate).
+template <class T>
+struct RunningTraits;
+template <>
+struct RunningTraits<long double> {
+  using T = long double;
+  static constexpr T kU1 = kUL1;
+  static constexpr T kTiny = 0;
+  static constexpr T kInflate = 1 + pow2neg(50);
+  /// |x| as the x87 code has always computed it (a conditional move).
+  static T abs(T x) { return x < 0 ? -x : x; }
 };
-inline Fl operator+(Fl a, Fl b) {
-  const long double v = a.v + b.v;
-  return {v, a.e + b.e + kUL1 * absl(v)};
+template <>
+struct RunningTraits<double> {
+  using T = double;
+  static constexpr T kU1 = kU1d;
+  static constexpr T kTiny = 0x1p-1074;
+  static constexpr T kInflate = 1 + 0x1p-40;
+  static T abs(T x) { return std::fabs(x); }
+};
+
+/// A value and its running error bound e >= |v - E| (the rules above).
+template <class T>
+struct Running {
+  T v;
+  T e;
+};
+template <class T>
+inline Running<T> operator+(Running<T> a, Running<T> b) {
+  using R = RunningTraits<T>;
+  const T v = a.v + b.v;
+  return {v, a.e + b.e + R::kU1 * R::abs(v)};
 }
-inline Fl operator-(Fl a, Fl b) {
-  const long double v = a.v - b.v;
-  return {v, a.e + b.e + kUL1 * absl(v)};
+template <class T>
+inline Running<T> operator-(Running<T> a, Running<T> b) {
+  using R = RunningTraits<T>;
+  const T v = a.v - b.v;
+  return {v, a.e + b.e + R::kU1 * R::abs(v)};
 }
-inline Fl operator-(Fl a) { return {-a.v, a.e}; }
-inline Fl operator*(Fl a, Fl b) {
-  const long double v = a.v * b.v;
-  return {v, absl(a.v) * b.e + absl(b.v) * a.e + a.e * b.e + kUL1 * absl(v)};
+template <class T>
+inline Running<T> operator-(Running<T> a) {
+  return {-a.v, a.e};
+}
+template <class T>
+inline Running<T> operator*(Running<T> a, Running<T> b) {
+  using R = RunningTraits<T>;
+  const T v = a.v * b.v;
+  const T e =
+      R::abs(a.v) * b.e + R::abs(b.v) * a.e + a.e * b.e + R::kU1 * R::abs(v);
+  if constexpr (R::kTiny != 0) return {v, e + R::kTiny};
+  return {v, e};
 }
 
-struct ExtendedKernel {
-  using Num = Fl;
+/// The filter with a running bound, in T (ExtendedKernel: long double;
+/// RunningDoubleKernel: double).
+template <class T>
+struct RunningKernel {
+  using R = RunningTraits<T>;
+  using Num = Running<T>;
   static constexpr bool kExact = false;
   static Num lift(double x) { return {x, 0}; }
   static Num inputDiff(double a, double b) {
-    const long double d = static_cast<long double>(a) - b;
-    return {d, kUL1 * absl(d)};
+    const T d = static_cast<T>(a) - b;
+    return {d, R::kU1 * R::abs(d)};
   }
-  static constexpr long double kInflate = 1 + pow2neg(50);
-  static constexpr long double kAbs = 0x1p-600L;
-  static Sign sign(const Fl& a) {
-    const long double bound = a.e * kInflate + kAbs;
+  static constexpr T kAbs = 0x1p-600;
+  static Sign sign(const Num& a) {
+    const T bound = a.e * R::kInflate + kAbs;
     if (a.v > bound) return Sign::kPos;
     if (a.v < -bound) return Sign::kNeg;
     return Sign::kUnknown;
   }
 };
+
+using Fl = Running<long double>;
+using ExtendedKernel = RunningKernel<long double>;
 
 /// The extended stage's first attempt in the cylinder queries (runStages,
 /// src/cylinder_queries_impl.h) and in the line interval: the running error
@@ -217,42 +262,8 @@ struct ExtendedKernel {
 /// underflow losses of at most 2^-1075 per rounded product, which propagate
 /// like FilterKernel's and stay far below kAbs = 2^-600 under the range
 /// gate (docs/exactness.md, "Underflow").
-struct Rd {
-  double v;
-  double e;
-};
-constexpr double kU1d = 0x1p-53 * (1 + 0x1p-52);  // u' for double
-inline Rd operator+(Rd a, Rd b) {
-  const double v = a.v + b.v;
-  return {v, a.e + b.e + kU1d * std::fabs(v)};
-}
-inline Rd operator-(Rd a, Rd b) {
-  const double v = a.v - b.v;
-  return {v, a.e + b.e + kU1d * std::fabs(v)};
-}
-inline Rd operator-(Rd a) { return {-a.v, a.e}; }
-inline Rd operator*(Rd a, Rd b) {
-  const double v = a.v * b.v;
-  return {v, std::fabs(a.v) * b.e + std::fabs(b.v) * a.e + a.e * b.e +
-                 kU1d * std::fabs(v) + 0x1p-1074};
-}
-struct RunningDoubleKernel {
-  using Num = Rd;
-  static constexpr bool kExact = false;
-  static Num lift(double x) { return {x, 0}; }
-  static Num inputDiff(double a, double b) {
-    const double d = a - b;
-    return {d, kU1d * std::fabs(d)};
-  }
-  static constexpr double kInflate = 1 + 0x1p-40;
-  static constexpr double kAbs = 0x1p-600;
-  static Sign sign(const Rd& a) {
-    const double bound = a.e * kInflate + kAbs;
-    if (a.v > bound) return Sign::kPos;
-    if (a.v < -bound) return Sign::kNeg;
-    return Sign::kUnknown;
-  }
-};
+using Rd = Running<double>;
+using RunningDoubleKernel = RunningKernel<double>;
 
 /// The third stage: the double filter again, with every operation checked
 /// for rounding by an error-free transformation. Why: a sign that is exactly

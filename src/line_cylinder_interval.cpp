@@ -79,22 +79,10 @@ namespace {
 // (filter.h's Fl, covered there by the range gate) runs only when this one
 // cannot reach the accuracy.
 
-/// Per running type: u', the absolute underflow allowance of a product or
-/// quotient, and the floating type.
+/// Per running type (Fl, Rd): u', the absolute underflow allowance of a
+/// product or quotient, and the floating type (filter.h's RunningTraits).
 template <class N>
-struct Run;
-template <>
-struct Run<Fl> {
-  using T = long double;
-  static constexpr T kU1 = kUL1;
-  static constexpr T kTiny = 0;  // range gate: docs/exactness.md
-};
-template <>
-struct Run<Rd> {
-  using T = double;
-  static constexpr T kU1 = kU1d;
-  static constexpr T kTiny = 0x1p-1074;
-};
+using Run = RunningTraits<decltype(N::v)>;
 
 // Slack for the rounding of the bound computations themselves (each bound
 // is a sum of non-negative rounded terms, short by at most (1 - u)^k).
