@@ -184,7 +184,8 @@ Decision decide(const Inputs& in, bool filter_done) {
   if (!validate(in, &max_len, &max_unitless))
     return {Answer::kInvalidInput, Stage::kInvalid};
   bool early = false;
-  bool degenerate_checked = false;  // certainly not degenerate
+  // The cheap degeneracy test's outcome, once it has run (see below).
+  std::optional<Degenerate> degenerate;
   if (!filter_done && detail::rangeGateOk(max_len, max_unitless)) {
     const auto q =
         detail::makeLocal<FilterKernel>(in.cyl, in.pose, in.tri, max_unitless);
@@ -239,9 +240,9 @@ Decision decide(const Inputs& in, bool filter_done) {
     // Degenerate input first where that is cheap to certify (no GMP): the
     // extended stage cannot decide its zero signs either.
     Segment<double> hull;
-    const Degenerate g = degenerateHull(in.tri, true, false, &hull);
-    if (g == Degenerate::kYes) return decideIntersect(in.cyl, in.pose, hull);
-    degenerate_checked = g == Degenerate::kNo;
+    degenerate = degenerateHull(in.tri, true, false, &hull);
+    if (degenerate == Degenerate::kYes)
+      return decideIntersect(in.cyl, in.pose, hull);
     const auto q = detail::makeLocal<ExtendedKernel>(in.cyl, in.pose, in.tri,
                                                      max_unitless);
     const Tri t = detail::triangleCylinder<ExtendedKernel>(q, &early);
@@ -255,11 +256,13 @@ Decision decide(const Inputs& in, bool filter_done) {
     }
   }
   // Degenerate input: the segment (or point) query, whose stages decide
-  // what the zero signs above left open.
+  // what the zero signs above left open. Where the cheap test already ran
+  // and could not tell, only its GMP part is left to run.
   Segment<double> hull;
-  if (!degenerate_checked &&
-      degenerateHull(in.tri, detail::rangeGateOk(max_len, max_unitless), true,
-                     &hull) == Degenerate::kYes)
+  if (degenerate != Degenerate::kNo &&
+      degenerateHull(in.tri,
+                     !degenerate && detail::rangeGateOk(max_len, max_unitless),
+                     true, &hull) == Degenerate::kYes)
     return decideIntersect(in.cyl, in.pose, hull);
   const auto q =
       detail::makeLocal<ExactKernel>(in.cyl, in.pose, in.tri, max_unitless);
