@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "scalar_floor.h"
 #include "scenes.h"
 #include "tricyl/triangle_cylinder.h"
 #include "walk.h"
@@ -183,6 +184,73 @@ BENCHMARK_TEMPLATE(BM_Paired, double)
 BENCHMARK_TEMPLATE(BM_Paired, float)
     ->Arg(int(Family::kUniform))
     ->Arg(int(Family::kNear));
+
+#ifdef TRICYL_BENCH_FLOOR
+// The floor of the design (bench/scalar_floor.h), uniform family, double:
+// one iteration runs the 4096 cases through the truncated first stage of
+// level state.range(0), then through FCL, in the same order, each block
+// timed on its own (as BM_Paired). Counters: floor_ns and fcl_ns per query,
+// ratio = fcl_ns / floor_ns, and open = the share a level-5 query leaves
+// open. For the 20x target a query must average fcl_ns / 20.
+void BM_Floor(benchmark::State& state) {
+  namespace fl = tricyl::bench::scalar_floor;
+  if (!__builtin_cpu_supports("avx2")) {
+    state.SkipWithError("needs AVX2");
+    return;
+  }
+  const int level = int(state.range(0));
+  const fl::QueryFn f = fl::kQuery[level];
+  const auto v = narrowed<double>(Family::kUniform);
+  const auto& k = cases(Family::kUniform);
+  std::vector<fcl::Cylinderd> cyl;
+  std::vector<fcl::Transform3d> tf;
+  std::vector<fcl::Vector3d> p;
+  for (const TriCase& c : k) {
+    fcl::Transform3d t = fcl::Transform3d::Identity();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) t.linear()(i, j) = c.pose.R[i][j];
+    t.translation() = fcl::Vector3d(c.pose.t.x, c.pose.t.y, c.pose.t.z);
+    cyl.emplace_back(c.cyl.radius, c.cyl.lz);
+    tf.push_back(t);
+    for (const auto& q : {c.tri.a, c.tri.b, c.tri.c})
+      p.emplace_back(q.x, q.y, q.z);
+  }
+  long open = 0;
+  for (const auto& c : v) open += fl::query<5>(c.cyl, c.pose, c.tri) >= 3;
+  fcl::detail::GJKSolver_libccd<double> solver;
+  solver.collision_tolerance = 1e-6;
+  using Clock = std::chrono::steady_clock;
+  double t_floor = 0, t_fcl = 0;
+  long sum = 0, fcl_hits = 0;
+  Walk walk_floor(v.size()), walk_fcl(k.size());
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    for (std::size_t n = 0; n < v.size(); ++n) {
+      const auto& c = v[walk_floor.next()];
+      sum += f(c.cyl, c.pose, c.tri);
+    }
+    const auto t1 = Clock::now();
+    for (std::size_t n = 0; n < k.size(); ++n) {
+      const std::size_t i = walk_fcl.next();
+      fcl_hits += solver.shapeTriangleIntersect(cyl[i], tf[i], p[3 * i],
+                                                p[3 * i + 1], p[3 * i + 2],
+                                                nullptr, nullptr, nullptr);
+    }
+    const auto t2 = Clock::now();
+    t_floor += std::chrono::duration<double, std::nano>(t1 - t0).count();
+    t_fcl += std::chrono::duration<double, std::nano>(t2 - t1).count();
+  }
+  benchmark::DoNotOptimize(sum);
+  benchmark::DoNotOptimize(fcl_hits);
+  const double n = double(state.iterations()) * double(v.size());
+  state.counters["floor_ns"] = t_floor / n;
+  state.counters["fcl_ns"] = t_fcl / n;
+  state.counters["ratio"] = t_fcl / t_floor;
+  state.counters["open"] = double(open) / double(v.size());
+  state.SetLabel(fl::kLevelNames[level]);
+}
+BENCHMARK(BM_Floor)->DenseRange(0, tricyl::bench::scalar_floor::kLevels - 1);
+#endif
 
 // Not thin or aligned: libccd can loop forever there (issue 9); the harness
 // runs those under a time limit instead.
