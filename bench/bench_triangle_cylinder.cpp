@@ -112,6 +112,39 @@ void BM_FclLibccd(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
   state.SetLabel(tricyl::scenes::familyName(Family(state.range(0))));
 }
+// The cases as FCL takes them (structure of arrays), for the paired rows,
+// and one pass over all of them in a walk's order: the FCL block of a
+// paired iteration. Returns the number of hits.
+struct FclCases {
+  std::vector<fcl::Cylinderd> cyl;
+  std::vector<fcl::Transform3d> tf;
+  std::vector<fcl::Vector3d> p;  // three per case
+
+  explicit FclCases(const std::vector<TriCase>& k) {
+    for (const TriCase& c : k) {
+      fcl::Transform3d t = fcl::Transform3d::Identity();
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) t.linear()(i, j) = c.pose.R[i][j];
+      t.translation() = fcl::Vector3d(c.pose.t.x, c.pose.t.y, c.pose.t.z);
+      cyl.emplace_back(c.cyl.radius, c.cyl.lz);
+      tf.push_back(t);
+      for (const auto& q : {c.tri.a, c.tri.b, c.tri.c})
+        p.emplace_back(q.x, q.y, q.z);
+    }
+  }
+  long pass(const fcl::detail::GJKSolver_libccd<double>& solver,
+            Walk& walk) const {
+    long hits = 0;
+    for (std::size_t n = 0; n < cyl.size(); ++n) {
+      const std::size_t i = walk.next();
+      hits += solver.shapeTriangleIntersect(cyl[i], tf[i], p[3 * i],
+                                            p[3 * i + 1], p[3 * i + 2], nullptr,
+                                            nullptr, nullptr);
+    }
+    return hits;
+  }
+};
+
 // Paired: one iteration runs every case of the family through tricyl, then
 // through FCL, each block timed on its own (a block is ~0.1 ms and ~1.5 ms),
 // so both see the same clock. This VM's effective clock drifts by tens of
@@ -125,19 +158,7 @@ void BM_Paired(benchmark::State& state) {
   const Family fam = Family(state.range(0));
   const auto v = narrowed<S>(fam);
   const auto& k = cases(fam);
-  std::vector<fcl::Cylinderd> cyl;
-  std::vector<fcl::Transform3d> tf;
-  std::vector<fcl::Vector3d> p;
-  for (const TriCase& c : k) {
-    fcl::Transform3d t = fcl::Transform3d::Identity();
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) t.linear()(i, j) = c.pose.R[i][j];
-    t.translation() = fcl::Vector3d(c.pose.t.x, c.pose.t.y, c.pose.t.z);
-    cyl.emplace_back(c.cyl.radius, c.cyl.lz);
-    tf.push_back(t);
-    for (const auto& q : {c.tri.a, c.tri.b, c.tri.c})
-      p.emplace_back(q.x, q.y, q.z);
-  }
+  const FclCases fc(k);
   fcl::detail::GJKSolver_libccd<double> solver;
   solver.collision_tolerance = 1e-6;
   using Clock = std::chrono::steady_clock;
@@ -152,12 +173,7 @@ void BM_Paired(benchmark::State& state) {
               tricyl::Answer::kIntersect;
     }
     const auto t1 = Clock::now();
-    for (std::size_t n = 0; n < k.size(); ++n) {
-      const std::size_t i = walk_fcl.next();
-      fcl_hits += solver.shapeTriangleIntersect(cyl[i], tf[i], p[3 * i],
-                                                p[3 * i + 1], p[3 * i + 2],
-                                                nullptr, nullptr, nullptr);
-    }
+    fcl_hits += fc.pass(solver, walk_fcl);
     const auto t2 = Clock::now();
     const double a = std::chrono::duration<double, std::nano>(t1 - t0).count(),
                  b = std::chrono::duration<double, std::nano>(t2 - t1).count();
@@ -202,19 +218,7 @@ void BM_Floor(benchmark::State& state) {
   const fl::QueryFn f = fl::kQuery[level];
   const auto v = narrowed<double>(Family::kUniform);
   const auto& k = cases(Family::kUniform);
-  std::vector<fcl::Cylinderd> cyl;
-  std::vector<fcl::Transform3d> tf;
-  std::vector<fcl::Vector3d> p;
-  for (const TriCase& c : k) {
-    fcl::Transform3d t = fcl::Transform3d::Identity();
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) t.linear()(i, j) = c.pose.R[i][j];
-    t.translation() = fcl::Vector3d(c.pose.t.x, c.pose.t.y, c.pose.t.z);
-    cyl.emplace_back(c.cyl.radius, c.cyl.lz);
-    tf.push_back(t);
-    for (const auto& q : {c.tri.a, c.tri.b, c.tri.c})
-      p.emplace_back(q.x, q.y, q.z);
-  }
+  const FclCases fc(k);
   long open = 0;
   for (const auto& c : v) open += fl::query<5>(c.cyl, c.pose, c.tri) >= 3;
   fcl::detail::GJKSolver_libccd<double> solver;
@@ -230,12 +234,7 @@ void BM_Floor(benchmark::State& state) {
       sum += f(c.cyl, c.pose, c.tri);
     }
     const auto t1 = Clock::now();
-    for (std::size_t n = 0; n < k.size(); ++n) {
-      const std::size_t i = walk_fcl.next();
-      fcl_hits += solver.shapeTriangleIntersect(cyl[i], tf[i], p[3 * i],
-                                                p[3 * i + 1], p[3 * i + 2],
-                                                nullptr, nullptr, nullptr);
-    }
+    fcl_hits += fc.pass(solver, walk_fcl);
     const auto t2 = Clock::now();
     t_floor += std::chrono::duration<double, std::nano>(t1 - t0).count();
     t_fcl += std::chrono::duration<double, std::nano>(t2 - t1).count();
