@@ -89,10 +89,6 @@ struct KernelTag {
   using type = K;
 };
 
-inline Answer toAnswer(Tri t) {
-  return t == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint;
-}
-
 /// Runs `pred(KernelTag<K>{}, &early) -> Tri` through the four stages: the
 /// double filter, the extended filter (running bound in double, then in
 /// long double) and the tracked double stage inside

@@ -191,8 +191,7 @@ Decision decide(const Inputs& in, bool filter_done) {
         detail::makeLocal<FilterKernel>(in.cyl, in.pose, in.tri, max_unitless);
     const Tri t = detail::triangleCylinder<FilterKernel>(q, &early);
     if (t != Tri::kUnknown)
-      return {t == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
-              early ? Stage::kEarlyOut : Stage::kFastPath};
+      return {detail::toAnswer(t), early ? Stage::kEarlyOut : Stage::kFastPath};
   }
   if (detail::rangeGateOk(max_len, max_unitless)) {
     // Exact zeros (a vertex on the rim, a triangle in a cap plane) that no
@@ -221,8 +220,7 @@ Decision decide(const Inputs& in, bool filter_done) {
       return *qt;
     };
     auto decided = [](Tri x) {
-      return Decision{x == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
-                      Stage::kTracked};
+      return Decision{detail::toAnswer(x), Stage::kTracked};
     };
     bool tried = false;
     if (short_rotation) {
@@ -246,9 +244,7 @@ Decision decide(const Inputs& in, bool filter_done) {
     const auto q = detail::makeLocal<ExtendedKernel>(in.cyl, in.pose, in.tri,
                                                      max_unitless);
     const Tri t = detail::triangleCylinder<ExtendedKernel>(q, &early);
-    if (t != Tri::kUnknown)
-      return {t == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
-              Stage::kExtended};
+    if (t != Tri::kUnknown) return {detail::toAnswer(t), Stage::kExtended};
     if (!tried) {
       const Tri x =
           detail::triangleCylinder<TrackedKernel>(trackedFrame(), &early);
@@ -267,8 +263,7 @@ Decision decide(const Inputs& in, bool filter_done) {
   const auto q =
       detail::makeLocal<ExactKernel>(in.cyl, in.pose, in.tri, max_unitless);
   const Tri t = detail::triangleCylinder<ExactKernel>(q, &early);
-  return {t == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
-          Stage::kExact};
+  return {detail::toAnswer(t), Stage::kExact};
 }
 
 // Widening a signalling NaN raises FE_INVALID: float inputs are checked by
@@ -1134,8 +1129,7 @@ TRICYL_ALWAYS_INLINE Fast decideFast(const Cylinder<S>& cyl,
   if (f == Pre::kGateMiss) return Fast::kGateMiss;
   const Tri t = filterTests(L);
   if (t == Tri::kUnknown) return Fast::kUnknown;
-  *out = {t == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
-          Stage::kFastPath};
+  *out = {detail::toAnswer(t), Stage::kFastPath};
   return Fast::kDecided;
 }
 

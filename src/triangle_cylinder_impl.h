@@ -39,6 +39,11 @@
 
 namespace tricyl::detail {
 
+/// A decided Tri (kTrue or kFalse) as the query's answer.
+inline Answer toAnswer(Tri t) {
+  return t == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint;
+}
+
 template <class K>
 struct TriCylLocal {
   using N = typename K::Num;
