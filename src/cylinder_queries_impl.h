@@ -34,6 +34,7 @@
 #include <cstdint>
 #include <cstring>
 #include <initializer_list>
+#include <type_traits>
 
 #include "filter.h"
 #include "stages.h"
@@ -68,6 +69,30 @@ inline bool scanFinite(std::initializer_list<double> lengths,
   std::memcpy(max_len, &ml, sizeof ml);
   std::memcpy(max_unitless, &mu, sizeof mu);
   return true;
+}
+
+/// The inputs of a float query are validated in float, by their bits, before
+/// anything is widened: widening a signalling NaN raises FE_INVALID (issue
+/// 20; the triangle query's floatBitsFinite does the same). True if no float
+/// in the given aggregates (Cylinder, Pose, Vec3, Sphere, ...: arrays of
+/// floats without padding) is NaN or infinite. For double there is no
+/// conversion before scanFinite, which reads bits too.
+template <class... Parts>
+inline bool floatBitsFinite(const Parts&... parts) {
+  auto one = [](const auto& x) {
+    using T = std::decay_t<decltype(x)>;
+    static_assert(std::is_trivially_copyable_v<T> && sizeof(T) % 4 == 0,
+                  "an aggregate of floats");
+    unsigned char bytes[sizeof(T)];
+    std::memcpy(bytes, &x, sizeof(T));
+    for (std::size_t i = 0; i < sizeof(T); i += 4) {
+      std::uint32_t b;
+      std::memcpy(&b, bytes + i, 4);
+      if ((b & 0x7f800000u) == 0x7f800000u) return false;
+    }
+    return true;
+  };
+  return (one(parts) && ...);
 }
 
 // float -> double is exact, so every query runs in double on exact copies.

@@ -146,11 +146,15 @@ struct FilterKernel {
 /// so it falls short of the exact bound by at most a factor (1 - u_L)^k,
 /// k <= 4 roundings per operation times depth <= 56: sign() inflates it by
 /// (1 + 2^-50), which covers (1 - u_L)^-224 with room to spare.
-/// Underflow: a product may lose at most 2^-16446 (x87 extended); with the
-/// range gate the propagation argument of FilterKernel bounds the loss by
-/// 2^-16446 * 2^388, far below kAbs. Where long double is no wider than
-/// double (MSVC, some ARM ABIs) u_L = 2^-53 and the stage is still correct;
-/// where it is software quad (AArch64 Linux) it is correct and slower.
+/// Underflow: every product (and the line interval's quotients) adds the
+/// type's smallest subnormal, kTiny, to its e (the loss of one rounded
+/// product is below it), so an underflowed product is never a certified 0.
+/// The bound computations' own underflow losses (<= 2^-1075 each, since
+/// long double holds every double) propagate as in FilterKernel and stay far
+/// below kAbs under the range gate. No step depends on the width or the
+/// exponent range of long double: where it is double (MSVC, Apple silicon,
+/// 32-bit ARM) u_L = 2^-53 and the stage is a second double stage; where it
+/// is software quad (AArch64 Linux) it is correct and slower.
 constexpr long double pow2neg(int k) {
   long double r = 1;
   for (int i = 0; i < k; ++i) r /= 2;
@@ -161,17 +165,18 @@ constexpr long double kUL1 = kUL + 2 * kUL * kUL;    // u'
 constexpr double kU1d = 0x1p-53 * (1 + 0x1p-52);     // u' for double
 
 /// Per floating type of a running bound: u' (kU1), the absolute underflow
-/// allowance of a product or quotient (kTiny: 0 in long double, whose
-/// exponent range makes the loss negligible under the range gate; 2^-1074
-/// in double, see RunningDoubleKernel) and the inflation of sign() for the
-/// rounding of the bound computations themselves (kInflate).
+/// allowance of a product or quotient (kTiny: the type's smallest subnormal,
+/// for every type and width; issue 20: with 0 in a long double no wider
+/// than double, Dy * Dy = dmin^2 underflowed to a "certified" 0) and the
+/// inflation of sign() for the rounding of the bound computations
+/// themselves (kInflate).
 template <class T>
 struct RunningTraits;
 template <>
 struct RunningTraits<long double> {
   using T = long double;
   static constexpr T kU1 = kUL1;
-  static constexpr T kTiny = 0;
+  static constexpr T kTiny = std::numeric_limits<T>::denorm_min();
   static constexpr T kInflate = 1 + pow2neg(50);
   /// |x| as the x87 code has always computed it (a conditional move).
   static T abs(T x) { return x < 0 ? -x : x; }
@@ -180,7 +185,7 @@ template <>
 struct RunningTraits<double> {
   using T = double;
   static constexpr T kU1 = kU1d;
-  static constexpr T kTiny = 0x1p-1074;
+  static constexpr T kTiny = std::numeric_limits<T>::denorm_min();
   static constexpr T kInflate = 1 + 0x1p-40;
   static T abs(T x) { return std::fabs(x); }
 };
@@ -213,8 +218,7 @@ inline Running<T> operator*(Running<T> a, Running<T> b) {
   const T v = a.v * b.v;
   const T e =
       R::abs(a.v) * b.e + R::abs(b.v) * a.e + a.e * b.e + R::kU1 * R::abs(v);
-  if constexpr (R::kTiny != 0) return {v, e + R::kTiny};
-  return {v, e};
+  return {v, e + R::kTiny};
 }
 
 /// The filter with a running bound, in T (ExtendedKernel: long double;
