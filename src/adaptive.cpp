@@ -16,14 +16,14 @@ namespace tricyl::detail {
 //   input difference a-b:  v = TwoSum(a, -b), exact: e = 0 (no overflow
 //                          under the range gate).
 //   a +- b:  v = dwAdd(a, +-b),
-//            e = e_a + e_b + kDwRel |v.hi| + kDwTiny;
+//            e = e_a + e_b + kDwAddRel (|a.hi| + |b.hi|);
 //   a * b:   v = dwMul(a, b),
 //            e = |a| e_b + |b| e_a + e_a e_b + kDwRel |v.hi| + kDwTiny,
 //            with |a| = |a.hi| + |a.lo|,
 //   since |v_a v_b - A B| <= |v_a| |v_b - B| + |B| |v_a - A| and
-//   |B| <= |v_b| + e_b; kDwRel |v.hi| bounds the double-word operation's own
-//   error (relative to its exact result, Joldes-Muller-Popescu) and kDwTiny
-//   its losses to underflow.
+//   |B| <= |v_b| + e_b; kDwAddRel (...) and kDwRel |v.hi| bound the
+//   double-word operations' own errors (src/eft.h) and kDwTiny the
+//   product's losses to underflow.
 //   local coordinate sum_k R_kj (p_k - t_k): one straight-line
 //   evaluation with an a-priori bound (dwCoord below).
 // e itself is computed with rounding to nearest from non-negative terms, at
@@ -40,7 +40,7 @@ namespace {
 inline DwRun runAdd(const DwRun& a, const DwRun& b) {
   DwRun r;
   r.v = dwAdd(a.v, b.v);
-  r.e = a.e + b.e + kDwRel * std::fabs(r.v.hi) + kDwTiny;
+  r.e = a.e + b.e + kDwAddRel * (std::fabs(a.v.hi) + std::fabs(b.v.hi));
   return r;
 }
 inline DwRun runMul(const DwRun& a, const DwRun& b) {
