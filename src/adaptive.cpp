@@ -48,8 +48,7 @@ inline DwRun runMul(const DwRun& a, const DwRun& b) {
   r.v = dwMul(a.v, b.v);
   const double ma = std::fabs(a.v.hi) + std::fabs(a.v.lo);
   const double mb = std::fabs(b.v.hi) + std::fabs(b.v.lo);
-  r.e =
-      ma * b.e + mb * a.e + a.e * b.e + kDwRel * std::fabs(r.v.hi) + kDwTiny;
+  r.e = ma * b.e + mb * a.e + a.e * b.e + kDwRel * std::fabs(r.v.hi) + kDwTiny;
   return r;
 }
 }  // namespace
@@ -90,7 +89,12 @@ DwRun Tape::dwCoord(const Node& nd) const {
       ((((f1 + f2) + (e[0] + e[1])) + e[2]) + (q[0] + q[1])) + q[2];
   DwRun r;
   twoSum(s, low, r.v.hi, r.v.lo);
-  r.e = 0x1p-100 * m + kDwTiny;
+  // Every term with a zero factor (R_k = 0 or p_k = t_k): an exact 0 with
+  // nothing rounded or underflowed, certified as such (the line interval
+  // tests Dx = Dy = 0 and DZ = 0 that way).
+  bool zero = true;
+  for (int k = 0; k < 3; ++k) zero = zero && (P.R[k][j] == 0 || D[k] == 0);
+  r.e = zero ? 0.0 : 0x1p-100 * m + kDwTiny;
   if (j == 2) {  // Z = 2 z: exact scaling, bound doubled
     r.v.hi *= 2;
     r.v.lo *= 2;
@@ -184,8 +188,8 @@ Dyadic Tape::dyadicCoord(const Node& nd) const {
   const int j = nd.b;
   Dyadic x;
   for (int k = 0; k < 3; ++k)
-    x = x + ExactKernel::lift(P.R[k][j]) *
-                ExactKernel::inputDiff(P.p[k], P.t[k]);
+    x = x +
+        ExactKernel::lift(P.R[k][j]) * ExactKernel::inputDiff(P.p[k], P.t[k]);
   return j == 2 ? x + x : x;
 }
 

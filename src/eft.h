@@ -14,10 +14,9 @@
 //     exactness conditions under underflow.
 //   M. Joldes, J.-M. Muller, V. Popescu, "Tight and rigorous error bounds
 //     for basic building blocks of double-word arithmetic", ACM TOMS 44(2),
-//     2017: relative error of DWTimesDW1 (Algorithm 10, no FMA) <= 7u^2 and
-//     of DWTimesDW3 (Algorithm 12, FMA) <= 5u^2, u = 2^-53, in the absence
-//     of underflow and overflow. The addition is their sloppy one, with its
-//     own bound (dwAdd).
+//     2017: relative error of DWTimesDW1 (Algorithm 10) <= 7u^2, u = 2^-53,
+//     in the absence of underflow and overflow. The addition is their
+//     sloppy one, with its own bound (dwAdd).
 #pragma once
 
 #include <cmath>
@@ -100,31 +99,25 @@ inline constexpr double kDwAddRel = 0x1p-104;  // 4 u^2
 
 inline DW dwNeg(DW x) { return {-x.hi, -x.lo}; }
 
-/// x * y: Algorithm 12 (DWTimesDW3, with FMA; <= 5u^2) or Algorithm 10
-/// (DWTimesDW1, TwoProduct by Dekker; <= 7u^2), relative to the exact
-/// product x y, without underflow.
+/// x * y: Algorithm 10 (DWTimesDW1; relative error <= 7u^2 of the exact
+/// product x y, without underflow). Its TwoProduct is exact with or without
+/// FMA, and nothing else in it could be fused (-ffp-contract=off), so the
+/// result is the same bits on every platform.
 inline DW dwMul(DW x, DW y) {
   double ch, cl1;
   twoProd(x.hi, y.hi, ch, cl1);
-#if TRICYL_HAVE_FMA
-  const double tl0 = x.lo * y.lo;
-  const double tl1 = std::fma(x.hi, y.lo, tl0);
-  const double cl2 = std::fma(x.lo, y.hi, tl1);
-  const double cl3 = cl1 + cl2;
-#else
   const double tl1 = x.hi * y.lo;
   const double tl2 = x.lo * y.hi;
   const double cl2 = tl1 + tl2;
   const double cl3 = cl1 + cl2;
-#endif
   DW z;
   twoSum(ch, cl3, z.hi, z.lo);
   return z;
 }
 
 /// The relative error bound of dwMul used by the running bound of
-/// src/adaptive.cpp: 2^-103 = 8u^2 covers 7u^2 (both variants) with room
-/// for the (1 + u) between |x y| and |z.hi|.
+/// src/adaptive.cpp: 2^-103 = 8u^2 covers 7u^2 with room for the (1 + u)
+/// between |x y| and |z.hi|.
 inline constexpr double kDwRel = 0x1p-103;
 /// The absolute allowance per double-word operation for underflow: each of
 /// its at most 12 IEEE operations loses at most 2^-1075 absolutely when its
