@@ -93,7 +93,7 @@ class Tape {
   /// 2 expansions, 3 GMP.
   int level() const { return level_; }
 
-  std::uint32_t op(std::uint8_t code, std::uint32_t a, std::uint32_t b) {
+  std::uint32_t op(std::uint16_t code, std::uint32_t a, std::uint32_t b) {
     if (n_ == kMaxNodes) {
       overflow_ = true;
       return 0;
@@ -101,7 +101,7 @@ class Tape {
     nodes_[n_] = {code, std::uint16_t(a), std::uint16_t(b)};
     return std::uint32_t(n_++);
   }
-  std::uint32_t leaf(std::uint8_t code, double a, double b) {
+  std::uint32_t leaf(std::uint16_t code, double a, double b) {
     if (leaves_ == kMaxLeaves) {
       overflow_ = true;
       return 0;
@@ -122,7 +122,7 @@ class Tape {
   /// The sign of node `id`, which FilterKernel's bound could not certify.
   TRICYL_ADAPTIVE_NOINLINE Sign escalate(std::uint32_t id);
 
-  enum Code : std::uint8_t { kLift, kDiff, kAdd, kSub, kNeg, kMul, kCoord };
+  enum Code : std::uint16_t { kLift, kDiff, kAdd, kSub, kNeg, kMul, kCoord };
 
   /// For tests: node `id`'s double-word value and error bound, and its
   /// exact value.
@@ -142,8 +142,10 @@ class Tape {
   }
 
  private:
+  // No member of a character type: a store through one may alias anything,
+  // and would make every recorded operation reload the tape's counters.
   struct Node {
-    std::uint8_t code;
+    std::uint16_t code;
     std::uint16_t a, b;  // operands; a leaf's index; a coordinate's point
                          // and axis (b: 0 x, 1 y, 2 Z)
   };
