@@ -3,7 +3,7 @@
 //
 //   example_ompl_planner [--broadphase] [--stock] [--seed N] mesh.obj
 //
-// mesh.obj is env.obj or bunny.obj (scenes.h; exit 77 when it cannot be
+// mesh.obj is env.obj or bunny.obj (scene.h; exit 77 when it cannot be
 // read). --broadphase checks through FCL's dynamic AABB tree of the mesh's
 // parts instead of one BVH; --stock uses fcl::collide (libccd) instead of
 // tricyl::collide, for comparison. The planner is seeded (default 1), so
@@ -21,7 +21,7 @@
 #include <string>
 
 #include "planner.h"
-#include "scenes.h"
+#include "scene.h"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
