@@ -4,7 +4,11 @@
 set -euo pipefail
 PKGS=(build-essential cmake libgmp-dev libfcl-dev libccd-dev libeigen3-dev
       libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev gnuplot-nox
-      clang-14 libclang-rt-14-dev libfuzzer-14-dev doxygen)
+      clang-14 libclang-rt-14-dev libfuzzer-14-dev doxygen
+      # optional (examples/ompl_planner, its test, bench_planning): OMPL, and
+      # the Boost libraries its CMake config links but does not pull in
+      libompl-dev libboost-serialization-dev libboost-filesystem-dev
+      libboost-system-dev)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
