@@ -585,7 +585,8 @@ std::string runScene(const std::string& name, const Options& opt, Box* box) {
       "oracle): the checked cylinder tangent to a face (cap, side or rim), "
       "pushed along its normal by |offset| in [1e-12, 1e-2] x the diagonal, "
       "either way.\n\n| checker | false positives | false negatives | hangs "
-      "| wrong by feature | |offset| of the wrong | mean ns/check | median | "
+      "| wrong by feature | \\|offset\\| of the wrong | mean ns/check | median "
+      "| "
       "p99 | mean ratio |\n|---|---:|---:|---:|---|---|---:|---:|---:|---:|\n",
       opt.near, touching);
   std::vector<double> near_mean(kNumCheckers);
@@ -661,7 +662,9 @@ int main(int argc, char** argv) {
   {
     std::string cmd;
     for (int i = 0; i < argc; ++i) cmd += std::string(i ? " " : "") + argv[i];
-    md += "`" + cmd + "`; per-check time limit " + std::to_string(opt.timeout) +
+    char limit[32];
+    std::snprintf(limit, sizeof limit, "%g", opt.timeout);
+    md += "`" + cmd + "`; per-check time limit " + limit +
           " s (checks killed past it count as hangs).\n\n";
   }
   bool any = false;
