@@ -7,12 +7,13 @@
 //
 // Why the robot is checked grown by step / 2 (radius + step / 2, length +
 // step): OMPL validates a motion at discrete states only. If no point of
-// the robot moves more than `step` between two checked states, every point
-// of the robot at an instant in between is within step / 2 of where it was
-// at one of them, so the robot at that instant lies inside the grown
-// cylinder at one of the two checked states. Checking the grown cylinder at
-// the discrete states therefore proves the whole motion free, not just the
-// states (with an exact narrow phase: tricyl).
+// the robot moves more than `step` (along its path) between two checked
+// states, every point of the robot at an instant in between is within
+// step / 2 of where the same point was at one of them, so the robot at that
+// instant lies inside the union of the grown cylinders at the two checked
+// states. Checking the grown cylinder at the discrete states therefore
+// proves the whole motion free, not just the states (with an exact narrow
+// phase: tricyl).
 #pragma once
 
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
