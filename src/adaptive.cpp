@@ -146,9 +146,12 @@ DwRun Tape::dw(std::uint32_t id) {
 
 // ---------------------------------------------------------------------------
 // Stage 2: the exact value as a stack expansion (src/expansion.h), which
-// flags the cases it cannot compute exactly. Not memoised: it runs only for
-// signs that are zero or within about 2^-100 of zero relative to their
-// magnitudes, i.e. (almost) only for true ties.
+// flags the cases it cannot compute exactly. It runs only for signs that
+// are zero or within about 2^-100 of zero relative to their magnitudes,
+// i.e. (almost) only for true ties, which usually come several to a query
+// (a triangle in a cap plane: every slab sign, chord and area term) and
+// share coordinates and sub-expressions: memoised per node in the tape's
+// arena.
 Expansion Tape::expansionCoord(const Node& nd) const {
   const Point& P = pts_[nd.a];
   const int j = nd.b;
@@ -158,28 +161,45 @@ Expansion Tape::expansionCoord(const Node& nd) const {
   return j == 2 ? x + x : x;
 }
 
-Expansion Tape::expansion(std::uint32_t id) const {
+Expansion Tape::expansion(std::uint32_t id) {
+  std::uint64_t& word = xmemo_[id >> 6];
+  const std::uint64_t bit = std::uint64_t(1) << (id & 63);
+  if (word & bit)
+    return Expansion::fromComponents(arena_ + xoff_[id], xlen_[id]);
   const Node nd = nodes_[id];
+  Expansion r;
   switch (nd.code) {
     case kLift:
       return Expansion(la_[nd.a]);
     case kDiff:
       return Expansion::difference(la_[nd.a], lb_[nd.a]);
     case kCoord:
-      return expansionCoord(nd);
+      r = expansionCoord(nd);
+      break;
     case kNeg:
-      return -expansion(nd.a);
+      r = -expansion(nd.a);
+      break;
     case kAdd:
-      return expansion(nd.a) + expansion(nd.b);
+      r = expansion(nd.a) + expansion(nd.b);
+      break;
     case kSub:
-      return expansion(nd.a) - expansion(nd.b);
+      r = expansion(nd.a) - expansion(nd.b);
+      break;
     default: {
       const Expansion a = expansion(nd.a);
       if (!a.ok()) return a;
-      if (nd.b == nd.a) return a * a;
-      return a * expansion(nd.b);
+      r = nd.b == nd.a ? a * a : a * expansion(nd.b);
+      break;
     }
   }
+  if (r.ok() && arena_used_ + r.size() <= kArena) {
+    for (int i = 0; i < r.size(); ++i) arena_[arena_used_ + i] = r.data()[i];
+    xoff_[id] = std::uint16_t(arena_used_);
+    xlen_[id] = std::uint16_t(r.size());
+    arena_used_ += r.size();
+    word |= bit;
+  }
+  return r;
 }
 
 // Stage 3: GMP dyadic rationals (ExactKernel), exact for every finite input.
@@ -265,14 +285,20 @@ void Tape::toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x,
   }
 }
 
-Sign Tape::escalate(std::uint32_t id) {
+Sign Tape::escalate(std::uint32_t id, double v) {
   if (overflow_) return Sign::kZero;  // the driver discards this run
   ++escalations_;
-  const DwRun d = dw(id);
-  const double b = (d.e + std::fabs(d.v.lo)) * (1 + 0x1p-40) + 0x1p-600;
-  if (level_ < 1) level_ = 1;
-  if (d.v.hi > b) return Sign::kPos;
-  if (d.v.hi < -b) return Sign::kNeg;
+  // A double value that is exactly 0 is almost always a true tie (an exact
+  // pose and exact data: the double arithmetic did not round), which no
+  // bound certifies: straight to the exact stage. Otherwise double-word
+  // first. Either order gives the same sign.
+  if (v != 0) {
+    const DwRun d = dw(id);
+    const double b = (d.e + std::fabs(d.v.lo)) * (1 + 0x1p-40) + 0x1p-600;
+    if (level_ < 1) level_ = 1;
+    if (d.v.hi > b) return Sign::kPos;
+    if (d.v.hi < -b) return Sign::kNeg;
+  }
   const Expansion x = expansion(id);
   if (x.ok()) {
     if (level_ < 2) level_ = 2;

@@ -88,6 +88,7 @@ class Tape {
   /// overflows (magnitudes <= 2^380, docs/exactness.md).
   Tape() {
     for (auto& w : memo_) w = 0;
+    for (auto& w : xmemo_) w = 0;
   }
   Tape(const Tape&) = delete;
   Tape& operator=(const Tape&) = delete;
@@ -127,7 +128,8 @@ class Tape {
 
   /// The sign of node `id`, which the running double bound could not
   /// certify.
-  TRICYL_ADAPTIVE_NOINLINE Sign escalate(std::uint32_t id);
+  /// `v`: its double value.
+  TRICYL_ADAPTIVE_NOINLINE Sign escalate(std::uint32_t id, double v);
 
   enum Code : std::uint16_t { kLift, kDiff, kAdd, kSub, kNeg, kMul, kCoord };
 
@@ -164,7 +166,7 @@ class Tape {
   DwRun dwCoord(const Node& nd) const;
   Expansion expansionCoord(const Node& nd) const;
   Dyadic dyadicCoord(const Node& nd) const;
-  Expansion expansion(std::uint32_t id) const;
+  Expansion expansion(std::uint32_t id);
   Dyadic dyadic(std::uint32_t id) const;
 
   bool overflow_ = false;
@@ -178,6 +180,14 @@ class Tape {
   Point pts_[kMaxPoints];
   std::uint64_t memo_[kMaxNodes / 64];
   DwRun dw_[kMaxNodes];
+  // The exact stage's memo: node -> its expansion's components in arena_
+  // (a true tie usually needs several signs of the same coordinates and
+  // sub-expressions). Nodes whose expansion does not fit are not memoised.
+  static constexpr int kArena = 2048;
+  std::uint64_t xmemo_[kMaxNodes / 64];
+  std::uint16_t xoff_[kMaxNodes], xlen_[kMaxNodes];
+  int arena_used_ = 0;
+  double arena_[kArena];
 };
 
 /// The tape of the adaptive run in progress on this thread (set by the
@@ -233,7 +243,7 @@ struct AdaptiveKernel {
   static Sign sign(const Num& a) {
     const Sign s = RunningDoubleKernel::sign(Rd{a.v, a.m});
     if (s != Sign::kUnknown) return s;
-    return a.tape->escalate(a.id);
+    return a.tape->escalate(a.id, a.v);
   }
 };
 

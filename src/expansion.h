@@ -59,6 +59,13 @@ class Expansion {
       n_ = 1;
     }
   }
+  /// From n components of a valid expansion (a memo's copy).
+  static Expansion fromComponents(const double* c, int n) {
+    Expansion r;
+    r.n_ = n;
+    for (int i = 0; i < n; ++i) r.c_[i] = c[i];
+    return r;
+  }
   static Expansion difference(double a, double b) {
     Expansion r;
     double s, e;
