@@ -202,6 +202,86 @@ Expansion Tape::expansion(std::uint32_t id) {
   return r;
 }
 
+// Before the expansions, for a sign whose double value is exactly 0: was
+// the double evaluation itself exact? In exact poses with exact data (signed
+// permutations, dyadic or decimal coordinates that cancel exactly) it often
+// is, and then the value is the exact value. Each operation is re-done in
+// double and checked: a sum by its TwoSum error being 0 (and finite), a
+// product by its TwoProduct error being 0 with the product at least
+// kProdExactMin (so that the error term is itself exact), or by an exact 0
+// factor (then the product is an exact 0 whatever the other factor is). The
+// operations and their order are those of the adaptive run, so the value
+// found is that run's value.
+bool Tape::exactInDouble(std::uint32_t id, double* value) const {
+  const Node nd = nodes_[id];
+  auto sumOk = [](double a, double b, double* out) {
+    double s, e;
+    twoSum(a, b, s, e);
+    *out = s;
+    return e == 0 && std::isfinite(s);
+  };
+  auto prodOk = [](double a, double b, double* out) {
+    if (a == 0 || b == 0) {
+      *out = a * b;
+      return true;
+    }
+    double p, e;
+    twoProd(a, b, p, e);
+    *out = p;
+    return e == 0 && std::fabs(p) >= kProdExactMin && std::isfinite(p);
+  };
+  switch (nd.code) {
+    case kLift:
+      *value = la_[nd.a];
+      return true;
+    case kDiff:
+      return sumOk(la_[nd.a], -lb_[nd.a], value);
+    case kCoord: {
+      const Point& P = pts_[nd.a];
+      const int j = nd.b;
+      double t[3];
+      for (int k = 0; k < 3; ++k) {
+        double d;
+        if (P.R[k][j] == 0) {
+          t[k] = 0;  // an exact zero factor
+          continue;
+        }
+        if (!sumOk(P.p[k], -P.t[k], &d) || !prodOk(P.R[k][j], d, &t[k]))
+          return false;
+      }
+      double s1, v;
+      if (!sumOk(t[0], t[1], &s1) || !sumOk(s1, t[2], &v)) return false;
+      *value = j == 2 ? v + v : v;
+      return std::isfinite(*value);
+    }
+    case kNeg: {
+      if (!exactInDouble(nd.a, value)) return false;
+      *value = -*value;
+      return true;
+    }
+    case kAdd:
+    case kSub: {
+      double a, b;
+      if (!exactInDouble(nd.a, &a) || !exactInDouble(nd.b, &b)) return false;
+      return sumOk(a, nd.code == kSub ? -b : b, value);
+    }
+    default: {  // kMul
+      double a, b;
+      const bool ea = exactInDouble(nd.a, &a);
+      if (ea && a == 0) {
+        *value = 0;
+        return true;
+      }
+      if (!exactInDouble(nd.b, &b)) return false;
+      if (b == 0) {
+        *value = 0;
+        return true;
+      }
+      return ea && prodOk(a, b, value);
+    }
+  }
+}
+
 // Stage 3: GMP dyadic rationals (ExactKernel), exact for every finite input.
 Dyadic Tape::dyadicCoord(const Node& nd) const {
   const Point& P = pts_[nd.a];
@@ -298,6 +378,12 @@ Sign Tape::escalate(std::uint32_t id, double v) {
     if (level_ < 1) level_ = 1;
     if (d.v.hi > b) return Sign::kPos;
     if (d.v.hi < -b) return Sign::kNeg;
+  } else {
+    double exact = 0;
+    if (exactInDouble(id, &exact)) {
+      if (level_ < 2) level_ = 2;
+      return exact > 0 ? Sign::kPos : (exact < 0 ? Sign::kNeg : Sign::kZero);
+    }
   }
   const Expansion x = expansion(id);
   if (x.ok()) {

@@ -167,6 +167,7 @@ class Tape {
   Expansion expansionCoord(const Node& nd) const;
   Dyadic dyadicCoord(const Node& nd) const;
   Expansion expansion(std::uint32_t id);
+  bool exactInDouble(std::uint32_t id, double* value) const;
   Dyadic dyadic(std::uint32_t id) const;
 
   bool overflow_ = false;
