@@ -4,7 +4,7 @@
 set -euo pipefail
 PKGS=(build-essential cmake libgmp-dev libfcl-dev libccd-dev libeigen3-dev
       libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev gnuplot-nox
-      clang-14 libclang-rt-14-dev libfuzzer-14-dev doxygen)
+      clang-14 libclang-rt-14-dev libfuzzer-14-dev doxygen libtinyobjloader-dev)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
