@@ -146,8 +146,7 @@ struct FclCases {
 };
 
 // Paired: one iteration runs every case of the family through tricyl, then
-// through FCL, each block timed on its own (a block is ~0.1 ms and ~1.5 ms),
-// so both see the same clock. This VM's effective clock drifts by tens of
+// through FCL, each block timed on its own, so both see the same clock. This VM's effective clock drifts by tens of
 // percent within seconds; rows measured apart (BM_Tricyl vs BM_FclLibccd)
 // carry that drift into their ratio, the paired blocks do not. Counters:
 // tricyl_ns and fcl_ns per query, and ratio = fcl_ns / tricyl_ns, summed over
@@ -251,7 +250,7 @@ void BM_Floor(benchmark::State& state) {
 BENCHMARK(BM_Floor)->DenseRange(0, tricyl::bench::scalar_floor::kLevels - 1);
 #endif
 
-// Not thin or aligned: libccd can loop forever there (issue 9); the harness
+// Not thin or aligned: libccd can loop forever there; the harness
 // runs those under a time limit instead.
 BENCHMARK(BM_FclLibccd)
     ->Arg(int(Family::kUniform))

@@ -101,7 +101,7 @@ inline const char* meshFamilyName(MeshPath p) {
 void prepareMesh(Mesh& mesh);
 
 /// What a case asks: triangle vs cylinder (the default), or one of the
-/// cylinder queries of issue 5.
+/// cylinder queries.
 enum class Query : int {
   kTriangle = -1,
   kPointCylinder = 0,  ///< point in cylinder: p
