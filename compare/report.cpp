@@ -498,7 +498,7 @@ std::vector<std::string> writeReport(const std::string& dir,
         << " ps 1.6 lc rgb '" << kColors[mk % 8] << "' title '"
         << gpText(methodName(shown[mi])) << "', \\\n"
         << "  $m" << mi
-        << " using 1:2:3 with labels font ',7' offset 0.8,0.5 left tc rgb '"
+        << " using 1:2:3 with labels noenhanced font ',7' offset 0.8,0.5 left tc rgb '"
         << kColors[mk % 8] << "' notitle, \\\n";
     }
     g << "  NaN with lines dt 2 lc rgb '#888888' title 'error = 0: drawn on "
