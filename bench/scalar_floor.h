@@ -22,9 +22,10 @@
 //   5  + branch: one branch on the outcome, as any kernel takes to do more
 //      work for the queries still open; here it does none.
 // The kernel itself (BM_Tricyl, BM_Paired) is level 5 plus the work for
-// the queries still open (their share of uniform: bench/results/README.md). Same arithmetic as src/triangle_cylinder.cpp's prologueAvx2Body
-// up to the branch; written again here (the bench must not reach into the
-// library's anonymous namespace), without FMA, like the kernel.
+// the queries still open (their share of uniform: bench/results/README.md).
+// Same arithmetic as src/triangle_cylinder.cpp's prologueAvx2Body up to the
+// branch; written again here (the bench must not reach into the library's
+// anonymous namespace), without FMA, like the kernel.
 #pragma once
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))

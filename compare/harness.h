@@ -37,12 +37,12 @@ enum class Method : int {
   kDiagnosticUncertified,  ///< diagnostic::intersectUncertified: the same
                            ///< algorithm without certificate (not a product
                            ///< mode: it shows what the certificate buys)
-  kTricylFloat,       ///< the case rounded to float, then tricyl (exact)
-  kTricylFcl,         ///< tricyl::Solver<double> inside FCL (Boolean only)
-  kTricylFclContact,  ///< tricyl::Solver<double>, contact data requested
-  kFclLibccd1e6,      ///< GJKSolver_libccd, collision_tolerance = 1e-6
-  kFclLibccdDefault,  ///< GJKSolver_libccd, its own default (~2e-14)
-  kFclIndep,          ///< GJKSolver_indep with its defaults
+  kTricylFloat,            ///< the case rounded to float, then tricyl (exact)
+  kTricylFcl,              ///< tricyl::Solver<double> inside FCL (Boolean only)
+  kTricylFclContact,       ///< tricyl::Solver<double>, contact data requested
+  kFclLibccd1e6,           ///< GJKSolver_libccd, collision_tolerance = 1e-6
+  kFclLibccdDefault,       ///< GJKSolver_libccd, its own default (~2e-14)
+  kFclIndep,               ///< GJKSolver_indep with its defaults
   kCount
 };
 inline constexpr int kMethodCount = int(Method::kCount);
@@ -137,8 +137,8 @@ struct CaseSet {
   double param = kNaN;  ///< sweep abscissa (|delta|, |t|, lz / 2r)
   std::uint64_t count = 0;
   std::function<Case(std::uint64_t)> make;
-  Query query = Query::kTriangle;  ///< what every case of the set asks
-  bool mesh = false;               ///< a mesh family (cases carry a mesh)
+  Query query = Query::kTriangle;        ///< what every case of the set asks
+  bool mesh = false;                     ///< a mesh family (cases carry a mesh)
   MeshPath mesh_path = MeshPath::kScan;  ///< for mesh families
 };
 

@@ -189,8 +189,7 @@ bool methodApplies(Query q, Method m) {
 
 bool methodApplies(const CaseSet& set, Method m) {
   if (!set.mesh) return methodApplies(set.query, m);
-  const bool solver =
-      m == Method::kTricylFcl || m == Method::kTricylFclContact;
+  const bool solver = m == Method::kTricylFcl || m == Method::kTricylFclContact;
   if (set.mesh_path == MeshPath::kScan) return !solver;
   return solver || m == Method::kFclLibccd1e6 ||
          m == Method::kFclLibccdDefault || m == Method::kFclIndep;
@@ -331,10 +330,25 @@ struct Evaluator::Impl {
       default:
         break;
     }
-    const fcl::Cylinderd cyl(k.cyl.radius, k.cyl.lz);
-    const fcl::Transform3d tf = toFcl(k.pose);
-    const fcl::Vector3d a = toFcl(k.tri.a), b = toFcl(k.tri.b),
-                        c = toFcl(k.tri.c);
+    return fclTriangle(m, fcl::Cylinderd(k.cyl.radius, k.cyl.lz), toFcl(k.pose),
+                       k.tri);
+  }
+
+  // The harness's conservative cull, then fn per triangle: the brute-force
+  // loop of the methods that have no batch scan of their own.
+  template <class Fn>
+  static bool scan(const scenes::TriCase& k,
+                   const std::vector<Triangle<double>>& tris, Fn&& fn) {
+    const meshes::Cull cull(k);
+    for (const auto& t : tris)
+      if (cull.mayTouch(t) && fn(t)) return true;
+    return false;
+  }
+
+  /// One triangle through the FCL solver of method m (tf already proper).
+  bool fclTriangle(Method m, const fcl::Cylinderd& cyl,
+                   const fcl::Transform3d& tf, const Triangle<double>& t) {
+    const fcl::Vector3d a = toFcl(t.a), b = toFcl(t.b), c = toFcl(t.c);
     switch (m) {
       case Method::kFclLibccd1e6:
         return ccd_1e6.shapeTriangleIntersect(cyl, tf, a, b, c, nullptr,
@@ -361,35 +375,6 @@ struct Evaluator::Impl {
     }
   }
 
-  // The harness's conservative cull, then fn per triangle: the brute-force
-  // loop of the methods that have no batch scan of their own.
-  template <class Fn>
-  static bool scan(const scenes::TriCase& k,
-                   const std::vector<Triangle<double>>& tris, Fn&& fn) {
-    const meshes::Cull cull(k);
-    for (const auto& t : tris)
-      if (cull.mayTouch(t) && fn(t)) return true;
-    return false;
-  }
-
-  bool fclTriangle(Method m, const fcl::Cylinderd& cyl,
-                   const fcl::Transform3d& tf, const Triangle<double>& t) {
-    const fcl::Vector3d a = toFcl(t.a), b = toFcl(t.b), c = toFcl(t.c);
-    switch (m) {
-      case Method::kFclLibccd1e6:
-        return ccd_1e6.shapeTriangleIntersect(cyl, tf, a, b, c, nullptr,
-                                              nullptr, nullptr);
-      case Method::kFclLibccdDefault:
-        return ccd_default.shapeTriangleIntersect(cyl, tf, a, b, c, nullptr,
-                                                  nullptr, nullptr);
-      case Method::kFclIndep:
-        return indep.shapeTriangleIntersect(cyl, tf, a, b, c, nullptr, nullptr,
-                                            nullptr);
-      default:
-        return false;
-    }
-  }
-
   // mesh_scan: every triangle, no BVH, first hit ends the scan.
   bool meshScan(Method m, const Case& c) {
     const scenes::TriCase& k = c.k;
@@ -408,8 +393,8 @@ struct Evaluator::Impl {
                                    mesh.vertices_f.size() / 3,
                                    mesh.indices.data(), mesh.tris.size()};
         std::size_t first = 0;
-        return tryIntersectAny(toFloat(k.cyl), toFloat(k.pose), view,
-                               &first) == Answer::kIntersect;
+        return tryIntersectAny(toFloat(k.cyl), toFloat(k.pose), view, &first) ==
+               Answer::kIntersect;
       }
       case Method::kDiagnosticUncertified:
         return scan(k, mesh.tris, [&](const Triangle<double>& t) {
@@ -464,8 +449,7 @@ struct Evaluator::Impl {
 Evaluator::Evaluator() : impl_(std::make_unique<Impl>()) {}
 Evaluator::~Evaluator() = default;
 
-bool Evaluator::run(Method m, const Case& c,
-                    std::vector<std::uint32_t>* tris) {
+bool Evaluator::run(Method m, const Case& c, std::vector<std::uint32_t>* tris) {
 #ifdef TRICYL_COMPARE_HAVE_QUERIES
   if (c.query != Query::kTriangle) {
     const scenes::TriCase& k = c.k;

@@ -35,10 +35,23 @@ struct Row {
 };
 
 Row makeRow(const std::string& family, Method m, MethodStats ms) {
-  Row r{family,   m,    ms.cases,       ms.false_positives, ms.false_negatives,
-        ms.hangs, 0,    ms.max_fp_size, ms.max_fn_size,     kNaN,
-        kNaN,     kNaN, ms.ns.size(),     mean(ms.ns),        ms.tri_oracle,
-        ms.tri_missed, ms.tri_extra};
+  Row r{family,
+        m,
+        ms.cases,
+        ms.false_positives,
+        ms.false_negatives,
+        ms.hangs,
+        0,
+        ms.max_fp_size,
+        ms.max_fn_size,
+        kNaN,
+        kNaN,
+        kNaN,
+        ms.ns.size(),
+        mean(ms.ns),
+        ms.tri_oracle,
+        ms.tri_missed,
+        ms.tri_extra};
   r.error_rate = ms.cases ? double(ms.wrong()) / double(ms.cases) : 0.0;
   r.ns_median = percentile(ms.ns, 50);
   r.ns_p99 = percentile(ms.ns, 99);
@@ -272,8 +285,8 @@ std::vector<std::string> writeReport(const std::string& dir,
           << methodName(s.row.method) << ',' << s.row.cases << ',' << s.row.fp
           << ',' << s.row.fn << ',' << s.row.hangs << ','
           << fmt("%.6g", s.row.error_rate) << ','
-          << fmt("%.1f", s.row.ns_median) << ','
-          << fmt("%.1f", s.row.ns_mean) << '\n';
+          << fmt("%.1f", s.row.ns_median) << ',' << fmt("%.1f", s.row.ns_mean)
+          << '\n';
   }
   // ---- hangs.txt (always written, so that "no hangs" is visible)
   {
@@ -415,8 +428,8 @@ std::vector<std::string> writeReport(const std::string& dir,
           {{"set", sets[hr.set].name},
            {"index", hr.index},
            {"method", methodName(hr.method)},
-           {"case_hex", formatCaseHex(asGiven(sets[hr.set].make(hr.index).k,
-                                              hr.method))}});
+           {"case_hex",
+            formatCaseHex(asGiven(sets[hr.set].make(hr.index).k, hr.method))}});
     j["hangs"] = jh;
     json jw = json::array();
     for (const Worst& x : worst) {
@@ -485,9 +498,8 @@ std::vector<std::string> writeReport(const std::string& dir,
         const double ns = use_mean ? r->ns_mean : r->ns_median;
         if (r->method == shown[mi] && std::isfinite(ns))
           // Points on the floor (no error) are not labelled: they crowd.
-          g << ns << ' ' << (r->error_rate > 0 ? r->error_rate : floor)
-            << " \"" << (r->error_rate > 0 ? r->family : std::string())
-            << "\"\n";
+          g << ns << ' ' << (r->error_rate > 0 ? r->error_rate : floor) << " \""
+            << (r->error_rate > 0 ? r->family : std::string()) << "\"\n";
       }
       g << "EOD\n";
     }
@@ -498,7 +510,8 @@ std::vector<std::string> writeReport(const std::string& dir,
         << " ps 1.6 lc rgb '" << kColors[mk % 8] << "' title '"
         << gpText(methodName(shown[mi])) << "', \\\n"
         << "  $m" << mi
-        << " using 1:2:3 with labels noenhanced font ',7' offset 0.8,0.5 left tc rgb '"
+        << " using 1:2:3 with labels noenhanced font ',7' offset 0.8,0.5 left "
+           "tc rgb '"
         << kColors[mk % 8] << "' notitle, \\\n";
     }
     g << "  NaN with lines dt 2 lc rgb '#888888' title 'error = 0: drawn on "
@@ -510,8 +523,7 @@ std::vector<std::string> writeReport(const std::string& dir,
   };
   if (!tri_sets.empty()) {
     plotErrorVsTime("error_vs_time", tri_sets, "triangle family", true);
-    plotErrorVsTime("error_vs_time_median", tri_sets, "triangle family",
-                    false);
+    plotErrorVsTime("error_vs_time_median", tri_sets, "triangle family", false);
   }
   if (!mesh_sets.empty())
     plotErrorVsTime("error_vs_time_mesh", mesh_sets, "mesh family", true);
@@ -519,8 +531,7 @@ std::vector<std::string> writeReport(const std::string& dir,
   for (std::size_t s : family_sets)
     if (sets[s].query != Query::kTriangle) query_sets.push_back(s);
   if (!query_sets.empty())
-    plotErrorVsTime("error_vs_time_queries", query_sets, "query/family",
-                    true);
+    plotErrorVsTime("error_vs_time_queries", query_sets, "query/family", true);
   std::set<std::string> sweep_names;
   for (const SRow& s : srows) sweep_names.insert(s.sweep);
   const std::map<std::string, std::string> xlabels = {
@@ -578,8 +589,7 @@ std::vector<std::string> writeReport(const std::string& dir,
   if (info.sweep_cases)
     md << ", " << info.sweep_cases << " cases per stability point";
   if (info.query_cases)
-    md << ", " << info.query_cases
-       << " cases per cylinder query x family";
+    md << ", " << info.query_cases << " cases per cylinder query x family";
   md << "; " << info.options.workers << " worker processes; time limit "
      << info.options.timeout_s << " s per FCL query; wall time "
      << fmt("%.1f", result.wall_seconds) << " s.  \n"

@@ -70,7 +70,8 @@ Mesh read(const std::string& path) {
   const auto& attrib = reader.GetAttrib();
   Mesh m;
   m.vertices = exactCoordinates(
-      path, std::vector<double>(attrib.vertices.begin(), attrib.vertices.end()));
+      path,
+      std::vector<double>(attrib.vertices.begin(), attrib.vertices.end()));
   const std::size_t nv = m.numVertices();
   for (const auto& shape : reader.GetShapes()) {
     const auto& mesh = shape.mesh;
@@ -89,8 +90,7 @@ Mesh read(const std::string& path) {
       at += n;
     }
   }
-  if (m.indices.empty())
-    throw std::runtime_error("no triangles in " + path);
+  if (m.indices.empty()) throw std::runtime_error("no triangles in " + path);
   return m;
 }
 

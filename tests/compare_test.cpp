@@ -399,8 +399,9 @@ TEST(CompareRunner, CountsDoNotDependOnWorkers) {
                       return Case{scenes::generate(f, 3, i), nullptr};
                     }});
   compare::RunOptions opt;
-  opt.methods = {Method::kTricyl, Method::kDiagnosticUncertified, Method::kTricylFloat,
-                 Method::kFclLibccd1e6, Method::kFclIndep};
+  opt.methods = {Method::kTricyl, Method::kDiagnosticUncertified,
+                 Method::kTricylFloat, Method::kFclLibccd1e6,
+                 Method::kFclIndep};
   opt.progress = false;
   opt.unit = 37;
   opt.workers = 1;
@@ -455,7 +456,7 @@ TEST(CompareEndToEnd, SmallRunWritesParsableReports) {
 
   // results.json parses and has one row per family x method.
   const auto j = nlohmann::json::parse(slurp(dir + "/results.json"));
-  const std::set<std::string> fams = {"uniform", "near", "far",
+  const std::set<std::string> fams = {"uniform", "near",   "far",
                                       "thin",    "sliver", "aligned"};
   // Rows expected per family: every available method that applies.
   auto expected = [](bool mesh, compare::MeshPath path) {
@@ -510,9 +511,9 @@ TEST(CompareEndToEnd, SmallRunWritesParsableReports) {
   std::string header;
   ASSERT_TRUE(std::getline(csv, header));
   const auto cols = splitCsv(header);
-  for (const char* c : {"family", "method", "cases", "false_positives",
-                        "false_negatives", "hangs", "ns_mean", "ns_median",
-                        "ns_p99", "ns_max"})
+  for (const char* c :
+       {"family", "method", "cases", "false_positives", "false_negatives",
+        "hangs", "ns_mean", "ns_median", "ns_p99", "ns_max"})
     EXPECT_NE(std::find(cols.begin(), cols.end(), c), cols.end()) << c;
   std::size_t rows = 0;
   std::set<std::string> methods;
