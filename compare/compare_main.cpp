@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "harness.h"
+#include "known_cases.h"
 #include "mesh_scenes.h"
 #include "report.h"
 #include "runner.h"
@@ -276,6 +277,13 @@ int main(int argc, char** argv) {
           sets.push_back(set);
         }
 #endif
+      // The known cases (compare/known_cases.h), in every default run.
+      if (families.empty()) {
+        const tricyl::scenes::TriCase k = discHangCase();
+        sets.push_back({"case", "disc_hang", kNaN, 1, [k](std::uint64_t) {
+                          return Case{k, nullptr};
+                        }});
+      }
       if (sweep_cases > 0) {
         for (auto& s : sweeps::deltaSweep(seed, sweep_cases)) sets.push_back(s);
         for (auto& s : sweeps::translationSweep(seed, sweep_cases))
@@ -299,7 +307,7 @@ int main(int argc, char** argv) {
       std::printf(", %s", f.substr(f.rfind('/') + 1).c_str());
     std::printf("\n");
     for (std::size_t s = 0; s < sets.size(); ++s) {
-      if (sets[s].kind != "family") continue;
+      if (sets[s].kind == "sweep") continue;
       std::printf("  %-10s", sets[s].name.c_str());
       for (Method m : opt.methods) {
         if (!methodApplies(sets[s], m)) continue;

@@ -132,7 +132,7 @@ struct Case {
 };
 
 struct CaseSet {
-  std::string kind;     ///< "family" or "sweep"
+  std::string kind;     ///< "family", "sweep" or "case" (known cases)
   std::string name;     ///< family name, or the swept quantity
   double param = kNaN;  ///< sweep abscissa (|delta|, |t|, lz / 2r)
   std::uint64_t count = 0;

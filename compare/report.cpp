@@ -175,7 +175,7 @@ std::vector<std::string> writeReport(const std::string& dir,
   std::vector<std::size_t> family_sets, sweep_sets, tri_sets, mesh_sets;
   for (std::size_t s = 0; s < sets.size(); ++s) {
     (sets[s].kind == "sweep" ? sweep_sets : family_sets).push_back(s);
-    if (sets[s].kind != "sweep" && sets[s].query == Query::kTriangle)
+    if (sets[s].kind == "family" && sets[s].query == Query::kTriangle)
       (sets[s].mesh ? mesh_sets : tri_sets).push_back(s);
   }
   auto applies = [&](std::size_t s, Method m) {
@@ -818,11 +818,17 @@ std::vector<std::string> writeReport(const std::string& dir,
           "killed and restarted after each, and each is counted as a wrong "
           "answer in `hangs`. The cases are in `hangs.txt`, bit-exact (replay "
           "with `tricyl-compare --replay hangs.txt`).\n\n"
-          "| set | index | method |\n|---|---:|---|\n";
-    for (std::size_t i = 0; i < result.hangs.size() && i < 50; ++i)
-      md << "| " << sets[result.hangs[i].set].name << " | "
-         << result.hangs[i].index << " | " << methodName(result.hangs[i].method)
+          "| set | index | method | feature | the case as the method got it "
+          "(r lz R00..R22 t a b c, hex) |\n|---|---:|---|---|---|\n";
+    for (std::size_t i = 0; i < result.hangs.size() && i < 50; ++i) {
+      const HangRecord& hr = result.hangs[i];
+      const Case c = sets[hr.set].make(hr.index);
+      md << "| " << sets[hr.set].name << " | " << hr.index << " | "
+         << methodName(hr.method) << " | " << c.k.feature << " | "
+         << (c.mesh ? std::string("(mesh case)")
+                    : "`" + formatCaseHex(asGiven(c.k, hr.method)) + "`")
          << " |\n";
+    }
   }
   md << "\n## Figures\n\n![error rate against mean time](error_vs_time.png)"
         "\n\n![error rate against median time](error_vs_time_median.png)\n\n";

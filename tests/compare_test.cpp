@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "harness.h"
+#include "known_cases.h"
 #include "mesh_scenes.h"
 #include "obj_mesh.h"
 #include "oracle.h"
@@ -256,28 +257,10 @@ TEST(CompareCaseText, HexRoundTripIsBitExact) {
 
 // -------------------------------------------------- issue 9: the hang
 
-// The case of issue 9, bit-exact: a disc (r ~ 778, lz ~ 1.06e-6) whose rim
-// edge the triangle crosses. GJKSolver_libccd<double> with its default
-// tolerance (~2e-14) never returns on it (libccd's MPR has no iteration
-// cap); the harness must kill the query at its time limit, count it in
-// `hangs`, and go on.
-TriCase issue9Case() {
-  TriCase k;
-  k.cyl = {0x1.8523b2c7f16bfp+9, 0x1.1d3482e4f382bp-20};
-  const double R[3][3] = {
-      {0x1.48b62eb9de056p-2, -0x1.5f07bdb4e0192p-1, -0x1.4e872644fc344p-1},
-      {0x1.5c2a442996f94p-2, 0x1.746386dd0c053p-1, -0x1.313b183115a55p-1},
-      {0x1.c493d98a71998p-1, -0x1.f850245fded6p-6, 0x1.ddc88111b7d02p-2}};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) k.pose.R[i][j] = R[i][j];
-  k.pose.t = {-0x1.51bb1180c6b4p-1, 0x1.a407417745a74p+0, 0x1.286f93e83346p-1};
-  k.tri = {
-      {-0x1.3534e5984faf4p+6, -0x1.a6f71157db70ep+8, -0x1.44a19c5402542p+9},
-      {-0x1.6fc68327e9913p+7, -0x1.4d2ce616c4b6cp+8, -0x1.55e5b744efdp+9},
-      {-0x1.5d58739ed8ec2p+6, -0x1.6c8a172168b19p+8, -0x1.3777f50c50d2cp+9}};
-  k.feature = "issue9";
-  return k;
-}
+// The case of issue 9 (compare/known_cases.h): GJKSolver_libccd<double>
+// with its default tolerance never returns on it; the harness must kill the
+// query at its time limit, count it in `hangs`, and go on.
+TriCase issue9Case() { return compare::discHangCase(); }
 
 TEST(CompareTimeLimit, Issue9HangIsDetectedWithinTheLimit) {
   const TriCase k = issue9Case();
@@ -473,7 +456,7 @@ TEST(CompareEndToEnd, SmallRunWritesParsableReports) {
   for (const auto& row : j["results"]) {
     const std::string fam = row["family"].get<std::string>();
     ++rows_of[fam];
-    if (!fams.count(fam) && fam.rfind("mesh_", 0) != 0) {
+    if (!fams.count(fam) && fam.rfind("mesh_", 0) != 0 && fam != "disc_hang") {
       // a cylinder query: "<query>/<family>"
       EXPECT_TRUE(compare::haveQueries()) << fam;
       EXPECT_NE(fam.find('/'), std::string::npos) << fam;
@@ -483,6 +466,14 @@ TEST(CompareEndToEnd, SmallRunWritesParsableReports) {
     EXPECT_EQ(rows_of[f], expected(false, compare::MeshPath::kScan)) << f;
   EXPECT_EQ(rows_of["mesh_scan"], expected(true, compare::MeshPath::kScan));
   EXPECT_EQ(rows_of["mesh_bvh"], expected(true, compare::MeshPath::kBvh));
+  // The known disc case runs in every default run, and hangs libccd at its
+  // default tolerance only, on the pose as given (a proper rotation).
+  EXPECT_EQ(rows_of["disc_hang"], expected(false, compare::MeshPath::kScan));
+  ASSERT_EQ(j["hangs"].size(), 1u);
+  EXPECT_EQ(j["hangs"][0]["set"], "disc_hang");
+  EXPECT_EQ(j["hangs"][0]["method"], "fcl_libccd_default");
+  EXPECT_EQ(j["hangs"][0]["case_hex"],
+            compare::formatCaseHex(compare::discHangCase()));
   // The exhaustive BVH rows carry triangle counts; tricyl::collide's are
   // exact (none missed, none false).
   for (const auto& row : j["results"])
