@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
                  "OBJ files for the mesh families (replace the built-in "
                  "sphere, torus and terrain; the word 'builtin' adds those)");
   app.add_option("--mesh-cases", mesh_cases,
-                 "cases of the mesh family (default: cases / 10)");
+                 "cases of each mesh family (default: cases / 10)");
   app.add_option(
          "--queries", queries,
          "cylinder queries to run, each over its families "

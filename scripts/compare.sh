@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The comparison harness from scratch: packages, Release build with
 # tricyl-compare, and a default run writing report/ (report.md, results.csv,
-# results.json, stability.csv, hangs.txt, error_vs_time.png, stability_*.png).
+# results.json, stability.csv, hangs.txt, worst_cases.txt, error_vs_time*.png,
+# stability_*.png; compare/README.md explains every column).
 # Usage: bash scripts/compare.sh [extra tricyl-compare options]
 #        (from anywhere; the report lands in <repo>/report)
 # The mesh families use the built-in meshes, plus env.obj, bunny.obj and
