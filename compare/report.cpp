@@ -814,7 +814,8 @@ std::vector<std::string> writeReport(const std::string& dir,
     md << "No query exceeded the time limit in this run.\n";
   } else {
     md << result.hangs.size()
-       << " queries did not return within the time limit; the worker was "
+       << (result.hangs.size() == 1 ? " query" : " queries")
+       << " did not return within the time limit; the worker was "
           "killed and restarted after each, and each is counted as a wrong "
           "answer in `hangs`. The cases are in `hangs.txt`, bit-exact (replay "
           "with `tricyl-compare --replay hangs.txt`).\n\n"
