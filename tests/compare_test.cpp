@@ -262,7 +262,7 @@ TEST(CompareCaseText, HexRoundTripIsBitExact) {
 // query at its time limit, count it in `hangs`, and go on.
 TriCase issue9Case() { return compare::discHangCase(); }
 
-TEST(CompareTimeLimit, Issue9HangIsDetectedWithinTheLimit) {
+TEST(CompareTimeLimit, DiscHangIsDetectedWithinTheLimit) {
   const TriCase k = issue9Case();
   ASSERT_TRUE(oracle::triangleCylinder(k.cyl, k.pose, k.tri));
   std::vector<CaseSet> sets = {
@@ -535,7 +535,7 @@ TEST(CompareEndToEnd, SmallRunWritesParsableReports) {
 
 // The replay path: the issue 9 case from a hangs.txt-style file, through the
 // executable, reports the hang in results.csv within the limit.
-TEST(CompareEndToEnd, ReplayReportsTheIssue9Hang) {
+TEST(CompareEndToEnd, ReplayReportsTheDiscHang) {
   char tmpl[] = "/tmp/tricyl_compare_replay_XXXXXX";
   ASSERT_NE(mkdtemp(tmpl), nullptr);
   const std::string dir = tmpl;
