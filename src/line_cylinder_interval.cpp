@@ -223,9 +223,15 @@ bool intervalRunning(const LinearInputs& in, bool segment,
     lo.add(a_lo, a_hi);
     hi.add(b_lo, b_hi);
   }
-  // Infinite cylinder.
-  const N A = Dx * Dx + Dy * Dy;
-  if (!(A.v == 0 && A.e == 0)) {
+  // Infinite cylinder. A = 0 exactly iff Dx = Dy = 0 exactly, which the
+  // local frame certifies with e = 0 (toLocalRunning: every term has a zero
+  // factor, so nothing rounded or underflowed). A itself is never tested for
+  // a certified 0: Dy * Dy may underflow to 0, and whether its bound then
+  // stays 0 would depend on the width of the type (issue 20: with long
+  // double = double and no underflow allowance, Line{{1,0,0},{1,dmin,0}}
+  // clipped to [-inf, +inf] instead of [0, 0]).
+  if (!(Dx.v == 0 && Dx.e == 0 && Dy.v == 0 && Dy.e == 0)) {
+    const N A = Dx * Dx + Dy * Dy;
     if (!(A.v > A.e * T(kInfl))) return false;  // A > 0 not certain
     const N b = x0 * Dx + y0 * Dy;
     const N C = x0 * x0 + y0 * y0 - r * r;
@@ -250,8 +256,18 @@ bool intervalRunning(const LinearInputs& in, bool segment,
   }
   if (!(lo.accurate(T(2 * kAccept)) && hi.accurate(T(2 * kAccept))))
     return false;
-  out->lo = endToDouble(lo.mid());
-  out->hi = endToDouble(hi.mid());
+  // The exact interval is non-empty (the Boolean said so), so a crossing of
+  // the two approximations is a rounding artefact of at most the bound: the
+  // midpoint is then within the bound of both exact ends. Done here, where
+  // both ends are finite (within max/2), and not on the double ends, which
+  // may be infinite: clang if-converts such a branch and evaluates both
+  // arms, and -inf/2 + inf/2 raised FE_INVALID on a valid whole-line clip
+  // (issue 20). Every operation below is on finite values, so evaluating it
+  // speculatively raises nothing.
+  T a = lo.mid(), b = hi.mid();
+  if (a > b) a = b = a / 2 + b / 2;
+  out->lo = endToDouble(a);
+  out->hi = endToDouble(b);
   return true;
 }
 
@@ -346,12 +362,11 @@ Interval<double> linearInterval(const LinearInputs& in, bool segment) {
   if (!(gate && (intervalRunning<RunningDoubleKernel>(in, segment, &iv) ||
                  intervalRunning<ExtendedKernel>(in, segment, &iv))))
     iv = intervalExact(in, segment);
-  // The exact interval is non-empty (the Boolean said so), so a crossing of
-  // the two approximations is a rounding artefact of at most the bound:
-  // the midpoint is then within the bound of both exact ends. (Both ends
-  // are finite here: stage 1 gives finite values, and stage 2 is monotone,
-  // so it cannot cross.)
-  if (iv.lo > iv.hi) iv.lo = iv.hi = iv.lo / 2 + iv.hi / 2;
+  // No arithmetic on the ends here: they may be infinite (a line's), and a
+  // compiler may evaluate a guarded operation speculatively. Stage 1 has
+  // resolved a crossing of its ends (intervalRunning); stage 2 cannot cross
+  // (truncation to double is monotone). Comparisons and min/max with an
+  // infinity raise nothing.
   if (segment) {
     iv.lo = std::min(std::max(iv.lo, 0.0), 1.0);
     iv.hi = std::min(std::max(iv.hi, 0.0), 1.0);

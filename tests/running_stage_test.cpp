@@ -9,7 +9,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <cstdio>
 #include <random>
 
@@ -28,25 +31,74 @@ using detail::RunningDoubleKernel;
 using detail::Tri;
 using oracle::Q;
 
-// Exact rational value of a long double (or double): its significand, at
-// most 64 bits, as an integer times a power of two (frexp and ldexp are
-// exact; the integer is built from two 32-bit halves, since mpz_class
-// takes no unsigned 64-bit value portably).
+// Exact rational value of a long double (or double), read from its bits:
+// no libm call (a test built with -mlong-double-64 must not call libm's
+// long double functions, whose ABI is the 80-bit one) and every significand
+// width: 53 (long double = double), 64 (x87 extended, explicit leading bit)
+// and 113 (IEEE binary128, AArch64 Linux). Issue 20: the frexp/ldexp
+// version kept only 64 significand bits and failed on AArch64.
 Q exactly(long double v) {
-  if (v == 0) return Q(0);
-  int k = 0;
-  const long double f = std::frexp(v < 0 ? -v : v, &k);   // 0.5 <= f < 1
-  const long double top = std::floor(std::ldexp(f, 32));  // f 2^32, high
-  const long double low = std::ldexp(f, 64) - std::ldexp(top, 32);
-  mpz_class m = mpz_class(static_cast<unsigned long>(top));
-  m <<= 32;
-  m += mpz_class(static_cast<unsigned long>(low));
+  constexpr int kMant = LDBL_MANT_DIG;
+  static_assert(kMant == 53 || kMant == 64 || kMant == 113,
+                "long double: binary64, x87 extended or binary128");
+  static_assert(std::numeric_limits<long double>::is_iec559 || kMant == 64);
+  unsigned char b[sizeof(long double)];
+  std::memcpy(b, &v, sizeof v);
+  // Little-endian byte k of the encoding (x86-64, AArch64).
+  auto bit = [&](int k) { return (b[k / 8] >> (k % 8)) & 1; };
+  const int frac_bits = kMant == 64 ? 63 : kMant - 1;  // stored fraction
+  const int exp_bits = kMant == 53 ? 11 : 15;
+  const int exp_at = kMant == 64 ? 64 : frac_bits;  // x87: explicit bit 63
+  int biased = 0;
+  for (int k = exp_bits - 1; k >= 0; --k) biased = 2 * biased + bit(exp_at + k);
+  const bool negative = bit(exp_at + exp_bits) != 0;
+  mpz_class m = 0;
+  for (int k = frac_bits - 1; k >= 0; --k) m = 2 * m + bit(k);
+  const int bias = (1 << (exp_bits - 1)) - 1;
+  int e = 0;  // v = m 2^(e - frac_bits)
+  if (kMant == 64) {
+    if (bit(63)) m += mpz_class(1) << 63;  // the explicit leading bit
+    e = (biased == 0 ? 1 : biased) - bias;
+  } else if (biased == 0) {
+    e = 1 - bias;  // subnormal
+  } else {
+    m += mpz_class(1) << frac_bits;  // the hidden bit
+    e = biased - bias;
+  }
   Q q(m);
-  if (k - 64 >= 0)
-    mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(k - 64));
+  const int shift = e - frac_bits;
+  if (shift >= 0)
+    mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(shift));
   else
-    mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(64 - k));
-  return v < 0 ? Q(-q) : q;
+    mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(-shift));
+  q.canonicalize();
+  return negative ? Q(-q) : q;
+}
+
+// exactly() on values that use every significand bit of the type, the
+// smallest subnormal and the largest finite value, against their values
+// built independently in Q.
+TEST(RunningFrameExactly, ConvertsEverySignificandBit) {
+  using L = std::numeric_limits<long double>;
+  const int p = LDBL_MANT_DIG;
+  auto pow2 = [](int k) {  // 2^k in Q
+    Q q(1);
+    if (k >= 0)
+      mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(k));
+    else
+      mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(-k));
+    return q;
+  };
+  const long double all_ones = 1 - L::epsilon() / 2;  // 1 - 2^-p
+  EXPECT_EQ(exactly(all_ones), Q(1 - pow2(-p)));
+  EXPECT_EQ(exactly(-all_ones * 8), Q(-8 * (1 - pow2(-p))));
+  EXPECT_EQ(exactly(1 + L::epsilon()), Q(1 + pow2(1 - p)));
+  EXPECT_EQ(exactly(L::denorm_min()), pow2(L::min_exponent - 1 - (p - 1)));
+  EXPECT_EQ(exactly(L::min()), pow2(L::min_exponent - 1));
+  EXPECT_EQ(exactly(L::max()), Q((1 - pow2(-p)) * pow2(L::max_exponent)));
+  EXPECT_EQ(exactly(0.0L), Q(0));
+  EXPECT_EQ(exactly(-0.0L), Q(0));
+  EXPECT_EQ(exactly(0.375L), Q(3, 8));
 }
 
 template <class K>
