@@ -16,14 +16,14 @@ namespace tricyl::detail {
 //   input difference a-b:  v = TwoSum(a, -b), exact: e = 0 (no overflow
 //                          under the range gate).
 //   a +- b:  v = dwAdd(a, +-b),
-//            e = e_a + e_b + kDwRel |v.hi| + kDwTiny;
+//            e = e_a + e_b + kDwAddRel (|a.hi| + |b.hi|);
 //   a * b:   v = dwMul(a, b),
 //            e = |a| e_b + |b| e_a + e_a e_b + kDwRel |v.hi| + kDwTiny,
 //            with |a| = |a.hi| + |a.lo|,
 //   since |v_a v_b - A B| <= |v_a| |v_b - B| + |B| |v_a - A| and
-//   |B| <= |v_b| + e_b; kDwRel |v.hi| bounds the double-word operation's own
-//   error (relative to its exact result, Joldes-Muller-Popescu) and kDwTiny
-//   its losses to underflow.
+//   |B| <= |v_b| + e_b; kDwAddRel (...) and kDwRel |v.hi| bound the
+//   double-word operations' own errors (src/eft.h) and kDwTiny the
+//   product's losses to underflow.
 //   local coordinate sum_k R_kj (p_k - t_k): one straight-line
 //   evaluation with an a-priori bound (dwCoord below).
 // e itself is computed with rounding to nearest from non-negative terms, at
@@ -40,7 +40,7 @@ namespace {
 inline DwRun runAdd(const DwRun& a, const DwRun& b) {
   DwRun r;
   r.v = dwAdd(a.v, b.v);
-  r.e = a.e + b.e + kDwRel * std::fabs(r.v.hi) + kDwTiny;
+  r.e = a.e + b.e + kDwAddRel * (std::fabs(a.v.hi) + std::fabs(b.v.hi));
   return r;
 }
 inline DwRun runMul(const DwRun& a, const DwRun& b) {
@@ -48,8 +48,7 @@ inline DwRun runMul(const DwRun& a, const DwRun& b) {
   r.v = dwMul(a.v, b.v);
   const double ma = std::fabs(a.v.hi) + std::fabs(a.v.lo);
   const double mb = std::fabs(b.v.hi) + std::fabs(b.v.lo);
-  r.e =
-      ma * b.e + mb * a.e + a.e * b.e + kDwRel * std::fabs(r.v.hi) + kDwTiny;
+  r.e = ma * b.e + mb * a.e + a.e * b.e + kDwRel * std::fabs(r.v.hi) + kDwTiny;
   return r;
 }
 }  // namespace
@@ -90,7 +89,12 @@ DwRun Tape::dwCoord(const Node& nd) const {
       ((((f1 + f2) + (e[0] + e[1])) + e[2]) + (q[0] + q[1])) + q[2];
   DwRun r;
   twoSum(s, low, r.v.hi, r.v.lo);
-  r.e = 0x1p-100 * m + kDwTiny;
+  // Every term with a zero factor (R_k = 0 or p_k = t_k): an exact 0 with
+  // nothing rounded or underflowed, certified as such (the line interval
+  // tests Dx = Dy = 0 and DZ = 0 that way).
+  bool zero = true;
+  for (int k = 0; k < 3; ++k) zero = zero && (P.R[k][j] == 0 || D[k] == 0);
+  r.e = zero ? 0.0 : 0x1p-100 * m + kDwTiny;
   if (j == 2) {  // Z = 2 z: exact scaling, bound doubled
     r.v.hi *= 2;
     r.v.lo *= 2;
@@ -184,8 +188,8 @@ Dyadic Tape::dyadicCoord(const Node& nd) const {
   const int j = nd.b;
   Dyadic x;
   for (int k = 0; k < 3; ++k)
-    x = x + ExactKernel::lift(P.R[k][j]) *
-                ExactKernel::inputDiff(P.p[k], P.t[k]);
+    x = x +
+        ExactKernel::lift(P.R[k][j]) * ExactKernel::inputDiff(P.p[k], P.t[k]);
   return j == 2 ? x + x : x;
 }
 
@@ -215,9 +219,10 @@ void Tape::toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x,
                    An& y, An& Z) {
   const double pp[3] = {p.x, p.y, p.z};
   const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
-  // The double values and magnitudes of FilterKernel's generic toLocal:
-  // d_k = fl(p_k - t_k) with magnitude |d_k|, then ((R_0j d_0 + R_1j d_1)
-  // + R_2j d_2) with magnitudes summed the same way.
+  // The double values of the generic toLocal: d_k = fl(p_k - t_k), then
+  // ((R_0j d_0 + R_1j d_1) + R_2j d_2), and the folded running bound of
+  // toLocalRunning (src/triangle_cylinder_impl.h, derived there) from
+  // S = sum_k |R_kj| |d_k|.
   double d[3], a[3];
   for (int k = 0; k < 3; ++k) {
     d[k] = pp[k] - tt[k];
@@ -241,9 +246,17 @@ void Tape::toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x,
     const double* R0 = pose.R[0];
     const double* R1 = pose.R[1];
     const double* R2 = pose.R[2];
-    double v = (R0[j] * d[0] + R1[j] * d[1]) + R2[j] * d[2];
+    const double s1 = R0[j] * d[0] + R1[j] * d[1];
+    double v = s1 + R2[j] * d[2];
     double m = (std::fabs(R0[j]) * a[0] + std::fabs(R1[j]) * a[1]) +
-               std::fabs(R2[j]) * a[2];
+               std::fabs(R2[j]) * a[2];  // S, then the bound
+    {
+      constexpr double c = 0x1p-53 + 0x1p-53 * 0x1p-40;
+      const bool zero = (R0[j] == 0 || d[0] == 0) &&
+                        (R1[j] == 0 || d[1] == 0) && (R2[j] == 0 || d[2] == 0);
+      m = (((m + m) + std::fabs(s1)) + std::fabs(v)) * c +
+          (zero ? 0.0 : 4 * 0x1p-1074);
+    }
     if (j == 2) {
       v = v + v;
       m = m + m;

@@ -14,10 +14,9 @@
 //     exactness conditions under underflow.
 //   M. Joldes, J.-M. Muller, V. Popescu, "Tight and rigorous error bounds
 //     for basic building blocks of double-word arithmetic", ACM TOMS 44(2),
-//     2017: relative error of AccurateDWPlusDW (Algorithm 6) <= 3u^2 / (1 -
-//     4u), of DWTimesDW1 (Algorithm 10, no FMA) <= 7u^2 and of DWTimesDW3
-//     (Algorithm 12, FMA) <= 5u^2, u = 2^-53, in the absence of underflow
-//     and overflow.
+//     2017: relative error of DWTimesDW1 (Algorithm 10) <= 7u^2, u = 2^-53,
+//     in the absence of underflow and overflow. The addition is their
+//     sloppy one, with its own bound (dwAdd).
 #pragma once
 
 #include <cmath>
@@ -75,48 +74,50 @@ struct DW {
   double lo;
 };
 
-/// Joldes-Muller-Popescu Algorithm 6 (AccurateDWPlusDW): the computed
-/// z = x + y has |z - (x + y)| <= 3u^2 / (1 - 4u) |x + y| (relative to the
-/// EXACT sum, so no loss under cancellation), without underflow.
+/// x + y with an error bounded by the operands' magnitudes (the "sloppy"
+/// double-word addition, with a TwoSum at the end so that no ordering of
+/// the final pair is assumed): (sh, sl) = TwoSum(xh, yh) is exact;
+/// v = fl(xl + yl) and w = fl(sl + v) round once each; (zh, zl) =
+/// TwoSum(sh, w) is exact. So z - (x + y) = (xl + yl) d1 + (sl + v) d2 with
+/// |d1|, |d2| <= u, and with |xl| <= u |xh|, |yl| <= u |yh|, |sl| <= u |sh|,
+/// |sh| <= (1 + u)(|xh| + |yh|):
+///   |z - (x + y)| <= 3 u^2 (1 + u) (|xh| + |yh|) <= kDwAddRel (|xh| + |yh|).
+/// Additions of doubles are exact in the subnormal range: no underflow
+/// term. (Not accurate relative to a cancelling sum, which the running
+/// bound of src/adaptive.cpp does not need: it is 2^-104 of the operands,
+/// where a double filter has 2^-47.)
 inline DW dwAdd(DW x, DW y) {
-  double sh, sl, th, tl;
+  double sh, sl;
   twoSum(x.hi, y.hi, sh, sl);
-  twoSum(x.lo, y.lo, th, tl);
-  const double c = sl + th;
-  double vh, vl;
-  twoSum(sh, c, vh, vl);  // FastTwoSum in the paper; TwoSum is the same here
-  const double w = tl + vl;
+  const double v = x.lo + y.lo;
+  const double w = sl + v;
   DW z;
-  twoSum(vh, w, z.hi, z.lo);
+  twoSum(sh, w, z.hi, z.lo);
   return z;
 }
+inline constexpr double kDwAddRel = 0x1p-104;  // 4 u^2
+
 inline DW dwNeg(DW x) { return {-x.hi, -x.lo}; }
 
-/// x * y: Algorithm 12 (DWTimesDW3, with FMA; <= 5u^2) or Algorithm 10
-/// (DWTimesDW1, TwoProduct by Dekker; <= 7u^2), relative to the exact
-/// product x y, without underflow.
+/// x * y: Algorithm 10 (DWTimesDW1; relative error <= 7u^2 of the exact
+/// product x y, without underflow). Its TwoProduct is exact with or without
+/// FMA, and nothing else in it could be fused (-ffp-contract=off), so the
+/// result is the same bits on every platform.
 inline DW dwMul(DW x, DW y) {
   double ch, cl1;
   twoProd(x.hi, y.hi, ch, cl1);
-#if TRICYL_HAVE_FMA
-  const double tl0 = x.lo * y.lo;
-  const double tl1 = std::fma(x.hi, y.lo, tl0);
-  const double cl2 = std::fma(x.lo, y.hi, tl1);
-  const double cl3 = cl1 + cl2;
-#else
   const double tl1 = x.hi * y.lo;
   const double tl2 = x.lo * y.hi;
   const double cl2 = tl1 + tl2;
   const double cl3 = cl1 + cl2;
-#endif
   DW z;
   twoSum(ch, cl3, z.hi, z.lo);
   return z;
 }
 
-/// The relative error bounds used by the running bound of src/adaptive.h:
-/// 2^-103 = 8u^2 covers 3u^2 / (1 - 4u) (addition) and 7u^2 (product, both
-/// variants) with room for the (1 + u) between |x op y| and |z.hi|.
+/// The relative error bound of dwMul used by the running bound of
+/// src/adaptive.cpp: 2^-103 = 8u^2 covers 7u^2 with room for the (1 + u)
+/// between |x y| and |z.hi|.
 inline constexpr double kDwRel = 0x1p-103;
 /// The absolute allowance per double-word operation for underflow: each of
 /// its at most 12 IEEE operations loses at most 2^-1075 absolutely when its

@@ -4,17 +4,17 @@
 // on K::Num and K::sign(). It is then run with:
 //   FilterKernel  Num = Fd (double value + magnitude), sign() certified by a
 //                 derived error bound, kUnknown when the bound cannot decide;
-//   RunningDoubleKernel, ExtendedKernel  the filter with a running error
-//                 bound, in double (cylinder queries), then in long double
-//                 (second stage);
-//   TrackedKernel   the double filter with every operation checked for
-//                 rounding: exact signs, zero included (third stage);
+//   AdaptiveKernel (src/adaptive.h)  the same double values, each sign the
+//                 bound leaves open re-decided by itself in double-word,
+//                 then exactly: never kUnknown;
+//   RunningDoubleKernel  the filter with a running error bound (the line
+//                 interval's first stage, src/line_cylinder_interval.cpp);
 //   ExactKernel   Num = Dyadic (GMP integer times a power of two), exact;
 //   NaiveKernel   Num = double, sign() of the rounded value (diagnostic only).
-// The query returns a three-valued Tri; kUnknown from a filter stage sends
-// the query to the next one, and finally to the exact kernel. See
-// docs/exactness.md for the derivation of the bound used in
-// FilterKernel::sign().
+// The query returns a three-valued Tri; kUnknown from the filter sends the
+// query to the adaptive run (src/stages.h). See docs/exactness.md for the
+// derivation of the bound used in FilterKernel::sign(). Nothing here or in
+// the stages after it uses long double.
 #pragma once
 
 #include <gmpxx.h>
@@ -128,59 +128,39 @@ struct FilterKernel {
   }
 };
 
-/// The second stage: the filter re-run in the widest hardware floating
-/// point, long double (x87 extended on x86-64: u_L = 2^-64), with a RUNNING
-/// error bound instead of a magnitude: each value carries e >= |v - E|.
-/// The magnitude bound of FilterKernel is cheap but pessimistic when a
-/// value is small after cancellation (a local coordinate 1e-5 computed from
-/// world terms of 500 has m ~ 500, so x^2 gets 2^-47 * 500^2 although its
-/// error is ~ 2 * 1e-5 * 500 u); the running bound follows the actual
-/// values. Rules (u' = u_L (1 + 2 u_L) >= u_L / (1 - u_L) covers the
-/// rounding of the operation itself, relative to the computed result):
+/// A filter with a RUNNING error bound instead of a magnitude: each value
+/// carries e >= |v - E|. The magnitude bound of FilterKernel is cheap but
+/// pessimistic when a value is small after cancellation (a local coordinate
+/// 1e-5 computed from world terms of 500 has m ~ 500, so x^2 gets
+/// 2^-47 * 500^2 although its error is ~ 2 * 1e-5 * 500 u); the running
+/// bound follows the actual values. Rules (u' = u (1 + 2 u) >= u / (1 - u)
+/// covers the rounding of the operation itself, relative to the computed
+/// result):
 ///   a + b:  e = e_a + e_b + u' |v|
-///   a * b:  e = |v_a| e_b + |v_b| e_a + e_a e_b + u' |v|
+///   a * b:  e = |v_a| e_b + |v_b| e_a + e_a e_b + u' |v| + kTiny
 ///     since |v_a v_b - A B| <= |v_a| |v_b - B| + |B| |v_a - A| and
 ///     |B| <= |v_b| + e_b.
 ///   input difference a - b of doubles: e = u' |v|; an input: e = 0.
 /// e itself is computed with rounding to nearest from non-negative terms,
-/// so it falls short of the exact bound by at most a factor (1 - u_L)^k,
-/// k <= 4 roundings per operation times depth <= 56: sign() inflates it by
-/// (1 + 2^-50), which covers (1 - u_L)^-224 with room to spare.
+/// so it falls short of the exact bound by at most a factor (1 - u)^k,
+/// k <= 4 roundings per operation times depth <= 56, i.e. below 1 + 2^-44
+/// in relative terms: sign() inflates it by (1 + 2^-40).
 /// Underflow: every product (and the line interval's quotients) adds the
-/// type's smallest subnormal, kTiny, to its e (the loss of one rounded
-/// product is below it), so an underflowed product is never a certified 0.
-/// The bound computations' own underflow losses (<= 2^-1075 each, since
-/// long double holds every double) propagate as in FilterKernel and stay far
-/// below kAbs under the range gate. No step depends on the width or the
-/// exponent range of long double: where it is double (MSVC, Apple silicon,
-/// 32-bit ARM) u_L = 2^-53 and the stage is a second double stage; where it
-/// is software quad (AArch64 Linux) it is correct and slower.
-constexpr long double pow2neg(int k) {
-  long double r = 1;
-  for (int i = 0; i < k; ++i) r /= 2;
-  return r;
-}
-constexpr long double kUL = pow2neg(LDBL_MANT_DIG);  // u_L
-constexpr long double kUL1 = kUL + 2 * kUL * kUL;    // u'
-constexpr double kU1d = 0x1p-53 * (1 + 0x1p-52);     // u' for double
+/// smallest subnormal, kTiny, to its e (the loss of one rounded product is
+/// below it), so an underflowed product is never a certified 0 (sums of
+/// doubles are exact in the subnormal range). The bound computations' own
+/// underflow losses (<= 2^-1075 each) propagate as in FilterKernel and stay
+/// far below kAbs = 2^-600 under the range gate (docs/exactness.md,
+/// "Underflow").
+constexpr double kU1d = 0x1p-53 * (1 + 0x1p-52);  // u' for double
 
 /// Per floating type of a running bound: u' (kU1), the absolute underflow
-/// allowance of a product or quotient (kTiny: the type's smallest subnormal,
-/// for every type and width; issue 20: with 0 in a long double no wider
-/// than double, Dy * Dy = dmin^2 underflowed to a "certified" 0) and the
-/// inflation of sign() for the rounding of the bound computations
-/// themselves (kInflate).
+/// allowance of a product or quotient (kTiny: the type's smallest subnormal;
+/// with 0 there, Dy * Dy = dmin^2 underflowed to a "certified" 0,
+/// tests/portability_test.cpp) and the inflation of sign() for the rounding
+/// of the bound computations themselves (kInflate). Only double is used.
 template <class T>
 struct RunningTraits;
-template <>
-struct RunningTraits<long double> {
-  using T = long double;
-  static constexpr T kU1 = kUL1;
-  static constexpr T kTiny = std::numeric_limits<T>::denorm_min();
-  static constexpr T kInflate = 1 + pow2neg(50);
-  /// |x| as the x87 code has always computed it (a conditional move).
-  static T abs(T x) { return x < 0 ? -x : x; }
-};
 template <>
 struct RunningTraits<double> {
   using T = double;
@@ -221,8 +201,7 @@ inline Running<T> operator*(Running<T> a, Running<T> b) {
   return {v, e + R::kTiny};
 }
 
-/// The filter with a running bound, in T (ExtendedKernel: long double;
-/// RunningDoubleKernel: double).
+/// The filter with a running bound, in T (RunningDoubleKernel: double).
 template <class T>
 struct RunningKernel {
   using R = RunningTraits<T>;
@@ -242,30 +221,8 @@ struct RunningKernel {
   }
 };
 
-using Fl = Running<long double>;
-using ExtendedKernel = RunningKernel<long double>;
-
-/// The extended stage's first attempt in the cylinder queries (runStages,
-/// src/cylinder_queries_impl.h) and in the line interval: the running error
-/// bound of Fl in plain double (u = 2^-53), in SSE registers, about four
-/// times cheaper than x87. Not as precise, but the magnitude bound of
-/// FilterKernel is pessimistic after cancellation, and a running bound,
-/// which follows the actual values, decides much of what the double filter
-/// leaves (bench_queries, near: point-in-cylinder 81 -> 47 ns, segment
-/// 354 -> 283 ns). The triangle kernel does not use it: there it decided
-/// half of what reached the extended stage (near 52%, far 93%, thin 48%),
-/// but in bench/ (cases in an unlearnable order, caches cold) near and thin
-/// were no faster (448 vs 450 ns) and aligned slower (232 -> 275 ns): one
-/// more instantiation of the whole kernel, cold, costs about what it saves.
-/// Rules as for Fl, with u' = 2^-53 (1 + 2^-52), plus an absolute 2^-1074
-/// on every product for a possible underflow (sums of doubles are exact in
-/// the subnormal range). The rounding of the bound computations
-/// themselves: as for Fl, each e is short of its exact value by at most a
-/// factor (1 - u)^k with k <= 4 per operation and depth <= 56, i.e. below
-/// 1 + 2^-44 in relative terms, which kInflate covers; and by absolute
-/// underflow losses of at most 2^-1075 per rounded product, which propagate
-/// like FilterKernel's and stay far below kAbs = 2^-600 under the range
-/// gate (docs/exactness.md, "Underflow").
+/// The line interval's first stage (src/line_cylinder_interval.cpp), with
+/// division and square root added there.
 using Rd = Running<double>;
 using RunningDoubleKernel = RunningKernel<double>;
 

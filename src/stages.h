@@ -36,8 +36,7 @@ template <class Pred>
 TRICYL_ADAPTIVE_NOINLINE Decision runAdaptive(const Pred& pred, bool gate) {
   bool early = false;
   if (!gate)
-    return {toAnswer(pred(KernelTag<ExactKernel>{}, &early)),
-            Stage::kExactGmp};
+    return {toAnswer(pred(KernelTag<ExactKernel>{}, &early)), Stage::kExactGmp};
   Tape tape;
   Tri t;
   {

@@ -166,8 +166,7 @@ Decision decide(const Inputs& in, bool filter_done) {
     return {Answer::kInvalidInput, Stage::kInvalid};
   auto triangle = [&](auto tag, bool* early) {
     using K = typename decltype(tag)::type;
-    const auto q =
-        detail::makeLocal<K>(in.cyl, in.pose, in.tri, max_unitless);
+    const auto q = detail::makeLocal<K>(in.cyl, in.pose, in.tri, max_unitless);
     return detail::triangleCylinder<K>(q, early);
   };
   const bool gate = detail::rangeGateOk(max_len, max_unitless);

@@ -140,10 +140,10 @@ TEST(DoubleWordStage, BoundEnclosesTheExactValue) {
     using K = AdaptiveKernel;
     // A degree-4 predicate of local coordinates from inputs <= 2^20.
     auto coord = [&]() {
-      const auto d0 = K::inputDiff(randomDouble(g, -20, 20),
-                                   randomDouble(g, -20, 20));
-      const auto d1 = K::inputDiff(randomDouble(g, -20, 20),
-                                   randomDouble(g, -20, 20));
+      const auto d0 =
+          K::inputDiff(randomDouble(g, -20, 20), randomDouble(g, -20, 20));
+      const auto d1 =
+          K::inputDiff(randomDouble(g, -20, 20), randomDouble(g, -20, 20));
       return K::lift(randomDouble(g, -30, 0)) * d0 +
              K::lift(randomDouble(g, -30, 0)) * d1;
     };
@@ -161,7 +161,8 @@ TEST(DoubleWordStage, BoundEnclosesTheExactValue) {
     ASSERT_GE(dyadicSign(slack), 0) << "case " << i;
     ASSERT_GE(dyadicSign(slack2), 0) << "case " << i;
     if (e > 0) {
-      const double err = std::fabs(diff.m.get_d()) * std::ldexp(1.0, int(diff.e));
+      const double err =
+          std::fabs(diff.m.get_d()) * std::ldexp(1.0, int(diff.e));
       worst = std::max(worst, err / e);
     }
   }
@@ -344,9 +345,8 @@ TEST(AdaptiveStage, DyadicTouchingScenesAgreeWithTheOracle) {
                     << int(d.stage);
     }
   }
-  std::printf(
-      "[ stats    ] %ld dyadic touching scenes: exact %ld, GMP %ld\n", n,
-      exact, gmp);
+  std::printf("[ stats    ] %ld dyadic touching scenes: exact %ld, GMP %ld\n",
+              n, exact, gmp);
   EXPECT_EQ(failures, 0);
   EXPECT_GT(exact, n / 10);
   EXPECT_EQ(gmp, 0);

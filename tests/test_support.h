@@ -5,9 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <cstdio>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <random>
 #include <string>
@@ -98,15 +98,14 @@ struct StageCounts {
   }
   std::string summary(long total) const {
     char buf[256];
-    std::snprintf(buf, sizeof buf,
-                  "early-out %ld, fast %ld, double-word %ld, exact %ld "
-                  "(stack %ld, GMP %ld: %.3f%%)",
-                  n[std::size_t(Stage::kEarlyOut)],
-                  n[std::size_t(Stage::kFastPath)],
-                  n[std::size_t(Stage::kExtended)], exact(),
-                  n[std::size_t(Stage::kExact)],
-                  n[std::size_t(Stage::kExactGmp)],
-                  100.0 * double(exact()) / double(total ? total : 1));
+    std::snprintf(
+        buf, sizeof buf,
+        "early-out %ld, fast %ld, double-word %ld, exact %ld "
+        "(stack %ld, GMP %ld: %.3f%%)",
+        n[std::size_t(Stage::kEarlyOut)], n[std::size_t(Stage::kFastPath)],
+        n[std::size_t(Stage::kExtended)], exact(),
+        n[std::size_t(Stage::kExact)], n[std::size_t(Stage::kExactGmp)],
+        100.0 * double(exact()) / double(total ? total : 1));
     return buf;
   }
 };
