@@ -27,13 +27,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "obj_mesh.h"
 #include "tricyl/fcl_solver.h"
 #include "walk.h"
 
@@ -94,29 +93,20 @@ Tf frameWithAxis(const V3& z, const V3& c) {
 MeshData load(const std::string& file, std::uint64_t seed,
               bool grazing = false) {
   MeshData d;
-  std::ifstream in(std::string(TRICYL_MESH_DIR) + "/" + file);
-  if (!in) return d;
+  tricyl::obj::Mesh f;
+  try {
+    f = tricyl::obj::read(std::string(TRICYL_MESH_DIR) + "/" + file);
+  } catch (const std::exception&) {
+    return d;
+  }
   std::vector<V3> v;
   std::vector<fcl::Triangle> t;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream ls(line);
-    std::string tag;
-    ls >> tag;
-    if (tag == "v") {
-      double x, y, z;
-      ls >> x >> y >> z;
-      v.emplace_back(x, y, z);
-    } else if (tag == "f") {
-      std::size_t idx[3];
-      for (std::size_t& i : idx) {
-        std::string tok;
-        ls >> tok;
-        i = std::stoul(tok.substr(0, tok.find('/'))) - 1;
-      }
-      t.emplace_back(idx[0], idx[1], idx[2]);
-    }
-  }
+  for (std::size_t i = 0; i < f.numVertices(); ++i)
+    v.emplace_back(f.vertices[3 * i], f.vertices[3 * i + 1],
+                   f.vertices[3 * i + 2]);
+  for (std::size_t k = 0; k < f.numTriangles(); ++k)
+    t.emplace_back(f.indices[3 * k], f.indices[3 * k + 1],
+                   f.indices[3 * k + 2]);
   d.model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
   d.model->beginModel(int(t.size()), int(v.size()));
   d.model->addSubModel(v, t);

@@ -146,13 +146,12 @@ struct FclCases {
 };
 
 // Paired: one iteration runs every case of the family through tricyl, then
-// through FCL, each block timed on its own (a block is ~0.1 ms and ~1.5 ms),
-// so both see the same clock. This VM's effective clock drifts by tens of
-// percent within seconds; rows measured apart (BM_Tricyl vs BM_FclLibccd)
-// carry that drift into their ratio, the paired blocks do not. Counters:
-// tricyl_ns and fcl_ns per query, and ratio = fcl_ns / tricyl_ns, summed over
-// the iterations (the reported time is the two blocks together); best_*
-// the same from the fastest block of each.
+// through FCL, each block timed on its own, so both see the same clock. This
+// VM's effective clock drifts by tens of percent within seconds; rows measured
+// apart (BM_Tricyl vs BM_FclLibccd) carry that drift into their ratio, the
+// paired blocks do not. Counters: tricyl_ns and fcl_ns per query, and ratio =
+// fcl_ns / tricyl_ns, summed over the iterations (the reported time is the two
+// blocks together); best_* the same from the fastest block of each.
 template <class S>
 void BM_Paired(benchmark::State& state) {
   const Family fam = Family(state.range(0));
@@ -249,7 +248,7 @@ void BM_Floor(benchmark::State& state) {
 BENCHMARK(BM_Floor)->DenseRange(0, tricyl::bench::scalar_floor::kLevels - 1);
 #endif
 
-// Not thin or aligned: libccd can loop forever there (issue 9); the harness
+// Not thin or aligned: libccd can loop forever there; the harness
 // runs those under a time limit instead.
 BENCHMARK(BM_FclLibccd)->DenseRange(0, 5);
 #endif

@@ -1,4 +1,5 @@
-// Shared by the FCL examples: a tiny Wavefront OBJ reader, a procedural mesh
+// Shared by the FCL examples: OBJ files (through the repository's reader), a
+// procedural mesh
 // and the fcl::BVHModel they become. Not part of tricyl's API.
 #pragma once
 
@@ -8,12 +9,13 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <exception>
 #include <map>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
+
+#include "obj_mesh.h"
 
 namespace example {
 
@@ -22,38 +24,24 @@ struct Mesh {
   std::vector<fcl::Triangle> triangles;
 };
 
-/// Reads the `v x y z` and `f i j k` lines of an OBJ file (1-based or
-/// negative indices; `f a/b/c` forms keep the vertex index; polygons are
-/// fanned into triangles). Returns false when the file cannot be read or
-/// holds no triangle.
+/// Reads the triangles of an OBJ file (the repository's shared reader,
+/// support/obj_mesh.h, on tinyobjloader). Returns false when the file cannot
+/// be read or holds no triangle.
 inline bool readObj(const std::string& path, Mesh* mesh) {
-  std::ifstream in(path);
-  if (!in) return false;
-  Mesh m;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream ls(line);
-    std::string tag;
-    ls >> tag;
-    if (tag == "v") {
-      double x, y, z;
-      if (ls >> x >> y >> z) m.vertices.emplace_back(x, y, z);
-    } else if (tag == "f") {
-      std::vector<std::size_t> idx;
-      std::string tok;
-      while (ls >> tok) {
-        const long i = std::stol(tok.substr(0, tok.find('/')));
-        const long n = static_cast<long>(m.vertices.size());
-        const long k = i > 0 ? i - 1 : n + i;
-        if (k < 0 || k >= n) return false;
-        idx.push_back(static_cast<std::size_t>(k));
-      }
-      for (std::size_t j = 2; j < idx.size(); ++j)
-        m.triangles.emplace_back(idx[0], idx[j - 1], idx[j]);
-    }
+  tricyl::obj::Mesh m;
+  try {
+    m = tricyl::obj::read(path);
+  } catch (const std::exception&) {
+    return false;
   }
-  if (m.triangles.empty()) return false;
-  *mesh = std::move(m);
+  Mesh out;
+  for (std::size_t i = 0; i < m.numVertices(); ++i)
+    out.vertices.emplace_back(m.vertices[3 * i], m.vertices[3 * i + 1],
+                              m.vertices[3 * i + 2]);
+  for (std::size_t t = 0; t < m.numTriangles(); ++t)
+    out.triangles.emplace_back(m.indices[3 * t], m.indices[3 * t + 1],
+                               m.indices[3 * t + 2]);
+  *mesh = std::move(out);
   return true;
 }
 
