@@ -2,6 +2,7 @@
 #pragma once
 
 #include "tricyl/endpoint_form.h"
+#include "tricyl/fcl_contact.h"
 #include "tricyl/line_cylinder.h"
 #include "tricyl/mesh_cylinder.h"
 #include "tricyl/point_cone.h"
