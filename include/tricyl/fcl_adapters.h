@@ -6,17 +6,17 @@
 /// Every conversion copies the numbers bit for bit, so a tricyl query on the
 /// converted values answers exactly for the values FCL holds:
 ///
-/// | FCL                                   | tricyl                         |
-/// |---------------------------------------|--------------------------------|
-/// | `fcl::Transform3<S>` tf               | toPose(tf): R = tf.linear(), t =
-/// tf.translation() | | `fcl::Cylinder<S>` c                  | toCylinder(c):
-/// {c.radius, c.lz} (the same convention) | | `fcl::Vector3<S>` (an Eigen
-/// vector) v | toVec3(v)                      | | three `fcl::Vector3<S>` a, b,
-/// c       | toTriangle(a, b, c)            | | `fcl::TriangleP<S>` t |
-/// toTriangle(t): {t.a, t.b, t.c}, in the TriangleP's own frame | |
-/// `fcl::TriangleP<S>` t at tf           | toTriangle(t, tf): tf * t.a, ...
-/// (world frame, as tricyl::Solver computes it) | | `fcl::BVHModel<BV>` model
-/// | BvhMeshView<S>(model): a MeshView for the batch scan (mesh_cylinder.h) |
+/// - `fcl::Transform3<S>` tf: toPose(tf), R = tf.linear(), t =
+///   tf.translation().
+/// - `fcl::Cylinder<S>` c: toCylinder(c), {c.radius, c.lz} (the same
+///   convention).
+/// - `fcl::Vector3<S>` (an Eigen vector) v: toVec3(v).
+/// - three `fcl::Vector3<S>` a, b, c: toTriangle(a, b, c).
+/// - `fcl::TriangleP<S>` t: toTriangle(t), {t.a, t.b, t.c} in the
+///   TriangleP's own frame; toTriangle(t, tf), the world-frame triangle
+///   tf * t.a, ... as tricyl::Solver computes it.
+/// - `fcl::BVHModel<BV>` model: BvhMeshView<S>(model), a MeshView for the
+///   batch scan (mesh_cylinder.h).
 ///
 /// Example: the batch scan over an FCL mesh (its vertices are in the
 /// model's frame, so the cylinder's pose is given in that frame):
@@ -138,8 +138,8 @@ class BvhMeshView : public MeshView<S> {
       : BvhMeshView(points.data(), points.size(), triangles.data(),
                     triangles.size()) {}
 
-  /// Borrowed `points[0 .. point_count)`, copied triangle indices
-  /// `triangles[0 .. triangle_count)`.
+  /// Borrows the `point_count` vertices at `points`; copies the indices of
+  /// the `triangle_count` triangles at `triangles`.
   BvhMeshView(const fcl::Vector3<S>* points, std::size_t point_count,
               const fcl::Triangle* triangles, std::size_t triangle_count)
       : MeshView<S>{nullptr, point_count, nullptr, triangle_count} {

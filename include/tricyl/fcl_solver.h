@@ -5,11 +5,12 @@
 /// tricyl::fcl (`find_package(tricyl REQUIRED COMPONENTS fcl)`). For `float`
 /// and `double`. Change one name in user code:
 ///
-///     fcl::collide(o1, o2, request, result)  ->  tricyl::collide(...)
-///     fcl::DefaultCollisionFunction<S>       ->
-///     tricyl::DefaultCollisionFunction<S> fcl::DefaultCollisionData<S> ->
-///     tricyl::DefaultCollisionData<S> fcl::collide(o1, o2, &solver, ...) with
-///     tricyl::Solver<S> solver
+/// - `fcl::collide(o1, o2, request, result)` becomes
+///   `tricyl::collide(o1, o2, request, result)` (also the geometry form);
+/// - `fcl::DefaultCollisionFunction<S>` becomes
+///   `tricyl::DefaultCollisionFunction<S>`;
+/// - `fcl::DefaultCollisionData<S>` becomes `tricyl::DefaultCollisionData<S>`;
+/// - `fcl::collide(o1, o2, &solver, ...)` takes a `tricyl::Solver<S> solver`.
 ///
 /// ## What changes (and nothing else does)
 /// - Cylinder vs a BVHModel<BV> triangle (every BV: AABB, KDOP16/18/24 use
@@ -166,6 +167,8 @@ class Solver : public fcl::detail::GJKSolver_libccd<S> {
       const fcl::TriangleP<S>& s1, const fcl::Transform3<S>& tf1,
       const fcl::Cylinder<S>& s2, const fcl::Transform3<S>& tf2,
       std::vector<fcl::ContactPoint<S>>* contacts = nullptr) const;
+  /// Cylinder vs TriangleP: as above, normal from the cylinder to the
+  /// triangle.
   bool shapeIntersect(
       const fcl::Cylinder<S>& s1, const fcl::Transform3<S>& tf1,
       const fcl::TriangleP<S>& s2, const fcl::Transform3<S>& tf2,
@@ -178,6 +181,7 @@ class Solver : public fcl::detail::GJKSolver_libccd<S> {
       const fcl::Sphere<S>& s1, const fcl::Transform3<S>& tf1,
       const fcl::Cylinder<S>& s2, const fcl::Transform3<S>& tf2,
       std::vector<fcl::ContactPoint<S>>* contacts = nullptr) const;
+  /// Cylinder vs Sphere: as above.
   bool shapeIntersect(
       const fcl::Cylinder<S>& s1, const fcl::Transform3<S>& tf1,
       const fcl::Sphere<S>& s2, const fcl::Transform3<S>& tf2,
@@ -191,6 +195,7 @@ class Solver : public fcl::detail::GJKSolver_libccd<S> {
                       const fcl::Transform3<S>& tf2,
                       fcl::Vector3<S>* contact_points, S* penetration_depth,
                       fcl::Vector3<S>* normal) const;
+  /// Cylinder vs TriangleP in the pointer form: as above.
   bool shapeIntersect(const fcl::Cylinder<S>& s1, const fcl::Transform3<S>& tf1,
                       const fcl::TriangleP<S>& s2,
                       const fcl::Transform3<S>& tf2,

@@ -1,4 +1,5 @@
-// Umbrella header: every core query of tricyl (no FCL, libccd or Eigen).
+/// @file
+/// Umbrella header: every core query of tricyl (no FCL, libccd or Eigen).
 #pragma once
 
 #include "tricyl/endpoint_form.h"
