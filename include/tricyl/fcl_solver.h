@@ -95,11 +95,13 @@
 ///
 /// ## Compile time
 /// The collision and distance matrices for Solver<double> and Solver<float>
-/// (FCL's whole traversal code, ~40 s and ~0.9 GB of compiler memory each)
-/// are instantiated once in src/fcl/fcl_solver.cpp and
-/// src/fcl/fcl_solver_float.cpp; the extern template declarations at the
-/// end of this header keep every including file from instantiating them
-/// again. Solver is provided for S = float and S = double only.
+/// (FCL's whole traversal code, 30 to 60 s and 0.8 to 1.4 GB of compiler
+/// memory each) are instantiated once in src/fcl/fcl_solver.cpp and
+/// src/fcl/fcl_solver_float.cpp, and FCL's own float fcl::collide (which
+/// libfcl.so does not provide) in src/fcl/fcl_stock_float.cpp; the extern
+/// template declarations at the end of this header keep every including
+/// file from instantiating them again. Solver is provided for S = float and
+/// S = double only.
 #pragma once
 
 #include <fcl/broadphase/default_broadphase_callbacks.h>

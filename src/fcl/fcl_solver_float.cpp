@@ -1,10 +1,9 @@
 // tricyl::Solver<float>'s members (fcl_solver_impl.h) and the ONE place
 // where FCL's collision and distance matrices are instantiated for it, with
-// tricyl::collide<float> and FCL's own float fcl::collide(..., request,
-// result), which tricyl::collide<float> calls for the pairs it does not
-// answer. A file of its own so that the two heavy instantiations
-// compile in parallel and each within about 1 GB (fcl_solver.h, Compile
-// time).
+// tricyl::collide<float> (FCL's own float collide, which that calls for the
+// pairs it does not answer, is in fcl_stock_float.cpp). Files of their own
+// so that the heavy instantiations compile in parallel, each in one
+// compiler process of about 1 GB (fcl_solver.h, Compile time).
 //
 // FCL's own float code (convexHalfspaceIntersect, halfspace-inl.h) trips
 // GCC 12's -Wmaybe-uninitialized when instantiated here; libfcl.so compiles
@@ -13,5 +12,4 @@
 
 #include "fcl_solver_impl.h"
 
-TRICYL_FCL_FLOAT_STOCK_COLLIDE(template)
 TRICYL_FCL_SOLVER_INSTANCES(template, float)

@@ -51,7 +51,7 @@
 // FCL's own fcl::collide(..., request, result) for float, which
 // tricyl::collide<float> calls for the pairs it does not answer (libfcl.so
 // instantiates only double, and declares those extern itself). Instantiated
-// once, in src/fcl/fcl_solver_float.cpp, so that no including file compiles
+// once, in src/fcl/fcl_stock_float.cpp, so that no including file compiles
 // FCL's float libccd and GJKSolver_indep matrices again.
 #define TRICYL_FCL_FLOAT_STOCK_COLLIDE(KIND)                \
   namespace fcl {                                           \
