@@ -35,7 +35,7 @@ int main() {
     fcl::collide(&cyl_obj, &floor_obj, &solver, request, b);
     tricyl::collide(&tri_obj, &cyl_obj, request, c);
     std::printf("bottom %s: collide %s, Solver<float> %s, TriangleP %s\n",
-                z == 0.5f ? "on the floor"
+                z == 0.5f  ? "on the floor"
                 : z > 0.5f ? "one float step above"
                            : "0.25 below",
                 a.isCollision() ? "collision" : "free",

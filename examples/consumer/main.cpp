@@ -27,9 +27,9 @@ int main() {
     std::printf("contact: %s, normal (%g, %g, %g), depth %s\n",
                 a == tricyl::Answer::kIntersect ? "yes" : "no", c.normal.x,
                 c.normal.y, c.normal.z,
-                c.depth == tricyl::kMinDepth<double> ? "kMinDepth (touching)"
+                c.depth == tricyl::kMinDepth<double>   ? "kMinDepth (touching)"
                 : c.depth > 0.0999 && c.depth < 0.1001 ? "0.1"
-                                                        : "other");
+                                                       : "other");
   }
   return 0;
 }
