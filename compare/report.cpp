@@ -61,8 +61,9 @@ std::string pct(double v) { return fmt("%.3g %%", 100 * v); }
 
 json jnum(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-const char* kStageNames[] = {"early_out", "fast_path", "exact",
-                             "invalid",   "extended",  "tracked"};
+// Indexed by tricyl::Stage (5 is no longer produced).
+const char* kStageNames[] = {"early_out", "fast_path", "exact",    "invalid",
+                             "extended",  "unused",    "exact_gmp"};
 
 void mkdirs(const std::string& dir) {
   std::string cur;
@@ -594,7 +595,7 @@ std::vector<std::string> writeReport(const std::string& dir,
      << "Share of the `tricyl` queries per deciding stage (mesh cases are "
         "many kernel calls and are not staged).\n\n"
      << "| family | cases | oracle hits | early-out | fast path | extended "
-        "| tracked | exact fallback |\n|---|---:|---:|---:|---:|---:|---:|---:|"
+        "| exact | exact GMP |\n|---|---:|---:|---:|---:|---:|---:|---:|"
         "\n";
   for (std::size_t s : family_sets) {
     const SetStats& st = result.sets[s];
@@ -606,8 +607,8 @@ std::vector<std::string> writeReport(const std::string& dir,
     };
     md << "| " << sets[s].name << " | " << st.cases << " | " << st.hits << " | "
        << share(Stage::kEarlyOut) << " | " << share(Stage::kFastPath) << " | "
-       << share(Stage::kExtended) << " | " << share(Stage::kTracked) << " | "
-       << share(Stage::kExact) << " |\n";
+       << share(Stage::kExtended) << " | " << share(Stage::kExact) << " | "
+       << share(Stage::kExactGmp) << " |\n";
   }
   md << "\n## Agreement with tricyl\n\n"
      << "tricyl's answer is exact, so where another method disagrees with "

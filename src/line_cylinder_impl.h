@@ -6,6 +6,7 @@
 #pragma once
 
 #include <limits>
+#include <type_traits>
 
 #include "cylinder_queries_impl.h"
 #include "tricyl/types.h"
@@ -19,12 +20,21 @@ struct LinearInputs {
   Pose<double> pose;
   Vec3<double> p, q;
   double max_len = 0, max_unitless = 0;
+  bool float_bits_ok = true;  ///< false: a float input NaN or Inf (not widened)
 };
 
 template <class S>
 inline LinearInputs widenLinear(const Cylinder<S>& cyl, const Pose<S>& pose,
                                 const Vec3<S>& p, const Vec3<S>& q) {
   LinearInputs in;
+  if constexpr (std::is_same_v<S, float>) {
+    // Validated in float before widening (floatBitsFinite); the inputs stay
+    // zero and validateLinear rejects them.
+    if (!floatBitsFinite(cyl, pose, p, q)) {
+      in.float_bits_ok = false;
+      return in;
+    }
+  }
   in.cyl = {double(cyl.radius), double(cyl.lz)};
   in.pose = widen(pose);
   in.p = widen(p);
@@ -36,7 +46,8 @@ inline LinearInputs widenLinear(const Cylinder<S>& cyl, const Pose<S>& pose,
 inline bool validateLinear(LinearInputs& in) {
   const auto& p = in.p;
   const auto& q = in.q;
-  return scanFinite({in.cyl.radius, in.cyl.lz, p.x, p.y, p.z, q.x, q.y, q.z},
+  return in.float_bits_ok &&
+         scanFinite({in.cyl.radius, in.cyl.lz, p.x, p.y, p.z, q.x, q.y, q.z},
                     in.pose, &in.max_len, &in.max_unitless) &&
          in.cyl.radius >= 0 && in.cyl.lz >= 0;
 }

@@ -1,6 +1,8 @@
 // Point in cone: validate, then the three stages of src/filter.h.
 #include "tricyl/point_cone.h"
 
+#include <type_traits>
+
 #include "cylinder_queries_impl.h"
 
 namespace tricyl {
@@ -25,6 +27,9 @@ Decision decide(const Cone<double>& cone, const Pose<double>& pose,
 
 template <class S>
 Decision decideAs(const Cone<S>& cone, const Pose<S>& pose, const Vec3<S>& p) {
+  if constexpr (std::is_same_v<S, float>)
+    if (!detail::floatBitsFinite(cone, pose, p))  // before widening (issue 20)
+      return {Answer::kInvalidInput, Stage::kInvalid};
   return decide({double(cone.radius), double(cone.lz)}, detail::widen(pose),
                 detail::widen(p));
 }

@@ -1,6 +1,8 @@
 // Point in cylinder: validate, then the three stages of src/filter.h.
 #include "tricyl/point_cylinder.h"
 
+#include <type_traits>
+
 #include "cylinder_queries_impl.h"
 
 namespace tricyl {
@@ -26,6 +28,9 @@ Decision decide(const Cylinder<double>& cyl, const Pose<double>& pose,
 template <class S>
 Decision decideAs(const Cylinder<S>& cyl, const Pose<S>& pose,
                   const Vec3<S>& p) {
+  if constexpr (std::is_same_v<S, float>)
+    if (!detail::floatBitsFinite(cyl, pose, p))  // before widening (issue 20)
+      return {Answer::kInvalidInput, Stage::kInvalid};
   return decide({double(cyl.radius), double(cyl.lz)}, detail::widen(pose),
                 detail::widen(p));
 }

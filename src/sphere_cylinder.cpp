@@ -1,6 +1,8 @@
 // Sphere vs cylinder: validate, then the three stages of src/filter.h.
 #include "tricyl/sphere_cylinder.h"
 
+#include <type_traits>
+
 #include "cylinder_queries_impl.h"
 
 namespace tricyl {
@@ -28,6 +30,9 @@ Decision decide(const Cylinder<double>& cyl, const Pose<double>& pose,
 template <class S>
 Decision decideAs(const Cylinder<S>& cyl, const Pose<S>& pose,
                   const Sphere<S>& sph) {
+  if constexpr (std::is_same_v<S, float>)
+    if (!detail::floatBitsFinite(cyl, pose, sph))  // before widening (issue 20)
+      return {Answer::kInvalidInput, Stage::kInvalid};
   return decide({double(cyl.radius), double(cyl.lz)}, detail::widen(pose),
                 {detail::widen(sph.center), double(sph.radius)});
 }

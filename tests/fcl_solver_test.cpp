@@ -655,6 +655,13 @@ TEST(FclSolverSphereCylinder, BooleanIsExactContactsAreFcls) {
   EXPECT_LT(hits, cases - cases / 10);
 }
 
+// ASSUMPTION: the stock solver's code in the distribution's libfcl.so is
+// compiled with the same floating-point contraction as tricyl's own
+// instantiation of FCL's templates (-ffp-contract=off, tricyl_set_fp_flags):
+// true for Debian's x86-64 build (baseline ISA, no FMA). Where libfcl.so
+// uses fused multiply-adds (Debian arm64: GCC's default -ffp-contract=fast)
+// results differ in the last digits (1,186 differences in issue 20's
+// hand-built AArch64 run) and this test does not apply; docs/fcl_solver.md.
 TEST(FclSolverOtherPairs, IdenticalToStockSolver) {
   const std::uint64_t seed = test::baseSeed() + 11;
   SCOPED_TRACE(test::seedTrace(seed));

@@ -1,18 +1,23 @@
-// The extended stage's running error bounds (src/filter.h: Rd in double,
-// Fl in long double; docs/exactness.md, section 4): the folded bound of the
-// local frame (toLocalRunning, src/triangle_cylinder_impl.h) encloses the
-// exact local coordinates, computed by the oracle's independent rational
-// transform, in general position, under heavy cancellation, with mixed
-// exponents and (double) with products that underflow; and each stage on
-// its own, run on every case of the scene families, never decides against
-// the exact oracle.
+// The running error bounds of the local frame: the double running bound
+// (src/filter.h's Rd, the line interval's first stage; toLocalRunning,
+// src/triangle_cylinder_impl.h) and the double-word coordinates of the
+// adaptive stage (Tape::dwCoord, src/adaptive.cpp) enclose the exact local
+// coordinates, computed by the oracle's independent rational transform, in
+// general position, under heavy cancellation, with mixed exponents and
+// with products that underflow; and the running kernel on its own, run on
+// every case of the scene families, never decides against the exact
+// oracle.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <limits>
 #include <random>
 
+#include "adaptive.h"
 #include "filter.h"
 #include "oracle.h"
 #include "scenes.h"
@@ -23,35 +28,111 @@
 namespace tricyl {
 namespace {
 
-using detail::ExtendedKernel;
 using detail::RunningDoubleKernel;
 using detail::Tri;
 using oracle::Q;
 
-// Exact rational value of a long double (or double): its significand, at
-// most 64 bits, as an integer times a power of two (frexp and ldexp are
-// exact; the integer is built from two 32-bit halves, since mpz_class
-// takes no unsigned 64-bit value portably).
+// Exact rational value of a long double (or double), read from its bits:
+// no libm call (a test built with -mlong-double-64 must not call libm's
+// long double functions, whose ABI is the 80-bit one) and every significand
+// width: 53 (long double = double), 64 (x87 extended, explicit leading bit)
+// and 113 (IEEE binary128, AArch64 Linux). Issue 20: the frexp/ldexp
+// version kept only 64 significand bits and failed on AArch64.
 Q exactly(long double v) {
-  if (v == 0) return Q(0);
-  int k = 0;
-  const long double f = std::frexp(v < 0 ? -v : v, &k);   // 0.5 <= f < 1
-  const long double top = std::floor(std::ldexp(f, 32));  // f 2^32, high
-  const long double low = std::ldexp(f, 64) - std::ldexp(top, 32);
-  mpz_class m = mpz_class(static_cast<unsigned long>(top));
-  m <<= 32;
-  m += mpz_class(static_cast<unsigned long>(low));
+  constexpr int kMant = LDBL_MANT_DIG;
+  static_assert(kMant == 53 || kMant == 64 || kMant == 113,
+                "long double: binary64, x87 extended or binary128");
+  static_assert(std::numeric_limits<long double>::is_iec559 || kMant == 64);
+  unsigned char b[sizeof(long double)];
+  std::memcpy(b, &v, sizeof v);
+  // Little-endian byte k of the encoding (x86-64, AArch64).
+  auto bit = [&](int k) { return (b[k / 8] >> (k % 8)) & 1; };
+  const int frac_bits = kMant == 64 ? 63 : kMant - 1;  // stored fraction
+  const int exp_bits = kMant == 53 ? 11 : 15;
+  const int exp_at = kMant == 64 ? 64 : frac_bits;  // x87: explicit bit 63
+  int biased = 0;
+  for (int k = exp_bits - 1; k >= 0; --k) biased = 2 * biased + bit(exp_at + k);
+  const bool negative = bit(exp_at + exp_bits) != 0;
+  mpz_class m = 0;
+  for (int k = frac_bits - 1; k >= 0; --k) m = 2 * m + bit(k);
+  const int bias = (1 << (exp_bits - 1)) - 1;
+  int e = 0;  // v = m 2^(e - frac_bits)
+  if (kMant == 64) {
+    if (bit(63)) m += mpz_class(1) << 63;  // the explicit leading bit
+    e = (biased == 0 ? 1 : biased) - bias;
+  } else if (biased == 0) {
+    e = 1 - bias;  // subnormal
+  } else {
+    m += mpz_class(1) << frac_bits;  // the hidden bit
+    e = biased - bias;
+  }
   Q q(m);
-  if (k - 64 >= 0)
-    mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(k - 64));
+  const int shift = e - frac_bits;
+  if (shift >= 0)
+    mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(shift));
   else
-    mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(64 - k));
-  return v < 0 ? Q(-q) : q;
+    mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(-shift));
+  q.canonicalize();
+  return negative ? Q(-q) : q;
+}
+
+// exactly() on values that use every significand bit of the type, the
+// smallest subnormal and the largest finite value, against their values
+// built independently in Q.
+TEST(RunningFrameExactly, ConvertsEverySignificandBit) {
+  using L = std::numeric_limits<long double>;
+  const int p = LDBL_MANT_DIG;
+  auto pow2 = [](int k) {  // 2^k in Q
+    Q q(1);
+    if (k >= 0)
+      mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(k));
+    else
+      mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(-k));
+    return q;
+  };
+  const long double all_ones = 1 - L::epsilon() / 2;  // 1 - 2^-p
+  EXPECT_EQ(exactly(all_ones), Q(1 - pow2(-p)));
+  EXPECT_EQ(exactly(-all_ones * 8), Q(-8 * (1 - pow2(-p))));
+  EXPECT_EQ(exactly(1 + L::epsilon()), Q(1 + pow2(1 - p)));
+  EXPECT_EQ(exactly(L::denorm_min()), pow2(L::min_exponent - 1 - (p - 1)));
+  EXPECT_EQ(exactly(L::min()), pow2(L::min_exponent - 1));
+  EXPECT_EQ(exactly(L::max()), Q((1 - pow2(-p)) * pow2(L::max_exponent)));
+  EXPECT_EQ(exactly(0.0L), Q(0));
+  EXPECT_EQ(exactly(-0.0L), Q(0));
+  EXPECT_EQ(exactly(0.375L), Q(3, 8));
+}
+
+// A point and a pose for case i: four regimes in turn (general position;
+// p = t + R y with tiny y, heavy cancellation; mixed exponents; tiny
+// values whose products underflow).
+void framePoint(std::mt19937_64& g, long i, Pose<double>& pose,
+                Vec3<double>& p) {
+  std::uniform_real_distribution<double> U(-1, 1);
+  const int regime = int(i % 4);
+  if (regime == 0) {  // general position
+    pose = test::randomPose(g, 100);
+    p = {100 * U(g), 100 * U(g), 100 * U(g)};
+  } else if (regime == 1) {  // p = t + R y with tiny y: cancellation
+    pose = test::randomPose(g, 1e3);
+    const double y[3] = {1e-9 * U(g), 1e-9 * U(g), 1e-9 * U(g)};
+    const auto& R = pose.R;
+    p = {pose.t.x + (R[0][0] * y[0] + R[0][1] * y[1] + R[0][2] * y[2]),
+         pose.t.y + (R[1][0] * y[0] + R[1][1] * y[1] + R[1][2] * y[2]),
+         pose.t.z + (R[2][0] * y[0] + R[2][1] * y[1] + R[2][2] * y[2])};
+  } else if (regime == 2) {  // mixed exponents
+    pose = test::randomPose(g, 1e-10);
+    p = {1e10 * U(g), 1e-10 * U(g), U(g)};
+  } else {  // tiny: in double, products fall below 2^-1022
+    pose = test::randomPose(g, 1e-305);
+    for (auto& row : pose.R)
+      for (double& r : row) r *= 1e-12;
+    p = {1e-305 * U(g), 1e-305 * U(g), 1e-305 * U(g)};
+  }
 }
 
 template <class K>
 struct RunningFrameTest : ::testing::Test {};
-using RunningKernels = ::testing::Types<RunningDoubleKernel, ExtendedKernel>;
+using RunningKernels = ::testing::Types<RunningDoubleKernel>;
 TYPED_TEST_SUITE(RunningFrameTest, RunningKernels);
 
 TYPED_TEST(RunningFrameTest, BoundEnclosesTheExactLocalCoordinates) {
@@ -59,7 +140,6 @@ TYPED_TEST(RunningFrameTest, BoundEnclosesTheExactLocalCoordinates) {
   const std::uint64_t seed = test::baseSeed() + 71;
   SCOPED_TRACE(test::seedTrace(seed));
   std::mt19937_64 g(seed);
-  std::uniform_real_distribution<double> U(-1, 1);
   const long n = test::scaled(3000);
   double worst = 0;  // max |v - exact| / e over all coordinates
   long failures = 0;
@@ -67,25 +147,7 @@ TYPED_TEST(RunningFrameTest, BoundEnclosesTheExactLocalCoordinates) {
     const int regime = int(i % 4);
     Pose<double> pose;
     Vec3<double> p;
-    if (regime == 0) {  // general position
-      pose = test::randomPose(g, 100);
-      p = {100 * U(g), 100 * U(g), 100 * U(g)};
-    } else if (regime == 1) {  // p = t + R y with tiny y: cancellation
-      pose = test::randomPose(g, 1e3);
-      const double y[3] = {1e-9 * U(g), 1e-9 * U(g), 1e-9 * U(g)};
-      const auto& R = pose.R;
-      p = {pose.t.x + (R[0][0] * y[0] + R[0][1] * y[1] + R[0][2] * y[2]),
-           pose.t.y + (R[1][0] * y[0] + R[1][1] * y[1] + R[1][2] * y[2]),
-           pose.t.z + (R[2][0] * y[0] + R[2][1] * y[1] + R[2][2] * y[2])};
-    } else if (regime == 2) {  // mixed exponents
-      pose = test::randomPose(g, 1e-10);
-      p = {1e10 * U(g), 1e-10 * U(g), U(g)};
-    } else {  // tiny: in double, products fall below 2^-1022
-      pose = test::randomPose(g, 1e-305);
-      for (auto& row : pose.R)
-        for (double& r : row) r *= 1e-12;
-      p = {1e-305 * U(g), 1e-305 * U(g), 1e-305 * U(g)};
-    }
+    framePoint(g, i, pose, p);
     typename K::Num x, y, Z;
     detail::toLocal<K>(pose, p, 1.0, x, y, Z);
     const oracle::Q3 ex = oracle::toLocal(pose, p);
@@ -108,6 +170,43 @@ TYPED_TEST(RunningFrameTest, BoundEnclosesTheExactLocalCoordinates) {
   // Not vacuous: some coordinate's error comes within a factor 16 of its
   // bound (a bound inflated by that much would cost the stage decisions).
   EXPECT_GT(worst, 1.0 / 16);
+}
+
+// The adaptive stage's double-word local coordinates (Tape::dwCoord): the
+// a-priori bound 2^-100 M + kDwTiny encloses the exact value, for the same
+// points.
+TEST(DoubleWordFrame, BoundEnclosesTheExactLocalCoordinates) {
+  const std::uint64_t seed = test::baseSeed() + 71;
+  SCOPED_TRACE(test::seedTrace(seed));
+  std::mt19937_64 g(seed);
+  const long n = test::scaled(3000);
+  double worst = 0;
+  long failures = 0;
+  for (long i = 0; i < n && failures < 10; ++i) {
+    Pose<double> pose;
+    Vec3<double> p;
+    framePoint(g, i, pose, p);
+    detail::Tape tape;
+    detail::TapeScope scope(&tape);
+    detail::An c[3];
+    tape.toLocal(pose, p, c[0], c[1], c[2]);
+    const oracle::Q3 ex = oracle::toLocal(pose, p);
+    const Q exact[3] = {ex.x, ex.y, 2 * ex.z};
+    for (int k = 0; k < 3; ++k) {
+      detail::DW v;
+      double e;
+      tape.doubleWord(c[k].id, &v, &e);
+      const Q err = abs(exactly(v.hi) + exactly(v.lo) - exact[k]);
+      if (err > exactly(e)) {
+        ++failures;
+        ADD_FAILURE() << "case " << i << ", coordinate " << k << ": error "
+                      << err.get_d() << " > bound " << e;
+      }
+      if (e > 0) worst = std::max(worst, Q(err / exactly(e)).get_d());
+    }
+  }
+  std::printf("[ stats    ] %ld points: worst error / bound %.3g\n", n, worst);
+  EXPECT_EQ(failures, 0);
 }
 
 // Each running kernel alone, through the whole triangle kernel (the

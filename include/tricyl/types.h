@@ -109,15 +109,20 @@ enum class Answer : unsigned char {
 };
 
 /// Which stage of the kernel decided a query (for statistics only; it never
-/// changes the answer).
+/// changes the answer). A query is first run in double with a certified
+/// error bound; where a sign stays open, the query runs once more and only
+/// the open signs are re-decided in stronger arithmetic (docs/exactness.md):
+/// the stage is the strongest arithmetic any sign of the query needed.
 enum class Stage : unsigned char {
   kEarlyOut = 0,  ///< a cheap certified rejection (slab or bounding box)
   kFastPath = 1,  ///< double predicates with a certified error bound
-  kExact = 2,     ///< the exact rational fallback (GMP)
+  kExact = 2,     ///< some sign decided exactly (stack floating-point
+                  ///< expansions: no heap allocation)
   kInvalid = 3,   ///< input rejected before any arithmetic
-  kExtended = 4,  ///< the certified filter re-run in extended precision
-  kTracked = 5,   ///< double arithmetic checked operation by operation:
-                  ///< signs whose computation never rounded (zero too)
+  kExtended = 4,  ///< some sign decided in double-word arithmetic (about
+                  ///< 106 bits) with a running error bound, none exactly
+  kExactGmp = 6,  ///< some sign decided exactly with GMP (inputs outside
+                  ///< the expansions' exponent window)
 };
 
 /// The answer of a query and the kernel stage that decided it.
