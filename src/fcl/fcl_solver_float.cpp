@@ -8,7 +8,9 @@
 // FCL's own float code (convexHalfspaceIntersect, halfspace-inl.h) trips
 // GCC 12's -Wmaybe-uninitialized when instantiated here; libfcl.so compiles
 // only double, so the double build never meets it. FCL's code, not ours.
+#if defined(__GNUC__) && !defined(__clang__)  // a GCC-only warning
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 
 #include "fcl_solver_impl.h"
 
