@@ -11,7 +11,11 @@
 set -euo pipefail
 PKGS=(build-essential cmake libgmp-dev libfcl-dev libccd-dev libeigen3-dev
       libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev gnuplot-nox
-      clang-14 libclang-rt-14-dev libfuzzer-14-dev doxygen)
+      clang-14 libclang-rt-14-dev libfuzzer-14-dev doxygen
+      # optional (examples/ompl_planner, its test, bench_planning): OMPL, and
+      # the Boost libraries its CMake config links but does not pull in
+      libompl-dev libboost-serialization-dev libboost-filesystem-dev
+      libboost-system-dev)
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 if [ "${1:-}" = "--cross" ]; then

@@ -219,9 +219,10 @@ void Tape::toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x,
                    An& y, An& Z) {
   const double pp[3] = {p.x, p.y, p.z};
   const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
-  // The double values and magnitudes of FilterKernel's generic toLocal:
-  // d_k = fl(p_k - t_k) with magnitude |d_k|, then ((R_0j d_0 + R_1j d_1)
-  // + R_2j d_2) with magnitudes summed the same way.
+  // The double values of the generic toLocal: d_k = fl(p_k - t_k), then
+  // ((R_0j d_0 + R_1j d_1) + R_2j d_2), and the folded running bound of
+  // toLocalRunning (src/triangle_cylinder_impl.h, derived there) from
+  // S = sum_k |R_kj| |d_k|.
   double d[3], a[3];
   for (int k = 0; k < 3; ++k) {
     d[k] = pp[k] - tt[k];
@@ -245,9 +246,17 @@ void Tape::toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x,
     const double* R0 = pose.R[0];
     const double* R1 = pose.R[1];
     const double* R2 = pose.R[2];
-    double v = (R0[j] * d[0] + R1[j] * d[1]) + R2[j] * d[2];
+    const double s1 = R0[j] * d[0] + R1[j] * d[1];
+    double v = s1 + R2[j] * d[2];
     double m = (std::fabs(R0[j]) * a[0] + std::fabs(R1[j]) * a[1]) +
-               std::fabs(R2[j]) * a[2];
+               std::fabs(R2[j]) * a[2];  // S, then the bound
+    {
+      constexpr double c = 0x1p-53 + 0x1p-53 * 0x1p-40;
+      const bool zero = (R0[j] == 0 || d[0] == 0) &&
+                        (R1[j] == 0 || d[1] == 0) && (R2[j] == 0 || d[2] == 0);
+      m = (((m + m) + std::fabs(s1)) + std::fabs(v)) * c +
+          (zero ? 0.0 : 4 * 0x1p-1074);
+    }
     if (j == 2) {
       v = v + v;
       m = m + m;

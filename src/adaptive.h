@@ -5,17 +5,20 @@
 // error bound or come back kUnknown. Where one comes back kUnknown, the
 // driver (runStages, src/stages.h) runs the query once more with
 // AdaptiveKernel below, and that run never meets kUnknown: each sign is
-// tried with FilterKernel's bound first (the same double values, so the
-// same verdicts), and only a sign that bound cannot certify is re-decided,
-// by itself, in stronger arithmetic:
+// tried in double first, with a RUNNING error bound (RunningDoubleKernel's
+// rules, src/filter.h: the same double values as FilterKernel's, a bound
+// that follows the values instead of the magnitudes, so it also certifies
+// what cancellation made the magnitude bound give up on), and only a sign
+// that bound cannot certify is re-decided, by itself, in stronger
+// arithmetic:
 //   1. double-word arithmetic (about 106 bits, src/eft.h) with a running
 //      error bound (src/adaptive.cpp);
 //   2. exact floating-point expansions on the stack (src/expansion.h);
 //   3. GMP dyadic rationals (ExactKernel), only where the expansions give
 //      up (products near underflow, capacity).
 // All of it runs only for inputs inside the range gate (rangeGateOk:
-// lengths <= 2^40, rotation entries <= 2), where FilterKernel's bound
-// holds and nothing overflows; the driver decides other inputs with GMP
+// lengths <= 2^40, rotation entries <= 2), where the double bounds hold
+// and nothing overflows; the driver decides other inputs with GMP
 // alone (src/stages.h).
 // The control flow of the query continues in double with the certified
 // sign. This is the shape of CGAL's Filtered_predicate and of Shewchuk's
@@ -24,8 +27,8 @@
 // predicate function.
 //
 // How one sign is re-decided without re-running the query: every value of
-// the adaptive run carries, besides FilterKernel's double value and
-// magnitude, the index of a node in a Tape, the record of how it was
+// the adaptive run carries, besides its double value and running error
+// bound, the index of a node in a Tape, the record of how it was
 // computed (an input, a difference of two inputs, +, -, negation, *). The
 // record costs one small store per operation; a stronger arithmetic
 // evaluates only the sub-DAG below the sign that failed, and the
@@ -58,11 +61,13 @@ struct DwRun {
   double e;
 };
 
-/// A value of the adaptive run: FilterKernel's Fd pair (v, m), computed by
-/// the same operations, and the node that records how it was computed.
+/// A value of the adaptive run: the double value v (computed by the same
+/// operations as FilterKernel's), a running bound m >= |v - E| (the rules of
+/// RunningDoubleKernel, src/filter.h), and the node that records how it was
+/// computed.
 struct An {
   double v;
-  double m;
+  double m;  // the running error bound e of Rd
   Tape* tape;
   std::uint32_t id;
 };
@@ -78,7 +83,7 @@ class Tape {
   /// Points mapped to the local frame (the triangle: 3; a segment: 3).
   static constexpr int kMaxPoints = 8;
 
-  /// For inputs that passed rangeGateOk only: FilterKernel's bound and the
+  /// For inputs that passed rangeGateOk only: the double bounds and the
   /// double-word stage's absolute slack rest on it, and under it nothing
   /// overflows (magnitudes <= 2^380, docs/exactness.md).
   Tape() {
@@ -93,7 +98,7 @@ class Tape {
   /// 2 expansions, 3 GMP.
   int level() const { return level_; }
 
-  std::uint32_t op(std::uint8_t code, std::uint32_t a, std::uint32_t b) {
+  std::uint32_t op(std::uint16_t code, std::uint32_t a, std::uint32_t b) {
     if (n_ == kMaxNodes) {
       overflow_ = true;
       return 0;
@@ -101,7 +106,7 @@ class Tape {
     nodes_[n_] = {code, std::uint16_t(a), std::uint16_t(b)};
     return std::uint32_t(n_++);
   }
-  std::uint32_t leaf(std::uint8_t code, double a, double b) {
+  std::uint32_t leaf(std::uint16_t code, double a, double b) {
     if (leaves_ == kMaxLeaves) {
       overflow_ = true;
       return 0;
@@ -115,14 +120,16 @@ class Tape {
   /// three leaves whose stronger values are computed only when a sign
   /// needs them (one straight-line evaluation each, not a sub-DAG of 11
   /// nodes); `x`, `y`, `Z` get the double values and magnitudes exactly as
-  /// the generic toLocal<K> computes them in FilterKernel's arithmetic.
+  /// the generic toLocal<K> computes them, and the running bound of
+  /// toLocalRunning (src/triangle_cylinder_impl.h) for each.
   void toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x, An& y,
                An& Z);
 
-  /// The sign of node `id`, which FilterKernel's bound could not certify.
+  /// The sign of node `id`, which the running double bound could not
+  /// certify.
   TRICYL_ADAPTIVE_NOINLINE Sign escalate(std::uint32_t id);
 
-  enum Code : std::uint8_t { kLift, kDiff, kAdd, kSub, kNeg, kMul, kCoord };
+  enum Code : std::uint16_t { kLift, kDiff, kAdd, kSub, kNeg, kMul, kCoord };
 
   /// For tests: node `id`'s double-word value and error bound, and its
   /// exact value.
@@ -142,8 +149,10 @@ class Tape {
   }
 
  private:
+  // No member of a character type: a store through one may alias anything,
+  // and would make every recorded operation reload the tape's counters.
   struct Node {
-    std::uint8_t code;
+    std::uint16_t code;
     std::uint16_t a, b;  // operands; a leaf's index; a coordinate's point
                          // and axis (b: 0 x, 1 y, 2 Z)
   };
@@ -187,16 +196,24 @@ class TapeScope {
 };
 
 inline An operator+(const An& a, const An& b) {
-  return {a.v + b.v, a.m + b.m, a.tape, a.tape->op(Tape::kAdd, a.id, b.id)};
+  const double v = a.v + b.v;
+  return {v, a.m + b.m + kU1d * std::fabs(v), a.tape,
+          a.tape->op(Tape::kAdd, a.id, b.id)};
 }
 inline An operator-(const An& a, const An& b) {
-  return {a.v - b.v, a.m + b.m, a.tape, a.tape->op(Tape::kSub, a.id, b.id)};
+  const double v = a.v - b.v;
+  return {v, a.m + b.m + kU1d * std::fabs(v), a.tape,
+          a.tape->op(Tape::kSub, a.id, b.id)};
 }
 inline An operator-(const An& a) {
   return {-a.v, a.m, a.tape, a.tape->op(Tape::kNeg, a.id, 0)};
 }
 inline An operator*(const An& a, const An& b) {
-  return {a.v * b.v, a.m * b.m, a.tape, a.tape->op(Tape::kMul, a.id, b.id)};
+  const double v = a.v * b.v;
+  return {v,
+          std::fabs(a.v) * b.m + std::fabs(b.v) * a.m + a.m * b.m +
+              kU1d * std::fabs(v) + 0x1p-1074,
+          a.tape, a.tape->op(Tape::kMul, a.id, b.id)};
 }
 
 struct AdaptiveKernel {
@@ -204,17 +221,17 @@ struct AdaptiveKernel {
   static constexpr bool kExact = false;
   static Num lift(double x) {
     Tape* t = tls_tape;
-    return {x, std::fabs(x), t, t->leaf(Tape::kLift, x, 0)};
+    return {x, 0.0, t, t->leaf(Tape::kLift, x, 0)};
   }
-  /// FilterKernel's input difference (value fl(a - b), magnitude its
-  /// absolute value; docs/exactness.md), recorded as one exact leaf.
+  /// The input difference: value fl(a - b) with bound u' |fl(a - b)|,
+  /// recorded as one exact leaf.
   static Num inputDiff(double a, double b) {
     Tape* t = tls_tape;
     const double d = a - b;
-    return {d, std::fabs(d), t, t->leaf(Tape::kDiff, a, b)};
+    return {d, kU1d * std::fabs(d), t, t->leaf(Tape::kDiff, a, b)};
   }
   static Sign sign(const Num& a) {
-    const Sign s = FilterKernel::sign(Fd{a.v, a.m});
+    const Sign s = RunningDoubleKernel::sign(Rd{a.v, a.m});
     if (s != Sign::kUnknown) return s;
     return a.tape->escalate(a.id);
   }

@@ -5,9 +5,11 @@
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -91,6 +93,49 @@ inline Mesh boxMesh(double hx, double hy, double hz) {
                                 {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
   for (const auto& t : f) m.triangles.emplace_back(t[0], t[1], t[2]);
   return m;
+}
+
+/// The mesh split into its connected parts (triangles sharing a vertex
+/// position, since OBJ files often repeat vertices per face), each a mesh of
+/// its own: the bodies a planning scene registers one by one. Parts keep the
+/// order of their first triangle.
+inline std::vector<Mesh> connectedParts(const Mesh& mesh) {
+  // One id per distinct position, then union-find over the triangles.
+  std::map<std::array<double, 3>, std::size_t> ids;
+  std::vector<std::size_t> id(mesh.vertices.size());
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    const auto& v = mesh.vertices[i];
+    id[i] = ids.emplace(std::array<double, 3>{v.x(), v.y(), v.z()}, ids.size())
+                .first->second;
+  }
+  std::vector<std::size_t> up(ids.size());
+  for (std::size_t i = 0; i < up.size(); ++i) up[i] = i;
+  auto root = [&up](std::size_t i) {
+    while (up[i] != i) i = up[i] = up[up[i]];
+    return i;
+  };
+  for (const auto& t : mesh.triangles)
+    for (int k = 1; k < 3; ++k) up[root(id[t[k]])] = root(id[t[0]]);
+  std::map<std::size_t, std::size_t> part_of;  // root -> part number
+  std::vector<Mesh> parts;
+  std::vector<std::map<std::size_t, std::size_t>> remap;  // vertex -> local
+  for (const auto& t : mesh.triangles) {
+    const auto [it, added] = part_of.emplace(root(id[t[0]]), parts.size());
+    if (added) {
+      parts.emplace_back();
+      remap.emplace_back();
+    }
+    Mesh& part = parts[it->second];
+    std::size_t local[3];
+    for (int k = 0; k < 3; ++k) {
+      const auto [v, fresh] =
+          remap[it->second].emplace(t[k], part.vertices.size());
+      if (fresh) part.vertices.push_back(mesh.vertices[t[k]]);
+      local[k] = v->second;
+    }
+    part.triangles.emplace_back(local[0], local[1], local[2]);
+  }
+  return parts;
 }
 
 /// The mesh as FCL's usual BVH (OBBRSS, what MoveIt uses for meshes).
