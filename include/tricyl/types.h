@@ -1,18 +1,19 @@
-// tricyl: plain aggregate types shared by every query.
-//
-// Conventions (the same for every header in include/tricyl/):
-// - Cylinder<S>{radius, lz}: FCL's convention. Centred at the origin of its own
-//   frame, axis +z, full length lz: the closed solid
-//       { y : y0^2 + y1^2 <= radius^2, |y2| <= lz/2 }.
-// - Pose<S>{R, t}: world = R * local + t, R row-major, exactly as FCL's
-//   Transform3 holds linear() and translation(). A world point x maps to the
-//   local point y = R^T (x - t), and every query evaluates that map EXACTLY:
-//   R is used as given, never re-orthonormalised. A rotation a hair off
-//   orthonormal is fine; the solid is then the exact preimage under that map.
-// - Triangle<S>{a, b, c}: the closed convex hull of three points. Collinear or
-//   coincident vertices are valid: the hull is a segment or a point.
-// - Answers are exact for the inputs as given (no epsilon, no tolerance
-//   parameter). Touching counts as intersecting.
+/// @file
+/// tricyl: plain aggregate types shared by every query.
+///
+/// Conventions (the same for every header in include/tricyl/):
+/// - Cylinder<S>{radius, lz}: FCL's convention. Centred at the origin of its
+///   own frame, axis +z, full length lz: the closed solid
+///       { y : y0^2 + y1^2 <= radius^2, |y2| <= lz/2 }.
+/// - Pose<S>{R, t}: world = R * local + t, R row-major, exactly as FCL's
+///   Transform3 holds linear() and translation(). A world point x maps to the
+///   local point y = R^T (x - t), and every query evaluates that map EXACTLY:
+///   R is used as given, never re-orthonormalised. A rotation a hair off
+///   orthonormal is fine; the solid is then the exact preimage under that map.
+/// - Triangle<S>{a, b, c}: the closed convex hull of three points. Collinear or
+///   coincident vertices are valid: the hull is a segment or a point.
+/// - Answers are exact for the inputs as given (no epsilon, no tolerance
+///   parameter). Touching counts as intersecting.
 #pragma once
 
 #include <stdexcept>
