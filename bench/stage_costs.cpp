@@ -13,8 +13,11 @@
 // Usage: tricyl-stage-costs [passes] (default 20); markdown on stdout.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "scenes.h"
@@ -42,7 +45,8 @@ double ns(Clock::duration d) {
 
 double quantile(std::vector<double> v, double q) {
   if (v.empty()) return 0;
-  const std::size_t k = std::min(v.size() - 1, std::size_t(q * double(v.size())));
+  const std::size_t k =
+      std::min(v.size() - 1, std::size_t(q * double(v.size())));
   std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
   return v[k];
 }
@@ -76,13 +80,15 @@ int main(int argc, char** argv) {
     const auto b = Clock::now();
     clock_ns = std::min(clock_ns, ns(b - a));
   }
-  std::printf("# tricyl-stage-costs\n\n%d cases per family, %d passes; "
-              "clock overhead %.1f ns (subtracted from single-query "
-              "times)\n\n",
-              kCases, passes, clock_ns);
-  std::printf("| family | tricyl mean | FCL MPR mean | ratio | tricyl median "
-              "| tricyl p99 | tricyl max |\n|---|---:|---:|---:|---:|---:|---:|"
-              "\n");
+  std::printf(
+      "# tricyl-stage-costs\n\n%d cases per family, %d passes; "
+      "clock overhead %.1f ns (subtracted from single-query "
+      "times)\n\n",
+      kCases, passes, clock_ns);
+  std::printf(
+      "| family | tricyl mean | FCL MPR mean | ratio | tricyl median "
+      "| tricyl p99 | tricyl max |\n|---|---:|---:|---:|---:|---:|---:|"
+      "\n");
   std::vector<std::string> stage_rows;
   for (Family fam : tricyl::scenes::kAllFamilies) {
     std::vector<TriCase> v;
@@ -137,16 +143,18 @@ int main(int argc, char** argv) {
       for (std::size_t n = 0; n < v.size(); ++n) {
         const TriCase& c = v[w1.next()];
         const auto a = Clock::now();
-        const tricyl::Decision d = tricyl::decideIntersect(c.cyl, c.pose, c.tri);
+        const tricyl::Decision d =
+            tricyl::decideIntersect(c.cyl, c.pose, c.tri);
         const double t = std::max(0.0, ns(Clock::now() - a) - clock_ns);
         hits += d.answer == tricyl::Answer::kIntersect;
         all.push_back(t);
         by[int(d.stage)].push_back(t);
       }
-    std::printf("| %s | %.1f ns | %.1f ns | %.1fx | %.1f ns | %.0f ns | %.0f ns |\n",
-                tricyl::scenes::familyName(fam), mean, fcl_mean,
-                fcl_mean > 0 ? fcl_mean / mean : 0.0, quantile(all, 0.5),
-                quantile(all, 0.99), *std::max_element(all.begin(), all.end()));
+    std::printf(
+        "| %s | %.1f ns | %.1f ns | %.1fx | %.1f ns | %.0f ns | %.0f ns |\n",
+        tricyl::scenes::familyName(fam), mean, fcl_mean,
+        fcl_mean > 0 ? fcl_mean / mean : 0.0, quantile(all, 0.5),
+        quantile(all, 0.99), *std::max_element(all.begin(), all.end()));
     for (Stage s : {Stage::kEarlyOut, Stage::kFastPath, Stage::kExtended,
                     Stage::kExact, Stage::kExactGmp}) {
       const auto& b = by[int(s)];
@@ -164,8 +172,56 @@ int main(int argc, char** argv) {
     }
     if (hits == -1) std::printf("\n");  // keep the answers alive
   }
-  std::printf("\n## By stage (queries timed one by one)\n\n| family | stage | "
-              "share | mean | p99 | max |\n|---|---|---:|---:|---:|---:|\n");
+  std::printf(
+      "\n## By stage (queries timed one by one)\n\n| family | stage | "
+      "share | mean | p99 | max |\n|---|---|---:|---:|---:|---:|\n");
   for (const auto& r : stage_rows) std::printf("%s", r.c_str());
+
+  // Bounded time on hostile input: every coordinate, translation, radius,
+  // length and rotation entry with a random exponent in 2^-1070 .. 2^1020
+  // (seeded), so the range gate sends every query to GMP and the dyadic
+  // integers span about 2,100 bits before the degree-8 products.
+  {
+    std::uint64_t x = 0x9e3779b97f4a7c15ULL;
+    auto next = [&x]() {
+      x ^= x << 13;
+      x ^= x >> 7;
+      x ^= x << 17;
+      return x;
+    };
+    auto wild = [&next]() {
+      const double f = 1.0 + double(next() >> 12) * 0x1p-52;
+      const int e = -1070 + int(next() % 2091);
+      return ((next() & 1) ? -1.0 : 1.0) * std::ldexp(f, e);
+    };
+    std::vector<double> t;
+    long hits = 0;
+    for (int i = 0; i < 20000; ++i) {
+      tricyl::Cylinder<double> cyl{std::fabs(wild()), std::fabs(wild())};
+      tricyl::Pose<double> pose;
+      for (auto& row : pose.R)
+        for (double& r : row) r = wild();
+      pose.t = {wild(), wild(), wild()};
+      tricyl::Triangle<double> tri{{wild(), wild(), wild()},
+                                   {wild(), wild(), wild()},
+                                   {wild(), wild(), wild()}};
+      // The least of three timings: a preemption of this shared machine is
+      // not the query's cost.
+      double best = 1e300;
+      for (int rep = 0; rep < 3; ++rep) {
+        const auto a = Clock::now();
+        hits +=
+            tricyl::tryIntersect(cyl, pose, tri) == tricyl::Answer::kIntersect;
+        best = std::min(best, ns(Clock::now() - a));
+      }
+      t.push_back(best);
+    }
+    std::printf(
+        "\n## Random exponents (2^-1070 .. 2^1020, 20,000 queries)\n\n"
+        "median %.1f us, p99 %.1f us, max %.1f us (least of 3 "
+        "timings each; %ld hits)\n",
+        quantile(t, 0.5) / 1e3, quantile(t, 0.99) / 1e3,
+        *std::max_element(t.begin(), t.end()) / 1e3, hits);
+  }
   return 0;
 }
