@@ -80,8 +80,9 @@ for exe in build/ld64/tests/*_test build/ld64/tests/tricyl-answers-digest; do
       bad+=" $(basename "$exe"):$sym"
     fi
   done < <(nm -u "$exe" | awk '{print $2}')
-  if nm -uC "$exe" | grep -q 'long double'; then
-    bad+=" $(basename "$exe"):$(nm -uC "$exe" | grep 'long double' | head -1 | xargs)"
+  demangled=$(nm -uC "$exe")
+  if grep -q 'long double' <<<"$demangled"; then
+    bad+=" $(basename "$exe"):$(grep -m1 'long double' <<<"$demangled" | xargs)"
   fi
 done
 if [ -n "$bad" ]; then

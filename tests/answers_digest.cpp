@@ -57,9 +57,8 @@ V mul(V a, double s) { return {a.x * s, a.y * s, a.z * s}; }
 
 enum Kind { kTriangle, kTriangleF, kPoint, kCone, kSphere, kSegment, kLine };
 constexpr int kKinds = 7;
-const char* const kKindNames[kKinds] = {"triangle", "triangle_f", "point",
-                                        "cone",     "sphere",     "segment",
-                                        "line"};
+const char* const kKindNames[kKinds] = {
+    "triangle", "triangle_f", "point", "cone", "sphere", "segment", "line"};
 enum Fam { kUniform, kNear, kFar, kThin, kDegenerate, kAligned };
 constexpr int kFams = 6;
 const char* const kFamNames[kFams] = {"uniform", "near",       "far",
@@ -70,7 +69,7 @@ struct Scene {
   Cylinder<double> cyl{1, 2};
   Pose<double> pose = tricyl::identityPose<double>();
   V a{0, 0, 0}, b{0, 0, 0}, c{0, 0, 0};  // triangle; a: point, centre, p
-  double rho = 0;                         // sphere radius
+  double rho = 0;                        // sphere radius
 };
 
 /// Relative offsets for near cases: +-k 2^-52 (k = 1..4) or +-10^-j
@@ -108,8 +107,8 @@ double magnitude(Rng& g, int lo, int hi) {
 
 /// A surface point of the cylinder (side, cap or rim), its outward normal
 /// (not normalised on the rim) and a tangent direction.
-void surfacePoint(Rng& g, const Cylinder<double>& cyl, double delta, V* p,
-                  V* n, V* t) {
+void surfacePoint(Rng& g, const Cylinder<double>& cyl, double delta, V* p, V* n,
+                  V* t) {
   const double r = cyl.radius, h = cyl.lz / 2;
   double c, s;
   circle(g, &c, &s);
@@ -236,7 +235,10 @@ Scene degenerateScene(Rng& g) {
       k.b = add(k.a, V{0, 0, g.uniform(-1, 1)});
       break;
     case 4:  // zero sizes
-      if (g.coin()) k.cyl.radius = 0; else k.cyl.lz = 0;
+      if (g.coin())
+        k.cyl.radius = 0;
+      else
+        k.cyl.lz = 0;
       break;
     case 5:  // a sliver: c within 2^-40 of the segment ab
       k.c = add(mul(add(k.a, k.b), 0.5), V{0x1p-40, -0x1p-41, 0x1p-42});
@@ -283,12 +285,18 @@ Scene generate(Kind kind, Fam fam, std::uint64_t index) {
   Rng g(0x7269636c64696765ULL ^ (std::uint64_t(kind) << 56) ^
         (std::uint64_t(fam) << 48) ^ index);
   switch (fam) {
-    case kUniform: return uniformScene(g);
-    case kNear: return nearScene(g, kind);
-    case kFar: return farScene(g, kind);
-    case kThin: return thinScene(g, kind);
-    case kDegenerate: return degenerateScene(g);
-    default: return alignedScene(g);
+    case kUniform:
+      return uniformScene(g);
+    case kNear:
+      return nearScene(g, kind);
+    case kFar:
+      return farScene(g, kind);
+    case kThin:
+      return thinScene(g, kind);
+    case kDegenerate:
+      return degenerateScene(g);
+    default:
+      return alignedScene(g);
   }
 }
 
@@ -437,15 +445,15 @@ int main(int argc, char** argv) {
           std::fprintf(dump, "%s %s %ld %d %a %a\n", kKindNames[kind],
                        kFamNames[fam], i, int(d.answer), iv.lo, iv.hi);
       }
-    std::printf("%-10s intersect %5ld disjoint %5ld invalid %3ld | stages:"
-                " early %4ld fast %4ld extended %4ld tracked %4ld"
-                " exact %4ld\n",
-                kKindNames[kind], answers[kind][1], answers[kind][0],
-                answers[kind][2], stages[kind][int(Stage::kEarlyOut)],
-                stages[kind][int(Stage::kFastPath)],
-                stages[kind][int(Stage::kExtended)],
-                stages[kind][int(Stage::kTracked)],
-                stages[kind][int(Stage::kExact)]);
+    std::printf(
+        "%-10s intersect %5ld disjoint %5ld invalid %3ld | stages:"
+        " early %4ld fast %4ld extended %4ld tracked %4ld"
+        " exact %4ld\n",
+        kKindNames[kind], answers[kind][1], answers[kind][0], answers[kind][2],
+        stages[kind][int(Stage::kEarlyOut)],
+        stages[kind][int(Stage::kFastPath)],
+        stages[kind][int(Stage::kExtended)], stages[kind][int(Stage::kTracked)],
+        stages[kind][int(Stage::kExact)]);
   }
   if (dump) std::fclose(dump);
   // The digests: the answers (every query, every kind) and the interval
@@ -474,7 +482,8 @@ int main(int argc, char** argv) {
                      &ans, lo_s, hi_s) == 6) {
     if (std::size_t(read) >= recs.size()) break;
     const Rec& r = recs[std::size_t(read++)];
-    const double lo = std::strtod(lo_s, nullptr), hi = std::strtod(hi_s, nullptr);
+    const double lo = std::strtod(lo_s, nullptr),
+                 hi = std::strtod(hi_s, nullptr);
     if (ans != r.answer) {
       if (++answer_diffs <= 10)
         std::fprintf(stderr, "ANSWER differs: %s %s %ld: %d here, %d there\n",
@@ -493,10 +502,11 @@ int main(int argc, char** argv) {
     }
   }
   std::fclose(ref);
-  std::printf("compared with %s: %ld queries, answers differing %ld, "
-              "interval ends differing %ld (largest difference %.3g relative;"
-              " beyond 2 x 1.9e-15: %ld)\n",
-              compare_path, read, answer_diffs, end_diffs, worst, beyond);
+  std::printf(
+      "compared with %s: %ld queries, answers differing %ld, "
+      "interval ends differing %ld (largest difference %.3g relative;"
+      " beyond 2 x 1.9e-15: %ld)\n",
+      compare_path, read, answer_diffs, end_diffs, worst, beyond);
   if (std::size_t(read) != recs.size()) {
     std::fprintf(stderr, "the dump has %ld queries, this run %zu\n", read,
                  recs.size());

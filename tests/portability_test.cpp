@@ -120,10 +120,10 @@ TEST(PortabilityIssue20, WholeLineClipRaisesNoFlag) {
   const Cylinder<double> c{1, 2};
   const Pose<double> I = identityPose<double>();
   const Line<double> lines[] = {
-      {{0, 0, 1}, {0, dmin, 1}},      // in the cap plane
-      {{0, 0, -1}, {0, dmin, -1}},    // in the bottom cap plane
-      {{0.5, 0, 0}, {0.5, 0, 0}},     // p == q inside: all s
-      {{0, 0, 0}, {dmin, 0, 0}},      // through the axis, [-inf, inf]
+      {{0, 0, 1}, {0, dmin, 1}},    // in the cap plane
+      {{0, 0, -1}, {0, dmin, -1}},  // in the bottom cap plane
+      {{0.5, 0, 0}, {0.5, 0, 0}},   // p == q inside: all s
+      {{0, 0, 0}, {dmin, 0, 0}},    // through the axis, [-inf, inf]
       {{0, 0.5, 0.25}, {0, 0.5, 0.25}},
   };
   for (const Line<double>& l : lines) {

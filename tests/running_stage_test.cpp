@@ -11,9 +11,9 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
-#include <cstdio>
 #include <random>
 
 #include "filter.h"
