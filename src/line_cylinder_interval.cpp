@@ -73,11 +73,13 @@ namespace {
 // Stage 1: running error bounds, double then long double.
 
 // The running error bound in plain double is filter.h's Rd
-// (RunningDoubleKernel): ExtendedKernel's rules with u = 2^-53, plus an
-// absolute 2^-1074 on every product (here also on every quotient) for a
-// possible underflow, for a cheaper first attempt. The long double stage
-// (filter.h's Fl, covered there by the range gate) runs only when this one
-// cannot reach the accuracy.
+// (RunningDoubleKernel), a cheaper first attempt; the long double stage
+// (filter.h's Fl) runs only when it cannot reach the accuracy. Both add the
+// type's smallest subnormal to every product (here also to every quotient)
+// for a possible underflow, so no argument below depends on the width of
+// long double (where it is double, Fl is a second double attempt). The only
+// values taken as certified zeros are local coordinates with e = 0, which
+// toLocalRunning gives only when every term has an exact zero factor.
 
 /// Per running type (Fl, Rd): u', the absolute underflow allowance of a
 /// product or quotient, and the floating type (filter.h's RunningTraits).
