@@ -1,6 +1,8 @@
 // End-to-end collide of a cylinder against env.obj and bunny.obj
 // (BVHModel<OBBRSS>), in the same binary, first hit (num_max_contacts = 1)
-// and exhaustive, contact data off and on:
+// and exhaustive, contact data off and on; and paired rows on grazing
+// scenes of env, bunny and rob (half the poses tangent to a face, pushed in
+// or out by up to 1e-3 of the diagonal), cold and warm:
 // - tricyl/    tricyl::collide: tricyl's own traversal (fcl_mesh_cylinder.h)
 // - solver/    fcl::collide with tricyl::Solver: FCL's traversal, exact leaves
 // - stock/     fcl::collide: FCL's traversal and libccd's MPR
@@ -25,13 +27,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "obj_mesh.h"
 #include "tricyl/fcl_solver.h"
 #include "walk.h"
 
@@ -66,31 +67,46 @@ struct MeshData {
   bool ok = false;
 };
 
-MeshData load(const std::string& file, std::uint64_t seed) {
+/// Grazing offsets, relative to the mesh's bounding-box diagonal: a planner
+/// grazing an obstacle (exact contact, and just in or out of it).
+constexpr double kGraze[] = {0,    1e-3,  -1e-3, 1e-6, -1e-6,
+                             5e-7, -5e-7, 1e-9,  -1e-9};
+
+/// A proper rotation whose third column (the cylinder's axis) is `z`.
+Tf frameWithAxis(const V3& z, const V3& c) {
+  const V3 zn = z.normalized();
+  V3 x = std::abs(zn.x()) < 0.9 ? V3(1, 0, 0) : V3(0, 1, 0);
+  x = (x - x.dot(zn) * zn).normalized();
+  const V3 y = zn.cross(x);
+  Tf tf = Tf::Identity();
+  tf.linear().col(0) = x;
+  tf.linear().col(1) = y;
+  tf.linear().col(2) = zn;
+  tf.translation() = c;
+  return tf;
+}
+
+/// `grazing`: every other pose touches a random face of the mesh, pushed
+/// out or in by an offset of kGraze (times the diagonal), alternately with
+/// its barrel (axis in the face's plane, along an edge) and its cap (axis
+/// along the face normal); the other poses are the random ones below.
+MeshData load(const std::string& file, std::uint64_t seed,
+              bool grazing = false) {
   MeshData d;
-  std::ifstream in(std::string(TRICYL_MESH_DIR) + "/" + file);
-  if (!in) return d;
+  tricyl::obj::Mesh f;
+  try {
+    f = tricyl::obj::read(std::string(TRICYL_MESH_DIR) + "/" + file);
+  } catch (const std::exception&) {
+    return d;
+  }
   std::vector<V3> v;
   std::vector<fcl::Triangle> t;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream ls(line);
-    std::string tag;
-    ls >> tag;
-    if (tag == "v") {
-      double x, y, z;
-      ls >> x >> y >> z;
-      v.emplace_back(x, y, z);
-    } else if (tag == "f") {
-      std::size_t idx[3];
-      for (std::size_t& i : idx) {
-        std::string tok;
-        ls >> tok;
-        i = std::stoul(tok.substr(0, tok.find('/'))) - 1;
-      }
-      t.emplace_back(idx[0], idx[1], idx[2]);
-    }
-  }
+  for (std::size_t i = 0; i < f.numVertices(); ++i)
+    v.emplace_back(f.vertices[3 * i], f.vertices[3 * i + 1],
+                   f.vertices[3 * i + 2]);
+  for (std::size_t k = 0; k < f.numTriangles(); ++k)
+    t.emplace_back(f.indices[3 * k], f.indices[3 * k + 1],
+                   f.indices[3 * k + 2]);
   d.model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
   d.model->beginModel(int(t.size()), int(v.size()));
   d.model->addSubModel(v, t);
@@ -108,6 +124,20 @@ MeshData load(const std::string& file, std::uint64_t seed) {
     const fcl::Triangle& tr =
         t[std::size_t(u(rng) * double(t.size())) % t.size()];
     const V3 c = (v[tr[0]] + v[tr[1]] + v[tr[2]]) / 3;
+    const V3 n = (v[tr[1]] - v[tr[0]]).cross(v[tr[2]] - v[tr[0]]);
+    if (grazing && k % 2 == 1 && n.norm() > 0) {
+      const V3 nn = n.normalized();
+      const double off = kGraze[std::size_t(k / 2) % std::size(kGraze)] * diag;
+      const double r = diag * (0.003 + 0.02 * u(rng));
+      const double lz = diag * (0.01 + 0.05 * u(rng));
+      const bool barrel = (k / 2) % 2 == 0;
+      const Tf tf = barrel
+                        ? frameWithAxis(v[tr[1]] - v[tr[0]], c + nn * (r + off))
+                        : frameWithAxis(nn, c + nn * (lz / 2 + off));
+      d.poses.push_back(tf);
+      d.cyls.push_back(std::make_shared<fcl::Cylinderd>(r, lz));
+      continue;
+    }
     Tf tf = Tf::Identity();
     Eigen::Quaterniond q(g(rng), g(rng), g(rng), g(rng));
     tf.linear() = q.normalized().toRotationMatrix();
@@ -121,9 +151,14 @@ MeshData load(const std::string& file, std::uint64_t seed) {
   return d;
 }
 
-const MeshData& mesh(const std::string& file) {
+const MeshData& mesh(const std::string& file, bool grazing = false) {
   static MeshData env = load("env.obj", 42);
   static MeshData bunny = load("bunny.obj", 43);
+  static MeshData genv = load("env.obj", 44, true);
+  static MeshData gbunny = load("bunny.obj", 45, true);
+  static MeshData grob = load("rob.obj", 46, true);
+  if (grazing)
+    return file == "env.obj" ? genv : (file == "bunny.obj" ? gbunny : grob);
   return file == "env.obj" ? env : bunny;
 }
 
@@ -203,8 +238,8 @@ void BM_Collide(benchmark::State& state, std::string file, Which which,
 // (sums over the iterations); best_* the same from the fastest call per
 // pose.
 void BM_PairedCollide(benchmark::State& state, std::string file,
-                      bool exhaustive) {
-  const MeshData& d = mesh(file);
+                      bool exhaustive, bool grazing, bool warm) {
+  const MeshData& d = mesh(file, grazing);
   if (!d.ok) {
     state.SkipWithError("mesh not found (../shared/data/meshes)");
     return;
@@ -223,6 +258,16 @@ void BM_PairedCollide(benchmark::State& state, std::string file,
     for (int k = 0; k < 2; ++k) {
       const bool run_tricyl = (k == 0) == tricyl_first;
       fcl::CollisionResultd res;
+      // Warm: the same pose twice before the timed call (caches and
+      // predictors primed by this very query).
+      for (int w = 0; warm && w < 2; ++w) {
+        fcl::CollisionResultd r0;
+        if (run_tricyl)
+          tricyl::collide(&o_mesh, o_cyl, req, r0);
+        else
+          fcl::collide(&o_mesh, o_cyl, req, r0);
+        benchmark::DoNotOptimize(r0);
+      }
       const auto t0 = Clock::now();
       if (run_tricyl)
         tricyl::collide(&o_mesh, o_cyl, req, res);
@@ -259,12 +304,24 @@ void BM_PairedCollide(benchmark::State& state, std::string file,
 }
 
 void registerAll() {
+  // Grazing scenes (half the poses touching a face at offsets 0 .. 1e-3 of
+  // the diagonal), cold (each call a new pose) and warm (third call).
+  for (const char* file : {"env.obj", "bunny.obj", "rob.obj"})
+    for (bool exhaustive : {false, true})
+      for (bool warm : {false, true})
+        benchmark::RegisterBenchmark(
+            (std::string("paired_grazing/") + file +
+             (exhaustive ? "/exhaustive" : "/first_hit") +
+             (warm ? "/warm" : "/cold"))
+                .c_str(),
+            BM_PairedCollide, file, exhaustive, true, warm);
   for (const char* file : {"env.obj", "bunny.obj"})
     for (bool exhaustive : {false, true})
       benchmark::RegisterBenchmark((std::string("paired/") + file +
                                     (exhaustive ? "/exhaustive" : "/first_hit"))
                                        .c_str(),
-                                   BM_PairedCollide, file, exhaustive);
+                                   BM_PairedCollide, file, exhaustive, false,
+                                   false);
 
   for (const char* file : {"env.obj", "bunny.obj"})
     for (bool exhaustive : {false, true})

@@ -1,4 +1,4 @@
-// The batch mesh scan (issue 6) against the scalar kernel and FCL, in one
+// The batch mesh scan against the scalar kernel and FCL, in one
 // binary. Counter `ns_per_tri`: wall time per triangle of the mesh.
 //
 //   Grid/<variant>/<N>   a wavy grid of N triangles (2 per cell, vertices

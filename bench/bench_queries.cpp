@@ -1,4 +1,4 @@
-// The cylinder query family (issue 5) against the straightforward formulas
+// The cylinder query family against the straightforward formulas
 // of the sources (seeds/001 pseudo-code, Freesteel's slab-and-quadratic
 // interval for the segment and the line, and Freesteel's three-surfaces
 // method for the line) in plain double. Inputs: 4096 pre-generated cases of one
@@ -108,7 +108,7 @@ bool srcSphereCylinder(const Src& c, V C, double r) {
   return !(t2 > (c.R + f) * (c.R + f));
 }
 
-// The source's segment test (incomplete: see issue 5), as written.
+// The source's segment test (incomplete: it misses some hits), as written.
 bool srcSegmentCylinder(const Src& c, V P0, V P1) {
   const V V1 = sub(P1, P0);
   const V d0 = sub(P0, c.O);

@@ -2,7 +2,8 @@
 # GJKSolver_libccd (included from bench/CMakeLists.txt when FCL was found).
 if(TRICYL_HAVE_FCL AND TARGET tricyl_fcl)
   add_executable(bench_fcl_collide ${CMAKE_CURRENT_LIST_DIR}/bench_fcl_collide.cpp)
-  target_link_libraries(bench_fcl_collide PRIVATE tricyl::fcl benchmark::benchmark)
+  target_link_libraries(bench_fcl_collide PRIVATE tricyl::fcl benchmark::benchmark
+                                                  tricyl_obj_mesh)
   target_compile_definitions(bench_fcl_collide PRIVATE
     TRICYL_MESH_DIR="${PROJECT_SOURCE_DIR}/../shared/data/meshes")
   tricyl_set_warnings(bench_fcl_collide)

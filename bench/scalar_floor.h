@@ -1,5 +1,5 @@
-// The floor of the scalar triangle-cylinder design (issues 2 and 6, the 20x
-// target; README "Open"): truncated versions of the world-pose entry point's
+// The floor of the scalar triangle-cylinder design (the 20x target;
+// docs/performance.md): truncated versions of the world-pose entry point's
 // first stage, each adding one piece of work that an exact answer needs,
 // timed on the same cases, in the same order, with FCL in the same iteration
 // (BM_Floor in bench_triangle_cylinder.cpp).
@@ -18,13 +18,14 @@
 //      it (per-vertex magnitude 2 (|d0| + |d1| + |d2|), FilterKernel's
 //      relative and absolute constants);
 //   4  + (V): a vertex certainly inside the solid (the kernel's second
-//      cheapest answer, 19% of uniform), still branch-free;
+//      cheapest answer), still branch-free;
 //   5  + branch: one branch on the outcome, as any kernel takes to do more
-//      work for the queries still open (15% of uniform); here it does none.
+//      work for the queries still open; here it does none.
 // The kernel itself (BM_Tricyl, BM_Paired) is level 5 plus the work for
-// those 15%. Same arithmetic as src/triangle_cylinder.cpp's prologueAvx2Body
-// up to the branch; written again here (the bench must not reach into the
-// library's anonymous namespace), without FMA, like the kernel.
+// the queries still open (their share of uniform: bench/results/README.md).
+// Same arithmetic as src/triangle_cylinder.cpp's prologueAvx2Body up to the
+// branch; written again here (the bench must not reach into the library's
+// anonymous namespace), without FMA, like the kernel.
 #pragma once
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))

@@ -6,6 +6,7 @@
 //                  [--timeout SECONDS] [--sweep-cases N] [--mesh-cases N]
 //                  [--replay FILE] [--no-plots] [--quiet]
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "harness.h"
+#include "known_cases.h"
 #include "mesh_scenes.h"
 #include "report.h"
 #include "runner.h"
@@ -64,22 +66,21 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--families", families,
                  "families to run (default: all): uniform near far thin "
-                 "sliver aligned mesh")
+                 "sliver aligned mesh_scan mesh_bvh ('mesh' for both)")
       ->delimiter(',');
   app.add_option("--methods", method_names,
-                 "methods to run (default: all): tricyl tricyl_fast "
+                 "methods to run (default: all): tricyl diagnostic_uncertified "
                  "tricyl_float tricyl_fcl tricyl_fcl_contact fcl_libccd_1e-6 "
                  "fcl_libccd_default fcl_indep")
       ->delimiter(',');
   app.add_option("--mesh", mesh_files,
-                 "OBJ files for the mesh family (replace the built-in "
-                 "sphere, torus and terrain)")
-      ->check(CLI::ExistingFile);
+                 "OBJ files for the mesh families (replace the built-in "
+                 "sphere, torus and terrain; the word 'builtin' adds those)");
   app.add_option("--mesh-cases", mesh_cases,
-                 "cases of the mesh family (default: cases / 10)");
+                 "cases of each mesh family (default: cases / 10)");
   app.add_option(
          "--queries", queries,
-         "cylinder queries of issue 5 to run, each over its families "
+         "cylinder queries to run, each over its families "
          "uniform, near, far, degenerate (default: all built: "
          "point_cylinder point_cone sphere segment line; 'none' for none)")
       ->delimiter(',');
@@ -161,8 +162,16 @@ int main(int argc, char** argv) {
           fams.push_back(tricyl::scenes::familyName(f));
         fams.push_back("mesh");
       }
+      std::vector<MeshPath> mesh_paths;
       for (const auto& name : fams) {
-        if (name == "mesh") continue;
+        if (name == "mesh" || name == "mesh_scan" || name == "mesh_bvh") {
+          for (MeshPath p : {MeshPath::kScan, MeshPath::kBvh})
+            if ((name == "mesh" || name == meshFamilyName(p)) &&
+                std::find(mesh_paths.begin(), mesh_paths.end(), p) ==
+                    mesh_paths.end())
+              mesh_paths.push_back(p);
+          continue;
+        }
         auto f = tricyl::scenes::parseFamily(name);
         if (!f) {
           std::fprintf(stderr, "tricyl-compare: unknown family '%s'\n",
@@ -175,17 +184,18 @@ int main(int argc, char** argv) {
                return Case{tricyl::scenes::generate(fam, seed, i), nullptr};
              }});
       }
-      if (std::find(fams.begin(), fams.end(), "mesh") != fams.end()) {
-        if (mesh_files.empty()) {
-          for (auto& [name, tris] : meshes::builtinMeshes()) {
+      if (!mesh_paths.empty()) {
+        if (mesh_files.empty()) mesh_files = {"builtin"};
+        for (const auto& path : mesh_files) {
+          if (path == "builtin") {
+            for (auto& [name, tris] : meshes::builtinMeshes()) {
+              meshes.push_back(std::make_unique<Mesh>());
+              meshes.back()->name = name;
+              meshes.back()->tris = std::move(tris);
+            }
+          } else {
             meshes.push_back(std::make_unique<Mesh>());
-            meshes.back()->name = name;
-            meshes.back()->tris = std::move(tris);
-          }
-        } else {
-          for (const auto& path : mesh_files) {
-            meshes.push_back(std::make_unique<Mesh>());
-            meshes.back()->name = path;
+            meshes.back()->name = path.substr(path.rfind('/') + 1);
             meshes.back()->tris = meshes::readObj(path);
           }
         }
@@ -199,14 +209,23 @@ int main(int argc, char** argv) {
         info.mesh_cases = n;
         std::vector<const Mesh*> ms;
         for (auto& m : meshes) ms.push_back(m.get());
-        sets.push_back({"family", "mesh", kNaN, n, [ms, seed](std::uint64_t i) {
-                          const Mesh* m = ms[i % ms.size()];
-                          return Case{meshes::meshCase(m->tris, m->lo, m->hi,
-                                                       seed, i / ms.size()),
-                                      m};
-                        }});
+        // Both paths answer the same cases (same seed and index).
+        for (MeshPath p : mesh_paths) {
+          CaseSet set{"family", meshFamilyName(p), kNaN, n,
+                      [ms, seed, p](std::uint64_t i) {
+                        const Mesh* m = ms[i % ms.size()];
+                        Case c{meshes::meshCase(m->tris, m->lo, m->hi, seed,
+                                                i / ms.size()),
+                               m};
+                        c.mesh_path = p;
+                        return c;
+                      }};
+          set.mesh = true;
+          set.mesh_path = p;
+          sets.push_back(set);
+        }
       }
-      // The cylinder queries (issue 5), when built in.
+      // The cylinder queries, when built in.
       std::vector<Query> qs;
       if (queries.empty()) {
         if (haveQueries() && families.empty())
@@ -258,6 +277,13 @@ int main(int argc, char** argv) {
           sets.push_back(set);
         }
 #endif
+      // The known cases (compare/known_cases.h), in every default run.
+      if (families.empty()) {
+        const tricyl::scenes::TriCase k = discHangCase();
+        sets.push_back({"case", "disc_hang", kNaN, 1, [k](std::uint64_t) {
+                          return Case{k, nullptr};
+                        }});
+      }
       if (sweep_cases > 0) {
         for (auto& s : sweeps::deltaSweep(seed, sweep_cases)) sets.push_back(s);
         for (auto& s : sweeps::translationSweep(seed, sweep_cases))
@@ -281,10 +307,10 @@ int main(int argc, char** argv) {
       std::printf(", %s", f.substr(f.rfind('/') + 1).c_str());
     std::printf("\n");
     for (std::size_t s = 0; s < sets.size(); ++s) {
-      if (sets[s].kind != "family") continue;
+      if (sets[s].kind == "sweep") continue;
       std::printf("  %-10s", sets[s].name.c_str());
       for (Method m : opt.methods) {
-        if (!methodApplies(sets[s].query, m)) continue;
+        if (!methodApplies(sets[s], m)) continue;
         const MethodStats& ms = result.sets[s].method[int(m)];
         std::printf(
             "  %s %llu/%llu%s", methodName(m), (unsigned long long)ms.wrong(),

@@ -1,5 +1,6 @@
 // The `mesh` family of tricyl-compare: a cylinder against a triangle mesh.
-// Header-only, no FCL: built-in procedural meshes, an OBJ reader, the seeded
+// Header-only, no FCL: built-in procedural meshes, OBJ files as triangle
+// soups (support/obj_mesh.h: link tricyl_obj_mesh), the seeded
 // placement of a cylinder near a mesh, and the conservative bounding-sphere
 // cull shared by the oracle and the brute-force tricyl mesh scan.
 #pragma once
@@ -7,13 +8,12 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "obj_mesh.h"
 #include "scenes.h"
 #include "tricyl/types.h"
 
@@ -22,39 +22,18 @@ namespace tricyl::compare::meshes {
 using V = Vec3<double>;
 using T = Triangle<double>;
 
-/// Reads `v x y z` and `f i j k` lines (1-based, `i/j/k` forms and polygons
-/// fanned into triangles; negative indices count from the end).
+/// An OBJ file (obj::read) as a triangle soup, in the file's face order.
+/// Throws std::runtime_error (obj::read).
 inline std::vector<T> readObj(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot open mesh file " + path);
-  std::vector<V> vs;
+  const obj::Mesh m = obj::read(path);
   std::vector<T> tris;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream ls(line);
-    std::string tag;
-    ls >> tag;
-    if (tag == "v") {
-      V v{};
-      ls >> v.x >> v.y >> v.z;
-      vs.push_back(v);
-    } else if (tag == "f") {
-      std::vector<long> idx;
-      std::string tok;
-      while (ls >> tok) {
-        long i = std::stol(tok.substr(0, tok.find('/')));
-        idx.push_back(i < 0 ? long(vs.size()) + i : i - 1);
-      }
-      for (size_t k = 2; k < idx.size(); ++k) {
-        for (long i : {idx[0], idx[k - 1], idx[k]})
-          if (i < 0 || i >= long(vs.size()))
-            throw std::runtime_error("bad face index in " + path);
-        tris.push_back(
-            {vs[size_t(idx[0])], vs[size_t(idx[k - 1])], vs[size_t(idx[k])]});
-      }
-    }
-  }
-  if (tris.empty()) throw std::runtime_error("no triangles in " + path);
+  tris.reserve(m.numTriangles());
+  auto vertex = [&m](std::uint32_t i) {
+    return V{m.vertices[3 * i], m.vertices[3 * i + 1], m.vertices[3 * i + 2]};
+  };
+  for (std::size_t t = 0; t < m.numTriangles(); ++t)
+    tris.push_back({vertex(m.indices[3 * t]), vertex(m.indices[3 * t + 1]),
+                    vertex(m.indices[3 * t + 2])});
   return tris;
 }
 

@@ -11,6 +11,7 @@
 #include "harness.h"
 #include "mesh_scenes.h"
 #include "oracle.h"
+#include "tricyl/mesh_cylinder.h"
 #include "tricyl/triangle_cylinder.h"
 #ifdef TRICYL_COMPARE_HAVE_SOLVER
 #include "tricyl/fcl_solver.h"
@@ -29,7 +30,7 @@ namespace tricyl::compare {
 namespace {
 
 constexpr const char* kMethodNames[kMethodCount] = {"tricyl",
-                                                    "tricyl_fast",
+                                                    "diagnostic_uncertified",
                                                     "tricyl_float",
                                                     "tricyl_fcl",
                                                     "tricyl_fcl_contact",
@@ -50,7 +51,9 @@ std::shared_ptr<void> buildBvh(const std::vector<Triangle<double>>& tris) {
   return m;
 }
 
-fcl::Transform3d toFcl(const Pose<double>& p) {
+/// The transform an FCL method is given: always a proper rotation.
+fcl::Transform3d toFcl(const Pose<double>& pose) {
+  const Pose<double> p = fclPose(pose);
   fcl::Transform3d tf = fcl::Transform3d::Identity();
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) tf.linear()(i, j) = p.R[i][j];
@@ -87,7 +90,7 @@ Triangle<float> toFloat(const Triangle<double>& t) {
 }
 
 /// Exact oracle over a mesh: the cull is conservative, so only triangles it
-/// cannot rule out reach the rational test.
+/// cannot rule out reach the rational test. Stops at the first hit.
 bool meshOracle(const scenes::TriCase& k,
                 const std::vector<Triangle<double>>& tris) {
   const meshes::Cull cull(k);
@@ -106,6 +109,34 @@ scenes::TriCase scaled(const scenes::TriCase& k, double factor) {
 
 }  // namespace
 
+bool isImproper(const Pose<double>& p) {
+  const auto& R = p.R;
+  // Every generator's R is a rotation or a reflection (|det| ~ 1), so the
+  // sign of the rounded determinant is the true one.
+  const double det = R[0][0] * (R[1][1] * R[2][2] - R[1][2] * R[2][1]) -
+                     R[0][1] * (R[1][0] * R[2][2] - R[1][2] * R[2][0]) +
+                     R[0][2] * (R[1][0] * R[2][1] - R[1][1] * R[2][0]);
+  return det < 0;
+}
+
+Pose<double> fclPose(const Pose<double>& p) {
+  if (!isImproper(p)) return p;
+  Pose<double> q = p;
+  // 0.0 - x: exact, and +0 (not -0) for a zero entry.
+  for (int i = 0; i < 3; ++i) q.R[i][2] = 0.0 - p.R[i][2];
+  return q;
+}
+
+std::vector<std::uint32_t> oracleTriangles(const Case& c) {
+  std::vector<std::uint32_t> out;
+  const meshes::Cull cull(c.k);
+  for (std::size_t i = 0; i < c.mesh->tris.size(); ++i)
+    if (cull.mayTouch(c.mesh->tris[i]) &&
+        oracle::triangleCylinder(c.k.cyl, c.k.pose, c.mesh->tris[i]))
+      out.push_back(std::uint32_t(i));
+  return out;
+}
+
 const char* methodName(Method m) {
   const int i = int(m);
   return i >= 0 && i < kMethodCount ? kMethodNames[i] : "?";
@@ -114,6 +145,7 @@ const char* methodName(Method m) {
 std::optional<Method> parseMethod(std::string_view s) {
   for (int i = 0; i < kMethodCount; ++i)
     if (s == kMethodNames[i]) return Method(i);
+  if (s == "tricyl_fast") return Method::kDiagnosticUncertified;  // old name
   return std::nullopt;
 }
 
@@ -155,6 +187,14 @@ bool methodApplies(Query q, Method m) {
   return q == Query::kSphere && m == Method::kFclLibccd1e6;
 }
 
+bool methodApplies(const CaseSet& set, Method m) {
+  if (!set.mesh) return methodApplies(set.query, m);
+  const bool solver = m == Method::kTricylFcl || m == Method::kTricylFclContact;
+  if (set.mesh_path == MeshPath::kScan) return !solver;
+  return solver || m == Method::kFclLibccd1e6 ||
+         m == Method::kFclLibccdDefault || m == Method::kFclIndep;
+}
+
 bool methodAvailable(Method m) {
 #ifdef TRICYL_COMPARE_HAVE_SOLVER
   (void)m;
@@ -166,6 +206,11 @@ bool methodAvailable(Method m) {
 
 void prepareMesh(Mesh& mesh) {
   mesh.tris_f.clear();
+  const meshes::IndexedMesh im = meshes::indexed(mesh.tris);
+  mesh.vertices = im.v;
+  mesh.indices = im.f;
+  mesh.vertices_f.clear();
+  for (double v : im.v) mesh.vertices_f.push_back(f(v));
   const double inf = std::numeric_limits<double>::infinity();
   mesh.lo = {inf, inf, inf};
   mesh.hi = {-inf, -inf, -inf};
@@ -277,7 +322,7 @@ struct Evaluator::Impl {
     switch (m) {
       case Method::kTricyl:
         return tryIntersect(k.cyl, k.pose, k.tri) == Answer::kIntersect;
-      case Method::kTricylFast:
+      case Method::kDiagnosticUncertified:
         return diagnostic::intersectUncertified(k.cyl, k.pose, k.tri);
       case Method::kTricylFloat:
         return tryIntersect(toFloat(k.cyl), toFloat(k.pose), toFloat(k.tri)) ==
@@ -285,10 +330,25 @@ struct Evaluator::Impl {
       default:
         break;
     }
-    const fcl::Cylinderd cyl(k.cyl.radius, k.cyl.lz);
-    const fcl::Transform3d tf = toFcl(k.pose);
-    const fcl::Vector3d a = toFcl(k.tri.a), b = toFcl(k.tri.b),
-                        c = toFcl(k.tri.c);
+    return fclTriangle(m, fcl::Cylinderd(k.cyl.radius, k.cyl.lz), toFcl(k.pose),
+                       k.tri);
+  }
+
+  // The harness's conservative cull, then fn per triangle: the brute-force
+  // loop of the methods that have no batch scan of their own.
+  template <class Fn>
+  static bool scan(const scenes::TriCase& k,
+                   const std::vector<Triangle<double>>& tris, Fn&& fn) {
+    const meshes::Cull cull(k);
+    for (const auto& t : tris)
+      if (cull.mayTouch(t) && fn(t)) return true;
+    return false;
+  }
+
+  /// One triangle through the FCL solver of method m (tf already proper).
+  bool fclTriangle(Method m, const fcl::Cylinderd& cyl,
+                   const fcl::Transform3d& tf, const Triangle<double>& t) {
+    const fcl::Vector3d a = toFcl(t.a), b = toFcl(t.b), c = toFcl(t.c);
     switch (m) {
       case Method::kFclLibccd1e6:
         return ccd_1e6.shapeTriangleIntersect(cyl, tf, a, b, c, nullptr,
@@ -315,41 +375,48 @@ struct Evaluator::Impl {
     }
   }
 
-  // The mesh scan for the tricyl methods: the conservative cull, then the
-  // kernel per triangle (what a user without a BVH would write).
-  template <class Fn>
-  static bool scan(const scenes::TriCase& k,
-                   const std::vector<Triangle<double>>& tris, Fn&& fn) {
-    const meshes::Cull cull(k);
-    for (const auto& t : tris)
-      if (cull.mayTouch(t) && fn(t)) return true;
-    return false;
-  }
-
-  bool mesh(Method m, const Case& c) {
+  // mesh_scan: every triangle, no BVH, first hit ends the scan.
+  bool meshScan(Method m, const Case& c) {
     const scenes::TriCase& k = c.k;
+    const Mesh& mesh = *c.mesh;
     switch (m) {
-      case Method::kTricyl:
-        return scan(k, c.mesh->tris, [&](const Triangle<double>& t) {
-          return tryIntersect(k.cyl, k.pose, t) == Answer::kIntersect;
-        });
-      case Method::kTricylFast:
-        return scan(k, c.mesh->tris, [&](const Triangle<double>& t) {
+      case Method::kTricyl: {
+        const MeshView<double> view{mesh.vertices.data(),
+                                    mesh.vertices.size() / 3,
+                                    mesh.indices.data(), mesh.tris.size()};
+        std::size_t first = 0;
+        return tryIntersectAny(k.cyl, k.pose, view, &first) ==
+               Answer::kIntersect;
+      }
+      case Method::kTricylFloat: {
+        const MeshView<float> view{mesh.vertices_f.data(),
+                                   mesh.vertices_f.size() / 3,
+                                   mesh.indices.data(), mesh.tris.size()};
+        std::size_t first = 0;
+        return tryIntersectAny(toFloat(k.cyl), toFloat(k.pose), view, &first) ==
+               Answer::kIntersect;
+      }
+      case Method::kDiagnosticUncertified:
+        return scan(k, mesh.tris, [&](const Triangle<double>& t) {
           return diagnostic::intersectUncertified(k.cyl, k.pose, t);
         });
-      case Method::kTricylFloat: {
-        const Cylinder<float> cf = toFloat(k.cyl);
-        const Pose<float> pf = toFloat(k.pose);
-        return scan(k, c.mesh->tris_f, [&](const Triangle<double>& t) {
-          return tryIntersect(cf, pf, toFloat(t)) == Answer::kIntersect;
-        });
-      }
       default:
         break;
     }
-    // fcl::collide with a one-cylinder object against the BVH model, the
-    // way a planner calls it; the request picks the solver and tolerance.
+    const fcl::Cylinderd cyl(k.cyl.radius, k.cyl.lz);
+    const fcl::Transform3d tf = toFcl(k.pose);
+    return scan(k, mesh.tris, [&](const Triangle<double>& t) {
+      return fclTriangle(m, cyl, tf, t);
+    });
+  }
+
+  // mesh_bvh: fcl::collide (or tricyl::collide) with a one-cylinder object
+  // against the OBBRSS model, the way a planner calls it, exhaustive; the
+  // request picks the solver and tolerance.
+  bool meshBvh(Method m, const Case& c, std::vector<std::uint32_t>* tris) {
+    const scenes::TriCase& k = c.k;
     fcl::CollisionRequestd request;
+    request.num_max_contacts = 1u << 30;
     if (m == Method::kFclLibccdDefault)
       request.gjk_tolerance = fcl::constants<double>::gjk_default_tolerance();
     if (m == Method::kFclIndep) request.gjk_solver_type = fcl::GST_INDEP;
@@ -362,11 +429,19 @@ struct Evaluator::Impl {
       tricyl::collide(static_cast<const fcl::CollisionGeometryd*>(&cyl),
                       toFcl(k.pose), model, fcl::Transform3d::Identity(),
                       request, result);
-      return result.isCollision();
-    }
+    } else
 #endif
-    fcl::collide(&cyl, toFcl(k.pose), model, fcl::Transform3d::Identity(),
-                 request, result);
+    {
+      fcl::collide(&cyl, toFcl(k.pose), model, fcl::Transform3d::Identity(),
+                   request, result);
+    }
+    if (tris) {
+      tris->clear();
+      for (std::size_t i = 0; i < result.numContacts(); ++i) {
+        const fcl::Contactd& ct = result.getContact(i);
+        tris->push_back(std::uint32_t(ct.o1 == model ? ct.b1 : ct.b2));
+      }
+    }
     return result.isCollision();
   }
 };
@@ -374,7 +449,7 @@ struct Evaluator::Impl {
 Evaluator::Evaluator() : impl_(std::make_unique<Impl>()) {}
 Evaluator::~Evaluator() = default;
 
-bool Evaluator::run(Method m, const Case& c) {
+bool Evaluator::run(Method m, const Case& c, std::vector<std::uint32_t>* tris) {
 #ifdef TRICYL_COMPARE_HAVE_QUERIES
   if (c.query != Query::kTriangle) {
     const scenes::TriCase& k = c.k;
@@ -418,15 +493,19 @@ bool Evaluator::run(Method m, const Case& c) {
     return false;
   }
 #endif
-  if (c.mesh) return impl_->mesh(m, c);
+  if (c.mesh)
+    return c.mesh_path == MeshPath::kBvh ? impl_->meshBvh(m, c, tris)
+                                         : impl_->meshScan(m, c);
   return impl_->triangle(m, c.k);
 }
 
 bool tricylDecide(const Case& c, int* stage) {
   *stage = -1;
-  if (c.mesh) {
+  if (c.mesh) {  // the batch scan, whatever path the case's set measures
+    Case scan = c;
+    scan.mesh_path = MeshPath::kScan;
     Evaluator ev;
-    return ev.run(Method::kTricyl, c);
+    return ev.run(Method::kTricyl, scan);
   }
   Decision d{Answer::kInvalidInput, Stage::kInvalid};
   switch (c.query) {

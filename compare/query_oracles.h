@@ -1,4 +1,4 @@
-// Exact GMP oracles for the cylinder query family (issue 5): point in
+// Exact GMP oracles for the cylinder query family: point in
 // cylinder, point in cone, sphere vs cylinder, segment and line vs cylinder
 // and their entry/exit intervals. Written for clarity, with mpq_class, and
 // deliberately formulated DIFFERENTLY from the library's predicates

@@ -1,4 +1,4 @@
-// Seeded case generators for the cylinder query family (issue 5): point in
+// Seeded case generators for the cylinder query family: point in
 // cylinder, point in cone, sphere vs cylinder, segment and line vs cylinder.
 // Shared
 // by the tests and the benchmarks (and available to tricyl-compare).

@@ -30,12 +30,28 @@ struct Row {
   std::uint64_t cases, fp, fn, hangs;
   double error_rate, max_clear, max_pen, ns_median, ns_p99, ns_max;
   std::uint64_t timed;
+  double ns_mean;
+  std::uint64_t tri_oracle, tri_missed, tri_extra;
 };
 
 Row makeRow(const std::string& family, Method m, MethodStats ms) {
-  Row r{family,   m,    ms.cases,       ms.false_positives, ms.false_negatives,
-        ms.hangs, 0,    ms.max_fp_size, ms.max_fn_size,     kNaN,
-        kNaN,     kNaN, ms.ns.size()};
+  Row r{family,
+        m,
+        ms.cases,
+        ms.false_positives,
+        ms.false_negatives,
+        ms.hangs,
+        0,
+        ms.max_fp_size,
+        ms.max_fn_size,
+        kNaN,
+        kNaN,
+        kNaN,
+        ms.ns.size(),
+        mean(ms.ns),
+        ms.tri_oracle,
+        ms.tri_missed,
+        ms.tri_extra};
   r.error_rate = ms.cases ? double(ms.wrong()) / double(ms.cases) : 0.0;
   r.ns_median = percentile(ms.ns, 50);
   r.ns_p99 = percentile(ms.ns, 99);
@@ -61,8 +77,9 @@ std::string pct(double v) { return fmt("%.3g %%", 100 * v); }
 
 json jnum(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-const char* kStageNames[] = {"early_out", "fast_path", "exact",
-                             "invalid",   "extended",  "tracked"};
+// Indexed by tricyl::Stage (5 is no longer produced).
+const char* kStageNames[] = {"early_out", "fast_path", "exact",    "invalid",
+                             "extended",  "unused",    "exact_gmp"};
 
 void mkdirs(const std::string& dir) {
   std::string cur;
@@ -104,8 +121,19 @@ double floorFor(const std::vector<double>& rates) {
   return std::pow(10.0, std::floor(std::log10(lo)) - 1);
 }
 
+// Per method (by enumerator): a colour and a gnuplot point type of its own,
+// so that every series is told apart without colour too.
 const char* kColors[] = {"#000000", "#1f77b4", "#2ca02c", "#17becf",
                          "#8c564b", "#d62728", "#ff7f0e", "#9467bd"};
+const int kMarkers[] = {7, 6, 5, 4, 13, 9, 11, 12};
+static_assert(std::size(kColors) == kMethodCount &&
+              std::size(kMarkers) == kMethodCount);
+
+/// The case as method m was given it: FCL's methods get fclPose.
+scenes::TriCase asGiven(scenes::TriCase k, Method m) {
+  if (isFcl(m)) k.pose = fclPose(k.pose);
+  return k;
+}
 
 /// Enhanced-text escape for gnuplot single-quoted strings: '_' and '^'
 /// would otherwise start sub/superscripts.
@@ -141,17 +169,18 @@ std::vector<std::string> writeReport(const std::string& dir,
   std::vector<std::string> figures;
 
   // ---- rows: families, totals, sweeps
-  // family_sets: every reported set (triangle families, mesh, and the
-  // query families of issue 5); tri_sets: the triangle and mesh ones, which
-  // the summary and the main figure are about.
-  std::vector<std::size_t> family_sets, sweep_sets, tri_sets;
+  // family_sets: every reported set (triangle families, mesh families, and
+  // the cylinder-query families); tri_sets: the six triangle families, which
+  // the summary and the main figure are about; mesh_sets: mesh_scan and
+  // mesh_bvh.
+  std::vector<std::size_t> family_sets, sweep_sets, tri_sets, mesh_sets;
   for (std::size_t s = 0; s < sets.size(); ++s) {
     (sets[s].kind == "sweep" ? sweep_sets : family_sets).push_back(s);
-    if (sets[s].kind != "sweep" && sets[s].query == Query::kTriangle)
-      tri_sets.push_back(s);
+    if (sets[s].kind == "family" && sets[s].query == Query::kTriangle)
+      (sets[s].mesh ? mesh_sets : tri_sets).push_back(s);
   }
   auto applies = [&](std::size_t s, Method m) {
-    return methodApplies(sets[s].query, m);
+    return methodApplies(sets[s], m);
   };
   std::vector<Row> rows, totals;
   std::map<std::pair<std::string, int>, Row> by_key;
@@ -164,6 +193,7 @@ std::vector<std::string> writeReport(const std::string& dir,
   for (Method m : methods) {
     MethodStats all;
     for (std::size_t s : tri_sets) {
+      if (!applies(s, m)) continue;
       const MethodStats& ms = result.sets[s].method[int(m)];
       all.cases += ms.cases;
       all.false_positives += ms.false_positives;
@@ -173,7 +203,7 @@ std::vector<std::string> writeReport(const std::string& dir,
       all.max_fn_size = std::max(all.max_fn_size, ms.max_fn_size);
       all.ns.insert(all.ns.end(), ms.ns.begin(), ms.ns.end());
     }
-    totals.push_back(makeRow("all", m, std::move(all)));
+    if (all.cases) totals.push_back(makeRow("all", m, std::move(all)));
   }
   struct SRow {
     std::string sweep;
@@ -225,7 +255,7 @@ std::vector<std::string> writeReport(const std::string& dir,
         << " index=" << x.index << " seed=" << info.seed
         << " feature=" << c.k.feature << '\n';
       if (!c.mesh && c.query == Query::kTriangle)
-        w << "case " << formatCaseHex(c.k) << '\n';
+        w << "case " << formatCaseHex(asGiven(c.k, x.method)) << '\n';
     }
   }
 
@@ -234,26 +264,30 @@ std::vector<std::string> writeReport(const std::string& dir,
     std::ofstream csv(dir + "/results.csv");
     csv << "family,method,cases,false_positives,false_negatives,hangs,errors,"
            "error_rate,max_missed_clearance,max_missed_penetration,ns_median,"
-           "ns_p99,timed_queries,ns_max\n";
+           "ns_p99,timed_queries,ns_max,ns_mean,oracle_triangles,"
+           "missed_triangles,extra_triangles\n";
     for (const Row& r : rows)
       csv << r.family << ',' << methodName(r.method) << ',' << r.cases << ','
           << r.fp << ',' << r.fn << ',' << r.hangs << ','
           << (r.fp + r.fn + r.hangs) << ',' << fmt("%.6g", r.error_rate) << ','
           << fmt("%.6g", r.max_clear) << ',' << fmt("%.6g", r.max_pen) << ','
           << fmt("%.1f", r.ns_median) << ',' << fmt("%.1f", r.ns_p99) << ','
-          << r.timed << ',' << fmt("%.1f", r.ns_max) << '\n';
+          << r.timed << ',' << fmt("%.1f", r.ns_max) << ','
+          << fmt("%.1f", r.ns_mean) << ',' << r.tri_oracle << ','
+          << r.tri_missed << ',' << r.tri_extra << '\n';
   }
   // ---- stability.csv
   {
     std::ofstream csv(dir + "/stability.csv");
     csv << "sweep,param,method,cases,false_positives,false_negatives,hangs,"
-           "error_rate,ns_median\n";
+           "error_rate,ns_median,ns_mean\n";
     for (const SRow& s : srows)
       csv << s.sweep << ',' << fmt("%.6g", s.param) << ','
           << methodName(s.row.method) << ',' << s.row.cases << ',' << s.row.fp
           << ',' << s.row.fn << ',' << s.row.hangs << ','
           << fmt("%.6g", s.row.error_rate) << ','
-          << fmt("%.1f", s.row.ns_median) << '\n';
+          << fmt("%.1f", s.row.ns_median) << ',' << fmt("%.1f", s.row.ns_mean)
+          << '\n';
   }
   // ---- hangs.txt (always written, so that "no hangs" is visible)
   {
@@ -264,6 +298,8 @@ std::vector<std::string> writeReport(const std::string& dir,
          "R11 R12 R20 R21 R22 tx ty tz ax ay az bx by bz cx cy cz\n"
       << "# (fcl::Cylinderd(r, lz); pose linear() = R row-major, "
          "translation() = t; triangle a, b, c).\n"
+      << "# The pose is the one FCL was given: a proper rotation (det R = "
+         "+1) of the generated solid.\n"
       << "# Replay: tricyl-compare --replay hangs.txt --methods "
          "fcl_libccd_default --out DIR\n";
     if (result.hangs.empty()) h << "# none in this run\n";
@@ -284,7 +320,7 @@ std::vector<std::string> writeReport(const std::string& dir,
       } else {
         h << "\ncase ";
       }
-      h << formatCaseHex(c.k) << '\n';
+      h << formatCaseHex(asGiven(c.k, Method::kFclLibccd1e6)) << '\n';
     }
   }
 
@@ -305,7 +341,11 @@ std::vector<std::string> writeReport(const std::string& dir,
     j["meshes"] = info.meshes;
     j["timing_note"] =
         "ns per query over answered queries only; hung queries are excluded "
-        "from ns_median and ns_p99 and counted in hangs";
+        "from ns_mean, ns_median, ns_p99 and ns_max and counted in hangs";
+    j["pose_note"] =
+        "methods that run inside FCL get every pose with det R = -1 as R "
+        "diag(1, 1, -1), a proper rotation of the same solid; 'improper' in "
+        "'stages' counts those cases per family";
     json jm = json::array();
     for (Method m : methods) jm.push_back(methodName(m));
     j["methods"] = jm;
@@ -320,10 +360,14 @@ std::vector<std::string> writeReport(const std::string& dir,
                   {"error_rate", r.error_rate},
                   {"max_missed_clearance", r.max_clear},
                   {"max_missed_penetration", r.max_pen},
+                  {"ns_mean", jnum(r.ns_mean)},
                   {"ns_median", jnum(r.ns_median)},
                   {"ns_p99", jnum(r.ns_p99)},
                   {"ns_max", jnum(r.ns_max)},
-                  {"timed_queries", r.timed}};
+                  {"timed_queries", r.timed},
+                  {"oracle_triangles", r.tri_oracle},
+                  {"missed_triangles", r.tri_missed},
+                  {"extra_triangles", r.tri_extra}};
     };
     json jr = json::array(), jt = json::array();
     for (const Row& r : rows) jr.push_back(rowJson(r));
@@ -335,7 +379,8 @@ std::vector<std::string> writeReport(const std::string& dir,
       const SetStats& st = result.sets[s];
       json e{{"family", sets[s].name},
              {"cases", st.cases},
-             {"oracle_hits", st.hits}};
+             {"oracle_hits", st.hits},
+             {"improper", st.improper}};
       std::uint64_t staged = 0;
       for (auto v : st.stage) staged += v;
       for (int k = 0; k < int(std::size(kStageNames)); ++k)
@@ -384,7 +429,8 @@ std::vector<std::string> writeReport(const std::string& dir,
           {{"set", sets[hr.set].name},
            {"index", hr.index},
            {"method", methodName(hr.method)},
-           {"case_hex", formatCaseHex(sets[hr.set].make(hr.index).k)}});
+           {"case_hex",
+            formatCaseHex(asGiven(sets[hr.set].make(hr.index).k, hr.method))}});
     j["hangs"] = jh;
     json jw = json::array();
     for (const Worst& x : worst) {
@@ -396,7 +442,7 @@ std::vector<std::string> writeReport(const std::string& dir,
              {"index", x.index},
              {"feature", c.k.feature}};
       if (!c.mesh && c.query == Query::kTriangle)
-        e["case_hex"] = formatCaseHex(c.k);
+        e["case_hex"] = formatCaseHex(asGiven(c.k, x.method));
       jw.push_back(e);
     }
     j["worst_cases"] = jw;
@@ -405,10 +451,12 @@ std::vector<std::string> writeReport(const std::string& dir,
 
   // ---- figures
   const bool gp = info.plots && haveGnuplot();
-  // Error rate against median time, one point per method x set in `subset`.
+  // Error rate against time per query (mean: the throughput a caller pays;
+  // or median), one series per method (its own colour and marker), one point
+  // per set of `subset`, labelled with the set's name.
   auto plotErrorVsTime = [&](const std::string& name,
                              const std::vector<std::size_t>& subset,
-                             const std::string& what) {
+                             const std::string& what, bool use_mean) {
     std::vector<std::string> fams;
     for (std::size_t s : subset) fams.push_back(sets[s].name);
     std::vector<const Row*> sel;
@@ -424,17 +472,19 @@ std::vector<std::string> writeReport(const std::string& dir,
       << "set terminal pngcairo size 1100,750 font ',10'\n"
       << "set output '" << name << ".png'\n"
       << "set logscale xy\nset format y '10^{%L}'\nset format x '10^{%L}'\n"
-      << "set xlabel 'median ns per query (log)'\n"
+      << "set xlabel '"
+      << (use_mean ? "mean ns per query (log): the throughput a caller pays"
+                   : "median ns per query (log)")
+      << "'\n"
       << "set ylabel 'error rate = (false positives + false negatives + "
          "hangs) / cases (log)'\n"
-      << "set title 'Error rate against time per query: one point per method "
-         "x "
-      << what << "'\n"
+      << "set title 'Error rate against " << (use_mean ? "mean" : "median")
+      << " time per query: one series per method, one point per "
+      << gpText(what) << "'\n"
       << "set key outside right top box\nset grid\n"
       << "set arrow from graph 0, first " << floor << " to graph 1, first "
       << floor << " nohead dt 2 lc rgb '#888888'\n"
       << "set yrange [" << floor / 4 << ":1.5]\n";
-    // Data: per method a block "ns rate pointtype family zero?".
     std::vector<Method> shown;
     for (Method m : methods)
       for (const Row* r : sel)
@@ -442,30 +492,29 @@ std::vector<std::string> writeReport(const std::string& dir,
           shown.push_back(m);
           break;
         }
+    // Data: per method a block "ns rate label".
     for (std::size_t mi = 0; mi < shown.size(); ++mi) {
       g << "$m" << mi << " << EOD\n";
-      for (const Row* r : sel)
-        if (r->method == shown[mi] && std::isfinite(r->ns_median)) {
-          const auto fi =
-              std::find(fams.begin(), fams.end(), r->family) - fams.begin();
-          g << r->ns_median << ' '
-            << (r->error_rate > 0 ? r->error_rate : floor) << ' ' << (fi + 4)
-            << ' ' << r->family << ' ' << (r->error_rate > 0 ? 1 : 0) << '\n';
-        }
+      for (const Row* r : sel) {
+        const double ns = use_mean ? r->ns_mean : r->ns_median;
+        if (r->method == shown[mi] && std::isfinite(ns))
+          // Points on the floor (no error) are not labelled: they crowd.
+          g << ns << ' ' << (r->error_rate > 0 ? r->error_rate : floor) << " \""
+            << (r->error_rate > 0 ? r->family : std::string()) << "\"\n";
+      }
       g << "EOD\n";
     }
     g << "plot \\\n";
-    for (std::size_t mi = 0; mi < shown.size(); ++mi)
-      g << "  $m" << mi
-        << " using 1:2:3 with points pt variable ps 1.6 lc rgb '"
-        << kColors[int(shown[mi]) % 8] << "' notitle, \\\n";
-    for (std::size_t mi = 0; mi < shown.size(); ++mi)
-      g << "  NaN with points pt 5 ps 1.6 lc rgb '"
-        << kColors[int(shown[mi]) % 8]
-        << "' title 'method: " << gpText(methodName(shown[mi])) << "', \\\n";
-    for (std::size_t fi = 0; fi < fams.size(); ++fi)
-      g << "  NaN with points pt " << (fi + 4) << " ps 1.6 lc rgb '#555555' "
-        << "title '" << gpText(fams[fi]) << "', \\\n";
+    for (std::size_t mi = 0; mi < shown.size(); ++mi) {
+      const int mk = int(shown[mi]);
+      g << "  $m" << mi << " using 1:2 with points pt " << kMarkers[mk % 8]
+        << " ps 1.6 lc rgb '" << kColors[mk % 8] << "' title '"
+        << gpText(methodName(shown[mi])) << "', \\\n"
+        << "  $m" << mi
+        << " using 1:2:3 with labels noenhanced font ',7' offset 0.8,0.5 left "
+           "tc rgb '"
+        << kColors[mk % 8] << "' notitle, \\\n";
+    }
     g << "  NaN with lines dt 2 lc rgb '#888888' title 'error = 0: drawn on "
          "the floor "
       << num(floor) << "'\n";
@@ -473,13 +522,17 @@ std::vector<std::string> writeReport(const std::string& dir,
     if (gp && runGnuplot(dir, name + ".gp"))
       figures.push_back(dir + "/" + name + ".png");
   };
-  if (!tri_sets.empty()) plotErrorVsTime("error_vs_time", tri_sets, "family");
+  if (!tri_sets.empty()) {
+    plotErrorVsTime("error_vs_time", tri_sets, "triangle family", true);
+    plotErrorVsTime("error_vs_time_median", tri_sets, "triangle family", false);
+  }
+  if (!mesh_sets.empty())
+    plotErrorVsTime("error_vs_time_mesh", mesh_sets, "mesh family", true);
   std::vector<std::size_t> query_sets;
   for (std::size_t s : family_sets)
     if (sets[s].query != Query::kTriangle) query_sets.push_back(s);
   if (!query_sets.empty())
-    plotErrorVsTime("error_vs_time_queries", query_sets,
-                    "query/family (issue 5)");
+    plotErrorVsTime("error_vs_time_queries", query_sets, "query/family", true);
   std::set<std::string> sweep_names;
   for (const SRow& s : srows) sweep_names.insert(s.sweep);
   const std::map<std::string, std::string> xlabels = {
@@ -515,8 +568,9 @@ std::vector<std::string> writeReport(const std::string& dir,
     }
     g << "plot \\\n";
     for (std::size_t mi = 0; mi < methods.size(); ++mi)
-      g << "  $m" << mi << " using 1:2 with linespoints pt " << (mi + 4)
-        << " lw 1.5 lc rgb '" << kColors[int(methods[mi]) % 8] << "' title '"
+      g << "  $m" << mi << " using 1:2 with linespoints pt "
+        << kMarkers[int(methods[mi]) % 8] << " lw 1.5 lc rgb '"
+        << kColors[int(methods[mi]) % 8] << "' title '"
         << gpText(methodName(methods[mi])) << "', \\\n";
     g << "  NaN with lines dt 2 lc rgb '#888888' title 'error = 0: drawn on "
          "the floor "
@@ -536,8 +590,7 @@ std::vector<std::string> writeReport(const std::string& dir,
   if (info.sweep_cases)
     md << ", " << info.sweep_cases << " cases per stability point";
   if (info.query_cases)
-    md << ", " << info.query_cases
-       << " cases per cylinder query x family (issue 5)";
+    md << ", " << info.query_cases << " cases per cylinder query x family";
   md << "; " << info.options.workers << " worker processes; time limit "
      << info.options.timeout_s << " s per FCL query; wall time "
      << fmt("%.1f", result.wall_seconds) << " s.  \n"
@@ -547,54 +600,112 @@ std::vector<std::string> writeReport(const std::string& dir,
         "input it actually answers. An error is a false positive, a false "
         "negative or a hang; the error rate is errors / cases. **Timings "
         "exclude hung queries** (a hung query has no time; it is counted in "
-        "`hangs`). See compare/README.md for how to read each column.\n\n";
+        "`hangs`). Times are per query: the mean (what a caller pays per "
+        "query over the family), the median, the 99th percentile and the "
+        "maximum; `x FCL` is the mean of `fcl_libccd_1e-6` (the solver and "
+        "tolerance `fcl::collide` uses) on the same family, in the same run, "
+        "over the method's mean: above 1 the method is faster. See "
+        "compare/README.md for how to read each column.\n\n"
+        "**Proper rotations for FCL.** FCL's solvers turn the rotation into a "
+        "quaternion, so on a pose with det R = -1 they would answer for a "
+        "different cylinder. Every method that runs inside FCL (`fcl_*`, "
+        "`tricyl_fcl*`) is given such a pose as R diag(1, 1, -1), a proper "
+        "rotation of the same solid (the cylinder is symmetric under z -> "
+        "-z; the oracle's verdict is the same); tricyl's own rows take the "
+        "pose as generated, as its contract allows. Cases with det R = -1: ";
+  {
+    bool first = true;
+    for (std::size_t s : family_sets)
+      if (result.sets[s].improper) {
+        md << (first ? "" : ", ") << sets[s].name << " "
+           << result.sets[s].improper << " of " << result.sets[s].cases;
+        first = false;
+      }
+    if (first) md << "none";
+    md << ".\n\n";
+  }
   if (!gp)
     md << "> gnuplot was not run (absent or --no-plots): the figures' "
           "scripts (*.gp) are written; run `gnuplot FILE.gp` in this "
           "folder.\n\n";
 
-  auto ratioTo = [&](const Row& r) -> std::string {
-    auto it = by_key.find({r.family, int(Method::kTricyl)});
-    if (it == by_key.end() || !(it->second.ns_median > 0) ||
-        !std::isfinite(r.ns_median))
-      return "n/a";
-    return fmt("%.2f", r.ns_median / it->second.ns_median);
+  // FCL's mean on the same rows over the method's mean (speed-up vs FCL).
+  auto ratioFcl = [&](const Row& r, const Row* fcl) -> std::string {
+    if (!fcl || !(fcl->ns_mean > 0) || !(r.ns_mean > 0)) return "n/a";
+    return fmt("%.2f", fcl->ns_mean / r.ns_mean);
   };
-  md << "## Summary over all triangle and mesh families\n\n"
+  auto fclRow = [&](const std::string& family) -> const Row* {
+    auto it = by_key.find({family, int(Method::kFclLibccd1e6)});
+    return it == by_key.end() ? nullptr : &it->second;
+  };
+  const Row* fcl_total = nullptr;
+  for (const Row& r : totals)
+    if (r.method == Method::kFclLibccd1e6) fcl_total = &r;
+  md << "## Summary over the six triangle families\n\n"
      << "| method | cases | false pos. | false neg. | hangs | error rate | "
-        "ns median | ns p99 | ns max |\n"
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        "ns mean | ns median | ns p99 | ns max | x FCL (mean) |\n"
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const Row& r : totals)
     md << "| " << methodName(r.method) << " | " << r.cases << " | " << r.fp
        << " | " << r.fn << " | " << r.hangs << " | " << pct(r.error_rate)
-       << " | " << num(r.ns_median) << " | " << num(r.ns_p99) << " | "
-       << num(r.ns_max) << " |\n";
+       << " | " << num(r.ns_mean) << " | " << num(r.ns_median) << " | "
+       << num(r.ns_p99) << " | " << num(r.ns_max) << " | "
+       << ratioFcl(r, fcl_total) << " |\n";
   md << "\n## Per family\n\n"
      << "Max missed clearance / penetration: the largest error size among "
         "the false positives / false negatives (relative: |delta| for near "
         "cases, else the relative scaling of the cylinder that flips the "
-        "exact answer). `x tricyl`: median time relative to `tricyl` on the "
-        "same family.\n\n";
+        "exact answer). `x FCL`: the mean time of `fcl_libccd_1e-6` on the "
+        "same family over the method's mean. `mesh_scan` times a scan of "
+        "every triangle without a BVH (tricyl's batch scan, "
+        "`tricyl::tryIntersectAny`, beside a loop of each FCL solver's "
+        "`shapeTriangleIntersect` behind the harness's bounding-sphere cull; "
+        "first hit ends both); `mesh_bvh` times the OBBRSS `BVHModel` "
+        "through `tricyl::collide` beside `fcl::collide`, exhaustive "
+        "requests.\n\n";
   for (std::size_t s : family_sets) {
     md << "### " << sets[s].name << "\n\n"
        << "| method | cases | false pos. | false neg. | hangs | error rate | "
-          "max missed clearance | max missed penetration | ns median | ns p99 "
-          "| x tricyl |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
-          "---:|\n";
+          "max missed clearance | max missed penetration | ns mean | ns "
+          "median | ns p99 | ns max | x FCL (mean) |\n|---|---:|---:|---:|"
+          "---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const Row& r : rows)
       if (r.family == sets[s].name)
         md << "| " << methodName(r.method) << " | " << r.cases << " | " << r.fp
            << " | " << r.fn << " | " << r.hangs << " | " << pct(r.error_rate)
            << " | " << num(r.max_clear) << " | " << num(r.max_pen) << " | "
-           << num(r.ns_median) << " | " << num(r.ns_p99) << " | " << ratioTo(r)
-           << " |\n";
+           << num(r.ns_mean) << " | " << num(r.ns_median) << " | "
+           << num(r.ns_p99) << " | " << num(r.ns_max) << " | "
+           << ratioFcl(r, fclRow(r.family)) << " |\n";
+    md << "\n";
+  }
+  // The triangle-level count of the exhaustive BVH queries.
+  for (std::size_t s : mesh_sets) {
+    if (sets[s].mesh_path != MeshPath::kBvh) continue;
+    md << "## Colliding triangles reported by exhaustive BVH queries\n\n"
+       << "On `" << sets[s].name
+       << "`, each call asks for every colliding triangle "
+          "(`num_max_contacts` unlimited). Per method, over its answered "
+          "cases: the triangles the oracle says collide, those the method "
+          "did not report (missed), and those it reported that do not "
+          "collide (false). A hung call counts all its oracle triangles as "
+          "missed. Meshes: ";
+    for (std::size_t i = 0; i < info.meshes.size(); ++i)
+      md << (i ? ", " : "") << info.meshes[i];
+    md << ".\n\n| method | cases | oracle triangles | missed | false | "
+          "wrong triangles |\n|---|---:|---:|---:|---:|---:|\n";
+    for (const Row& r : rows)
+      if (r.family == sets[s].name)
+        md << "| " << methodName(r.method) << " | " << r.cases << " | "
+           << r.tri_oracle << " | " << r.tri_missed << " | " << r.tri_extra
+           << " | " << (r.tri_missed + r.tri_extra) << " |\n";
     md << "\n";
   }
   md << "## Which stage of tricyl decided\n\n"
      << "Share of the `tricyl` queries per deciding stage (mesh cases are "
         "many kernel calls and are not staged).\n\n"
      << "| family | cases | oracle hits | early-out | fast path | extended "
-        "| tracked | exact fallback |\n|---|---:|---:|---:|---:|---:|---:|---:|"
+        "| exact | exact GMP |\n|---|---:|---:|---:|---:|---:|---:|---:|"
         "\n";
   for (std::size_t s : family_sets) {
     const SetStats& st = result.sets[s];
@@ -606,8 +717,8 @@ std::vector<std::string> writeReport(const std::string& dir,
     };
     md << "| " << sets[s].name << " | " << st.cases << " | " << st.hits << " | "
        << share(Stage::kEarlyOut) << " | " << share(Stage::kFastPath) << " | "
-       << share(Stage::kExtended) << " | " << share(Stage::kTracked) << " | "
-       << share(Stage::kExact) << " |\n";
+       << share(Stage::kExtended) << " | " << share(Stage::kExact) << " | "
+       << share(Stage::kExactGmp) << " |\n";
   }
   md << "\n## Agreement with tricyl\n\n"
      << "tricyl's answer is exact, so where another method disagrees with "
@@ -704,17 +815,28 @@ std::vector<std::string> writeReport(const std::string& dir,
     md << "No query exceeded the time limit in this run.\n";
   } else {
     md << result.hangs.size()
-       << " queries did not return within the time limit; the worker was "
+       << (result.hangs.size() == 1 ? " query" : " queries")
+       << " did not return within the time limit; the worker was "
           "killed and restarted after each, and each is counted as a wrong "
           "answer in `hangs`. The cases are in `hangs.txt`, bit-exact (replay "
           "with `tricyl-compare --replay hangs.txt`).\n\n"
-          "| set | index | method |\n|---|---:|---|\n";
-    for (std::size_t i = 0; i < result.hangs.size() && i < 50; ++i)
-      md << "| " << sets[result.hangs[i].set].name << " | "
-         << result.hangs[i].index << " | " << methodName(result.hangs[i].method)
+          "| set | index | method | feature | the case as the method got it "
+          "(r lz R00..R22 t a b c, hex) |\n|---|---:|---|---|---|\n";
+    for (std::size_t i = 0; i < result.hangs.size() && i < 50; ++i) {
+      const HangRecord& hr = result.hangs[i];
+      const Case c = sets[hr.set].make(hr.index);
+      md << "| " << sets[hr.set].name << " | " << hr.index << " | "
+         << methodName(hr.method) << " | " << c.k.feature << " | "
+         << (c.mesh ? std::string("(mesh case)")
+                    : "`" + formatCaseHex(asGiven(c.k, hr.method)) + "`")
          << " |\n";
+    }
   }
-  md << "\n## Figures\n\n![error rate against time](error_vs_time.png)\n\n";
+  md << "\n## Figures\n\n![error rate against mean time](error_vs_time.png)"
+        "\n\n![error rate against median time](error_vs_time_median.png)\n\n";
+  if (!mesh_sets.empty())
+    md << "![error rate against mean time, mesh families]"
+          "(error_vs_time_mesh.png)\n\n";
   if (!query_sets.empty())
     md << "![error rate against time, cylinder queries]"
           "(error_vs_time_queries.png)\n\n";

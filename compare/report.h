@@ -15,9 +15,9 @@ struct ReportInfo {
   std::string command_line;
   std::uint64_t seed = 0;
   std::uint64_t cases = 0;        ///< per triangle family
-  std::uint64_t mesh_cases = 0;   ///< mesh family
+  std::uint64_t mesh_cases = 0;   ///< each mesh family
   std::uint64_t sweep_cases = 0;  ///< per sweep point
-  std::uint64_t query_cases = 0;  ///< per query x family (issue 5)
+  std::uint64_t query_cases = 0;  ///< per query x family
   std::vector<std::string> meshes;
   RunOptions options;
   bool plots = true;  ///< run gnuplot (the .gp scripts are written anyway)

@@ -1,6 +1,6 @@
 // Forked workers with a per-query time limit.
 //
-// Why processes: libccd's MPR loops have no iteration cap (issue 9), so an
+// Why processes: libccd's MPR loops have no iteration cap, so an
 // FCL call may never return, and a thread stuck in one can neither be
 // cancelled nor abandoned safely. Each work unit (a range of cases of one
 // set) is evaluated in a child process that streams fixed-size messages
@@ -47,13 +47,15 @@ struct Msg {
   std::uint8_t type;
   std::uint8_t method;
   std::uint8_t answer;  // kResult: the answer; kBegin: tricyl's answer
-  std::uint8_t truth;   // kBegin: bit 0 truth, bit 1 truth on float input
+  std::uint8_t truth;   // kBegin: bit 0 truth, bit 1 truth on float input,
+                        // bit 2 the pose is improper (det R < 0)
   std::uint8_t stage;   // kBegin: tricyl's stage (kNoStage for meshes)
   std::uint8_t pad[3];
   std::uint32_t set;
   std::uint64_t index;
   double ns;
   double error_size;
+  TriangleCounts tris;  // kBegin: .oracle; kResult (mesh_bvh): all three
 };
 static_assert(sizeof(Msg) <= 64, "messages must be small (atomic writes)");
 
@@ -67,8 +69,32 @@ struct Unit {
 std::vector<Method> methodsFor(const CaseSet& set, const RunOptions& opt) {
   std::vector<Method> out;
   for (Method m : opt.methods)
-    if (methodApplies(set.query, m)) out.push_back(m);
+    if (methodApplies(set, m)) out.push_back(m);
   return out;
+}
+
+/// Missed and extra triangles of a reported set against the oracle's
+/// (sorted) set; duplicates in `got` count once.
+TriangleCounts compareTriangles(const std::vector<std::uint32_t>& truth,
+                                std::vector<std::uint32_t> got) {
+  std::sort(got.begin(), got.end());
+  got.erase(std::unique(got.begin(), got.end()), got.end());
+  TriangleCounts t;
+  t.oracle = std::uint32_t(truth.size());
+  std::size_t i = 0, j = 0;
+  while (i < truth.size() || j < got.size()) {
+    if (j == got.size() || (i < truth.size() && truth[i] < got[j])) {
+      ++t.missed;
+      ++i;
+    } else if (i == truth.size() || got[j] < truth[i]) {
+      ++t.extra;
+      ++j;
+    } else {
+      ++i;
+      ++j;
+    }
+  }
+  return t;
 }
 
 // ----------------------------------------------------------------- child
@@ -159,11 +185,16 @@ double timeQuery(Fn&& fn, bool* answer) {
     const Case fc = want_float ? roundToFloat(c) : c;
     const bool truth = oracleTruth(c);
     const bool truth_f = want_float ? oracleTruth(fc, true) : truth;
+    const bool bvh = c.mesh && c.mesh_path == MeshPath::kBvh;
+    const std::vector<std::uint32_t> oracle_tris =
+        bvh ? oracleTriangles(c) : std::vector<std::uint32_t>{};
     Msg b{};
     b.type = kBegin;
     b.set = std::uint32_t(unit.set);
     b.index = i;
-    b.truth = std::uint8_t((truth ? 1 : 0) | (truth_f ? 2 : 0));
+    b.truth = std::uint8_t((truth ? 1 : 0) | (truth_f ? 2 : 0) |
+                           (isImproper(c.k.pose) ? 4 : 0));
+    b.tris.oracle = std::uint32_t(oracle_tris.size());
     int stage = -1;
     b.answer = tricylDecide(c, &stage) ? 1 : 0;
     b.stage = stage < 0 ? kNoStage : std::uint8_t(stage);
@@ -183,6 +214,11 @@ double timeQuery(Fn&& fn, bool* answer) {
       }
       bool answer = false;
       r.ns = timeQuery([&] { return ev.run(m, c); }, &answer);
+      if (bvh) {  // the reported triangles (one more, untimed call)
+        std::vector<std::uint32_t> got;
+        ev.run(m, c, &got);
+        r.tris = compareTriangles(oracle_tris, std::move(got));
+      }
       r.type = kResult;
       r.answer = answer ? 1 : 0;
       const bool fl = usesFloatInput(m);
@@ -287,6 +323,13 @@ void reap(Worker& w, bool kill_it) {
 
 }  // namespace
 
+double mean(const std::vector<float>& v) {
+  if (v.empty()) return kNaN;
+  double sum = 0;
+  for (float x : v) sum += double(x);
+  return sum / double(v.size());
+}
+
 double percentile(std::vector<float>& v, double p) {
   if (v.empty()) return kNaN;
   std::sort(v.begin(), v.end());
@@ -334,6 +377,7 @@ RunResult runAll(const std::vector<CaseSet>& sets, const RunOptions& opt) {
         ++begun;
         ++st.cases;
         st.hits += m.truth & 1;
+        st.improper += (m.truth >> 2) & 1;
         if (m.stage < st.stage.size()) ++st.stage[m.stage];
         break;
       }
@@ -368,6 +412,9 @@ RunResult runAll(const std::vector<CaseSet>& sets, const RunOptions& opt) {
         if (bool(m.answer) != truth) ++feature[wi]->wrong[m.method];
         ++ms.agree[current[wi].answer][m.answer];
         ms.ns.push_back(float(m.ns));
+        ms.tri_oracle += m.tris.oracle;
+        ms.tri_missed += m.tris.missed;
+        ms.tri_extra += m.tris.extra;
         break;
       }
       case kDone:
@@ -457,6 +504,8 @@ RunResult runAll(const std::vector<CaseSet>& sets, const RunOptions& opt) {
         MethodStats& ms = res.sets[s.set].method[s.method];
         ++ms.cases;
         ++ms.hangs;
+        ms.tri_oracle += current[i].tris.oracle;
+        ms.tri_missed += current[i].tris.oracle;
         if (feature[i]) ++feature[i]->wrong[s.method];
         res.hangs.push_back({s.set, s.index, Method(s.method)});
         // Resume just after the hung query.

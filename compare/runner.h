@@ -37,6 +37,10 @@ struct MethodStats {
   std::uint64_t worst_fn_index = kNoCase;
   /// ns per query for every answered (not hung) query.
   std::vector<float> ns;
+  /// mesh_bvh (exhaustive requests): oracle colliding triangles over the
+  /// answered cases, those the method missed, and those it reported that do
+  /// not collide. A hung case counts its oracle triangles as missed.
+  std::uint64_t tri_oracle = 0, tri_missed = 0, tri_extra = 0;
   /// Agreement with tricyl's exact answer: [tricyl][this], index 1 = hit.
   std::uint64_t agree[2][2] = {{0, 0}, {0, 0}};
   std::uint64_t wrong() const {
@@ -53,6 +57,8 @@ struct FeatureStats {
 struct SetStats {
   std::uint64_t cases = 0;
   std::uint64_t hits = 0;  ///< oracle says "intersect"
+  /// Cases whose pose has det R < 0: the FCL methods get fclPose of them.
+  std::uint64_t improper = 0;
   /// tricyl's deciding stage, counted by int(tricyl::Stage) (triangle sets).
   std::array<std::uint64_t, 8> stage{};
   std::array<MethodStats, kMethodCount> method;
@@ -78,5 +84,7 @@ RunResult runAll(const std::vector<CaseSet>& sets, const RunOptions& options);
 
 /// Percentile (0..100) of a sample, nearest rank; NaN if empty. Sorts.
 double percentile(std::vector<float>& v, double p);
+/// Arithmetic mean of a sample (in double); NaN if empty.
+double mean(const std::vector<float>& v);
 
 }  // namespace tricyl::compare

@@ -5,7 +5,7 @@
 // run's cases do not depend on the number of threads and any case can be
 // replayed from (seed, index) alone.
 //
-// Families (see issue 2 / issue 4):
+// Families:
 //   uniform  random sizes, random rotation and translation, random triangles
 //            of random size around the cylinder: a mix of hits and misses.
 //   near     a touching configuration (vertex on the side, vertex on a cap,

@@ -1,9 +1,8 @@
-// The cylinder query family (issue 5), each predicate written ONCE over a
-// kernel K of src/filter.h and run through the same four stages as the
-// triangle kernel: FilterKernel (certified double), RunningDoubleKernel
-// then ExtendedKernel (running error bound in double, then long double),
-// TrackedKernel (double with
-// every operation checked for rounding), ExactKernel (GMP dyadic).
+// The cylinder query family, each predicate written ONCE over a kernel K of
+// src/filter.h and decided by the same driver as the triangle kernel
+// (runStages, src/stages.h): FilterKernel (certified double), then, for a
+// query it leaves open, AdaptiveKernel (src/adaptive.h), which re-decides
+// only the open signs in double-word, then exactly.
 //
 // Frame: the cylinder frame of the triangle kernel, produced by the same
 // toLocal<K> (src/triangle_cylinder_impl.h): y = R^T (x - t) evaluated
@@ -38,6 +37,7 @@
 #include <type_traits>
 
 #include "filter.h"
+#include "stages.h"
 #include "triangle_cylinder_impl.h"
 #include "tricyl/types.h"
 
@@ -107,32 +107,6 @@ inline Pose<double> widen(const Pose<S>& p) {
     for (int j = 0; j < 3; ++j) w.R[i][j] = double(p.R[i][j]);
   w.t = widen(p.t);
   return w;
-}
-
-template <class K>
-struct KernelTag {
-  using type = K;
-};
-
-/// Runs `pred(KernelTag<K>{}, &early) -> Tri` through the four stages: the
-/// double filter, the extended filter (running bound in double, then in
-/// long double) and the tracked double stage inside
-/// the range gate, then the exact kernel, which never answers kUnknown.
-template <class Pred>
-Decision runStages(const Pred& pred, double max_len, double max_unitless) {
-  bool early = false;
-  if (rangeGateOk(max_len, max_unitless)) {
-    const Tri t = pred(KernelTag<FilterKernel>{}, &early);
-    if (t != Tri::kUnknown)
-      return {toAnswer(t), early ? Stage::kEarlyOut : Stage::kFastPath};
-    // The extended stage: the running bound in double, then long double.
-    Tri e = pred(KernelTag<RunningDoubleKernel>{}, &early);
-    if (e == Tri::kUnknown) e = pred(KernelTag<ExtendedKernel>{}, &early);
-    if (e != Tri::kUnknown) return {toAnswer(e), Stage::kExtended};
-    const Tri x = pred(KernelTag<TrackedKernel>{}, &early);
-    if (x != Tri::kUnknown) return {toAnswer(x), Stage::kTracked};
-  }
-  return {toAnswer(pred(KernelTag<ExactKernel>{}, &early)), Stage::kExact};
 }
 
 template <class K>

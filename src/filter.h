@@ -4,17 +4,17 @@
 // on K::Num and K::sign(). It is then run with:
 //   FilterKernel  Num = Fd (double value + magnitude), sign() certified by a
 //                 derived error bound, kUnknown when the bound cannot decide;
-//   RunningDoubleKernel, ExtendedKernel  the filter with a running error
-//                 bound, in double (cylinder queries), then in long double
-//                 (second stage);
-//   TrackedKernel   the double filter with every operation checked for
-//                 rounding: exact signs, zero included (third stage);
+//   AdaptiveKernel (src/adaptive.h)  the same double values, each sign the
+//                 bound leaves open re-decided by itself in double-word,
+//                 then exactly: never kUnknown;
+//   RunningDoubleKernel  the filter with a running error bound (the line
+//                 interval's first stage, src/line_cylinder_interval.cpp);
 //   ExactKernel   Num = Dyadic (GMP integer times a power of two), exact;
 //   NaiveKernel   Num = double, sign() of the rounded value (diagnostic only).
-// The query returns a three-valued Tri; kUnknown from a filter stage sends
-// the query to the next one, and finally to the exact kernel. See
-// docs/exactness.md for the derivation of the bound used in
-// FilterKernel::sign().
+// The query returns a three-valued Tri; kUnknown from the filter sends the
+// query to the adaptive run (src/stages.h). See docs/exactness.md for the
+// derivation of the bound used in FilterKernel::sign(). Nothing here or in
+// the stages after it uses long double.
 #pragma once
 
 #include <gmpxx.h>
@@ -128,59 +128,39 @@ struct FilterKernel {
   }
 };
 
-/// The second stage: the filter re-run in the widest hardware floating
-/// point, long double (x87 extended on x86-64: u_L = 2^-64), with a RUNNING
-/// error bound instead of a magnitude: each value carries e >= |v - E|.
-/// The magnitude bound of FilterKernel is cheap but pessimistic when a
-/// value is small after cancellation (a local coordinate 1e-5 computed from
-/// world terms of 500 has m ~ 500, so x^2 gets 2^-47 * 500^2 although its
-/// error is ~ 2 * 1e-5 * 500 u); the running bound follows the actual
-/// values. Rules (u' = u_L (1 + 2 u_L) >= u_L / (1 - u_L) covers the
-/// rounding of the operation itself, relative to the computed result):
+/// A filter with a RUNNING error bound instead of a magnitude: each value
+/// carries e >= |v - E|. The magnitude bound of FilterKernel is cheap but
+/// pessimistic when a value is small after cancellation (a local coordinate
+/// 1e-5 computed from world terms of 500 has m ~ 500, so x^2 gets
+/// 2^-47 * 500^2 although its error is ~ 2 * 1e-5 * 500 u); the running
+/// bound follows the actual values. Rules (u' = u (1 + 2 u) >= u / (1 - u)
+/// covers the rounding of the operation itself, relative to the computed
+/// result):
 ///   a + b:  e = e_a + e_b + u' |v|
-///   a * b:  e = |v_a| e_b + |v_b| e_a + e_a e_b + u' |v|
+///   a * b:  e = |v_a| e_b + |v_b| e_a + e_a e_b + u' |v| + kTiny
 ///     since |v_a v_b - A B| <= |v_a| |v_b - B| + |B| |v_a - A| and
 ///     |B| <= |v_b| + e_b.
 ///   input difference a - b of doubles: e = u' |v|; an input: e = 0.
 /// e itself is computed with rounding to nearest from non-negative terms,
-/// so it falls short of the exact bound by at most a factor (1 - u_L)^k,
-/// k <= 4 roundings per operation times depth <= 56: sign() inflates it by
-/// (1 + 2^-50), which covers (1 - u_L)^-224 with room to spare.
+/// so it falls short of the exact bound by at most a factor (1 - u)^k,
+/// k <= 4 roundings per operation times depth <= 56, i.e. below 1 + 2^-44
+/// in relative terms: sign() inflates it by (1 + 2^-40).
 /// Underflow: every product (and the line interval's quotients) adds the
-/// type's smallest subnormal, kTiny, to its e (the loss of one rounded
-/// product is below it), so an underflowed product is never a certified 0.
-/// The bound computations' own underflow losses (<= 2^-1075 each, since
-/// long double holds every double) propagate as in FilterKernel and stay far
-/// below kAbs under the range gate. No step depends on the width or the
-/// exponent range of long double: where it is double (MSVC, Apple silicon,
-/// 32-bit ARM) u_L = 2^-53 and the stage is a second double stage; where it
-/// is software quad (AArch64 Linux) it is correct and slower.
-constexpr long double pow2neg(int k) {
-  long double r = 1;
-  for (int i = 0; i < k; ++i) r /= 2;
-  return r;
-}
-constexpr long double kUL = pow2neg(LDBL_MANT_DIG);  // u_L
-constexpr long double kUL1 = kUL + 2 * kUL * kUL;    // u'
-constexpr double kU1d = 0x1p-53 * (1 + 0x1p-52);     // u' for double
+/// smallest subnormal, kTiny, to its e (the loss of one rounded product is
+/// below it), so an underflowed product is never a certified 0 (sums of
+/// doubles are exact in the subnormal range). The bound computations' own
+/// underflow losses (<= 2^-1075 each) propagate as in FilterKernel and stay
+/// far below kAbs = 2^-600 under the range gate (docs/exactness.md,
+/// "Underflow").
+constexpr double kU1d = 0x1p-53 * (1 + 0x1p-52);  // u' for double
 
 /// Per floating type of a running bound: u' (kU1), the absolute underflow
-/// allowance of a product or quotient (kTiny: the type's smallest subnormal,
-/// for every type and width; issue 20: with 0 in a long double no wider
-/// than double, Dy * Dy = dmin^2 underflowed to a "certified" 0) and the
-/// inflation of sign() for the rounding of the bound computations
-/// themselves (kInflate).
+/// allowance of a product or quotient (kTiny: the type's smallest subnormal;
+/// with 0 there, Dy * Dy = dmin^2 underflowed to a "certified" 0,
+/// tests/portability_test.cpp) and the inflation of sign() for the rounding
+/// of the bound computations themselves (kInflate). Only double is used.
 template <class T>
 struct RunningTraits;
-template <>
-struct RunningTraits<long double> {
-  using T = long double;
-  static constexpr T kU1 = kUL1;
-  static constexpr T kTiny = std::numeric_limits<T>::denorm_min();
-  static constexpr T kInflate = 1 + pow2neg(50);
-  /// |x| as the x87 code has always computed it (a conditional move).
-  static T abs(T x) { return x < 0 ? -x : x; }
-};
 template <>
 struct RunningTraits<double> {
   using T = double;
@@ -221,8 +201,7 @@ inline Running<T> operator*(Running<T> a, Running<T> b) {
   return {v, e + R::kTiny};
 }
 
-/// The filter with a running bound, in T (ExtendedKernel: long double;
-/// RunningDoubleKernel: double).
+/// The filter with a running bound, in T (RunningDoubleKernel: double).
 template <class T>
 struct RunningKernel {
   using R = RunningTraits<T>;
@@ -242,134 +221,10 @@ struct RunningKernel {
   }
 };
 
-using Fl = Running<long double>;
-using ExtendedKernel = RunningKernel<long double>;
-
-/// The extended stage's first attempt in the cylinder queries (runStages,
-/// src/cylinder_queries_impl.h) and in the line interval: the running error
-/// bound of Fl in plain double (u = 2^-53), in SSE registers, about four
-/// times cheaper than x87. Not as precise, but the magnitude bound of
-/// FilterKernel is pessimistic after cancellation, and a running bound,
-/// which follows the actual values, decides much of what the double filter
-/// leaves (bench_queries, near: point-in-cylinder 81 -> 47 ns, segment
-/// 354 -> 283 ns). The triangle kernel does not use it: there it decided
-/// half of what reached the extended stage (near 52%, far 93%, thin 48%),
-/// but in bench/ (cases in an unlearnable order, caches cold) near and thin
-/// were no faster (448 vs 450 ns) and aligned slower (232 -> 275 ns): one
-/// more instantiation of the whole kernel, cold, costs about what it saves.
-/// Rules as for Fl, with u' = 2^-53 (1 + 2^-52), plus an absolute 2^-1074
-/// on every product for a possible underflow (sums of doubles are exact in
-/// the subnormal range). The rounding of the bound computations
-/// themselves: as for Fl, each e is short of its exact value by at most a
-/// factor (1 - u)^k with k <= 4 per operation and depth <= 56, i.e. below
-/// 1 + 2^-44 in relative terms, which kInflate covers; and by absolute
-/// underflow losses of at most 2^-1075 per rounded product, which propagate
-/// like FilterKernel's and stay far below kAbs = 2^-600 under the range
-/// gate (docs/exactness.md, "Underflow").
+/// The line interval's first stage (src/line_cylinder_interval.cpp), with
+/// division and square root added there.
 using Rd = Running<double>;
 using RunningDoubleKernel = RunningKernel<double>;
-
-/// The third stage: the double filter again, with every operation checked
-/// for rounding by an error-free transformation. Why: a sign that is exactly
-/// zero (a vertex exactly on a rim, a triangle exactly in a cap plane, a
-/// cylinder standing exactly on a floor) is never certified by a bound,
-/// however tight, so the two filters send it to GMP (about 9 us a query).
-/// But in such scenes the arithmetic is often exact in double (small
-/// dyadic coordinates, signed-permutation rotations, exact translations),
-/// and then the computed value IS the exact value, zero included.
-///
-/// Fx carries the Fd pair (v, m), computed by exactly the same operations
-/// as FilterKernel's, and a flag: `exact` implies v = E, the exact value of
-/// the expression. Rules:
-///   input x:         exact.
-///   s = fl(a + b):   exact iff a and b are, and the TwoSum error
-///                    (a - a') + (b - b'), with b' = s - a, a' = s - b', is
-///                    0. Knuth's TwoSum computes a + b - s exactly for any
-///                    finite a, b in round-to-nearest binary floating point
-///                    (no precondition on their order; underflow cannot
-///                    make it inexact: a sum's error is always
-///                    representable). Overflow would give Inf or NaN, and
-///                    an overflowed s is flagged inexact; under the range
-///                    gate nothing overflows anyway (magnitudes <= 2^380).
-///   p = fl(a * b):   flagged exact if one factor is an exact 0 (then
-///                    E = 0 whatever the other's error, and p = +-0), or
-///                    if a and b are exact and either p = 0 with a = 0 or
-///                    b = 0 (p = 0 otherwise is an underflow), or
-///                    2^-900 <= |p| <= DBL_MAX and the significands of a
-///                    and b (53 - trailing zeros bits each) have at most 53
-///                    bits together: their integer product then has at most
-///                    53 bits, and a b, a normal number, is a double, so
-///                    p = a b. (Sufficient, not necessary: a product of 54
-///                    significant bits that happens to fit is flagged
-///                    inexact, which only costs the exact stage. Products
-///                    of small dyadic numbers, and by 0, +-1 or powers of
-///                    two, pass.)
-///   input difference a - b: the sum rule (b negated: exact).
-/// sign(): an exact value's sign is its own (kZero included). Otherwise the
-/// value and magnitude are FilterKernel's, so FilterKernel::sign's bound
-/// applies unchanged: this stage decides at least what the double filter
-/// decides, plus every sign whose computation never rounded.
-/// Cost: TwoSum is 6 operations, the product test a few integer ones; the
-/// stage runs only where both filters failed.
-struct Fx {
-  double v;
-  double m;
-  bool exact;
-};
-inline bool sumIsExact(double a, double b, double s) {
-  if (!(std::fabs(s) <= DBL_MAX)) return false;  // overflow (Inf - Inf next)
-  const double b1 = s - a;
-  const double a1 = s - b1;
-  return (a - a1) + (b - b1) == 0;
-}
-/// The number of significant bits of a normal double (1 for powers of two,
-/// 53 at most); 64 for zero and subnormals, which the product rule treats
-/// separately.
-inline int significantBits(double x) {
-  std::uint64_t b;
-  std::memcpy(&b, &x, sizeof b);
-  if ((b & 0x7ff0000000000000ULL) == 0) return 64;
-  const std::uint64_t f = (b & 0x000fffffffffffffULL) | 0x0010000000000000ULL;
-  return 53 - __builtin_ctzll(f);
-}
-inline bool productIsExact(double a, double b, double p) {
-  if (p == 0) return a == 0 || b == 0;
-  const double ap = std::fabs(p);
-  return ap >= 0x1p-900 && ap <= DBL_MAX &&
-         significantBits(a) + significantBits(b) <= 53;
-}
-inline Fx operator+(Fx a, Fx b) {
-  const double s = a.v + b.v;
-  return {s, a.m + b.m, a.exact && b.exact && sumIsExact(a.v, b.v, s)};
-}
-inline Fx operator-(Fx a) { return {-a.v, a.m, a.exact}; }
-inline Fx operator-(Fx a, Fx b) {
-  const double s = a.v - b.v;
-  return {s, a.m + b.m, a.exact && b.exact && sumIsExact(a.v, -b.v, s)};
-}
-inline Fx operator*(Fx a, Fx b) {
-  const double p = a.v * b.v;
-  const bool zero = (a.exact && a.v == 0) || (b.exact && b.v == 0);
-  return {p, a.m * b.m,
-          zero || (a.exact && b.exact && productIsExact(a.v, b.v, p))};
-}
-
-struct TrackedKernel {
-  using Num = Fx;
-  static constexpr bool kExact = false;
-  static Num lift(double x) { return {x, std::fabs(x), true}; }
-  /// FilterKernel's input difference (magnitude |fl(a - b)|, the extra
-  /// rounding counted in the depth), flagged exact iff no rounding.
-  static Num inputDiff(double a, double b) {
-    const double d = a - b;
-    return {d, std::fabs(d), sumIsExact(a, -b, d)};
-  }
-  static Sign sign(const Fx& a) {
-    if (a.exact)
-      return a.v > 0 ? Sign::kPos : (a.v < 0 ? Sign::kNeg : Sign::kZero);
-    return FilterKernel::sign(Fd{a.v, a.m});
-  }
-};
 
 /// The gate under which FilterKernel's absolute slack kAbs is valid.
 /// `max_length`: the largest magnitude of any input with the dimension of a

@@ -26,10 +26,11 @@
 // no separate side/cap test, hence no crack at the rims.
 // Emptiness is NOT read from these numbers: it is the exact Boolean.
 //
-// ERROR BOUND. Stage 1 evaluates every candidate with the running error
-// bound of ExtendedKernel (src/filter.h), first in double (with an explicit
-// underflow allowance, see Rd), then, if that is not accurate enough, in
-// long double (filter.h's Fl), extended here by division and square root
+// ERROR BOUND. Stage 1 evaluates every candidate with a running error
+// bound, first from coefficients in double (filter.h's Rd, with an explicit
+// underflow allowance), then, if that is not accurate enough, from the same
+// coefficients in double-word (coefsDoubleWord), extended here by division
+// and square root
 // (derivations at flDiv and flSqrt), which gives each candidate an
 // enclosure [v - e, v + e] of its exact value; its ends are computed with
 // a widened e (see `ends`) so that their own rounding cannot shrink it.
@@ -64,24 +65,24 @@
 #include <cmath>
 #include <limits>
 
+#include "adaptive.h"
 #include "line_cylinder_impl.h"
 
 namespace tricyl::detail {
 namespace {
 
 // ---------------------------------------------------------------------------
-// Stage 1: running error bounds, double then long double.
+// Stage 1: running error bounds, coefficients in double then double-word.
 
-// The running error bound in plain double is filter.h's Rd
-// (RunningDoubleKernel), a cheaper first attempt; the long double stage
-// (filter.h's Fl) runs only when it cannot reach the accuracy. Both add the
-// type's smallest subnormal to every product (here also to every quotient)
-// for a possible underflow, so no argument below depends on the width of
-// long double (where it is double, Fl is a second double attempt). The only
-// values taken as certified zeros are local coordinates with e = 0, which
+// The running error bound is filter.h's Rd (RunningDoubleKernel): every
+// product (here also every quotient) adds the smallest subnormal for a
+// possible underflow. No argument below depends on long double (issue 20:
+// with a long double of double width and no underflow allowance, an
+// underflowed Dy * Dy was taken for a certified A = 0). The only values
+// taken as certified zeros are local coordinates with e = 0, which
 // toLocalRunning gives only when every term has an exact zero factor.
 
-/// Per running type (Fl, Rd): u', the absolute underflow allowance of a
+/// Per running type (Rd): u', the absolute underflow allowance of a
 /// product or quotient, and the floating type (filter.h's RunningTraits).
 template <class N>
 using Run = RunningTraits<decltype(N::v)>;
@@ -179,7 +180,7 @@ struct Extremum {
 
 constexpr double kAccept = 0x1p-49;
 
-/// Rounds an end to double; a long double end beyond the double range (a
+/// Rounds an end to double; an end beyond the double range (a
 /// line's parameter can reach 2^1100 with inputs inside the range gate)
 /// becomes the infinity of its sign explicitly.
 template <class T>
@@ -190,13 +191,23 @@ double endToDouble(T x) {
   return double(x);
 }
 
-/// Stage 1 in the running type of kernel K (RunningDoubleKernel first,
-/// then ExtendedKernel). False when a bound exceeds kAccept (relative).
+/// What stage 1 needs of a query, in a running type N (value v, bound e):
+/// the numerators of the slab parameters, the direction's components and
+/// the infinite cylinder's coefficients. `dz_zero` / `dxy_zero`: DZ, resp.
+/// Dx and Dy, are certified exact zeros (e = 0 with v = 0: every term of
+/// the local coordinate has a zero factor, so nothing rounded or
+/// underflowed).
+template <class N>
+struct Coefs {
+  N s_bot, s_top;  // -H - Z0 and H - Z0
+  N DZ, A, b, C, delta;
+  bool dz_zero, dxy_zero;
+};
+
+/// The coefficients in the running type of kernel K (RunningDoubleKernel).
 template <class K>
-bool intervalRunning(const LinearInputs& in, bool segment,
-                     Interval<double>* out) {
+Coefs<typename K::Num> coefsRunning(const LinearInputs& in) {
   using N = typename K::Num;
-  using T = typename Run<N>::T;
   N x0, y0, Z0, Dx, Dy, DZ;
   toLocal<K>(in.pose, in.p, 1.0, x0, y0, Z0);
   Pose<double> at_p = in.pose;
@@ -204,7 +215,67 @@ bool intervalRunning(const LinearInputs& in, bool segment,
   toLocal<K>(at_p, in.q, 1.0, Dx, Dy, DZ);
   const N H = K::lift(in.cyl.lz);
   const N r = K::lift(in.cyl.radius);
+  Coefs<N> k;
+  k.s_bot = -H - Z0;
+  k.s_top = H - Z0;
+  k.DZ = DZ;
+  k.dz_zero = DZ.v == 0 && DZ.e == 0;
+  k.dxy_zero = Dx.v == 0 && Dx.e == 0 && Dy.v == 0 && Dy.e == 0;
+  k.A = Dx * Dx + Dy * Dy;
+  k.b = x0 * Dx + y0 * Dy;
+  k.C = x0 * x0 + y0 * y0 - r * r;
+  const N c = x0 * Dy - y0 * Dx;
+  k.delta = r * r * k.A - c * c;
+  return k;
+}
 
+/// The same coefficients in double-word (the adaptive stage's arithmetic,
+/// src/adaptive.cpp: values and running bounds computed on a tape), each
+/// rounded to an Rd: v = hi, e = (e_dw + |lo|)(1 + 2^-40) + 2^-600, which
+/// bounds |hi - E| <= |hi + lo - E| + |lo| with the slack of the
+/// double-word sign test (Tape::escalate). The quotients and the square
+/// root after them then cost one double rounding each, relative: well
+/// inside kAccept, where the plain double coefficients' cancellation was
+/// not.
+Coefs<Rd> coefsDoubleWord(const LinearInputs& in) {
+  using K = AdaptiveKernel;
+  Tape tape;
+  TapeScope scope(&tape);
+  An x0, y0, Z0, Dx, Dy, DZ;
+  tape.toLocal(in.pose, in.p, x0, y0, Z0);
+  Pose<double> at_p = in.pose;
+  at_p.t = in.p;
+  tape.toLocal(at_p, in.q, Dx, Dy, DZ);
+  const An H = K::lift(in.cyl.lz);
+  const An r = K::lift(in.cyl.radius);
+  auto rd = [&tape](const An& v) {
+    DW d;
+    double e;
+    tape.doubleWord(v.id, &d, &e);
+    if (d.hi == 0 && d.lo == 0 && e == 0) return Rd{0, 0};
+    return Rd{d.hi, (e + std::fabs(d.lo)) * (1 + 0x1p-40) + 0x1p-600};
+  };
+  const An A = Dx * Dx + Dy * Dy;
+  const An c = x0 * Dy - y0 * Dx;
+  Coefs<Rd> k;
+  k.s_bot = rd(-H - Z0);
+  k.s_top = rd(H - Z0);
+  k.DZ = rd(DZ);
+  k.dz_zero = k.DZ.v == 0 && k.DZ.e == 0;
+  const Rd dx = rd(Dx), dy = rd(Dy);
+  k.dxy_zero = dx.v == 0 && dx.e == 0 && dy.v == 0 && dy.e == 0;
+  k.A = rd(A);
+  k.b = rd(x0 * Dx + y0 * Dy);
+  k.C = rd(x0 * x0 + y0 * y0 - r * r);
+  k.delta = rd(r * r * A - c * c);
+  return k;
+}
+
+/// Stage 1 from the coefficients in the running type N. False when a
+/// bound exceeds kAccept (relative).
+template <class N>
+bool intervalFrom(const Coefs<N>& k, bool segment, Interval<double>* out) {
+  using T = typename Run<N>::T;
   Extremum<T> lo{0, 0, true, false};
   Extremum<T> hi{0, 0, false, false};
   if (segment) {
@@ -213,10 +284,11 @@ bool intervalRunning(const LinearInputs& in, bool segment,
   }
 
   // Slab. DZ exactly zero is recognised when its bound is zero too.
-  if (!(DZ.v == 0 && DZ.e == 0)) {
+  if (!k.dz_zero) {
     N s_bot, s_top;  // parameters of Z = -H and Z = +H
-    if (!flDiv(-H - Z0, DZ, &s_bot) || !flDiv(H - Z0, DZ, &s_top)) return false;
-    const bool up = DZ.v > 0;
+    if (!flDiv(k.s_bot, k.DZ, &s_bot) || !flDiv(k.s_top, k.DZ, &s_top))
+      return false;
+    const bool up = k.DZ.v > 0;
     const N& a = up ? s_bot : s_top;
     const N& b = up ? s_top : s_bot;
     T a_lo, a_hi, b_lo, b_hi;
@@ -232,14 +304,12 @@ bool intervalRunning(const LinearInputs& in, bool segment,
   // stays 0 would depend on the width of the type (issue 20: with long
   // double = double and no underflow allowance, Line{{1,0,0},{1,dmin,0}}
   // clipped to [-inf, +inf] instead of [0, 0]).
-  if (!(Dx.v == 0 && Dx.e == 0 && Dy.v == 0 && Dy.e == 0)) {
-    const N A = Dx * Dx + Dy * Dy;
+  if (!k.dxy_zero) {
+    const N& A = k.A;
     if (!(A.v > A.e * T(kInfl))) return false;  // A > 0 not certain
-    const N b = x0 * Dx + y0 * Dy;
-    const N C = x0 * x0 + y0 * y0 - r * r;
-    const N c = x0 * Dy - y0 * Dx;
-    const N delta = r * r * A - c * c;
-    const N sq = flSqrt(delta);
+    const N& b = k.b;
+    const N& C = k.C;
+    const N sq = flSqrt(k.delta);
     const N q = b.v >= 0 ? N(-(b + sq)) : N(sq - b);
     N r1, r2;
     if (!flDiv(q, A, &r1) || !flDiv(C, q, &r2)) return false;
@@ -361,12 +431,13 @@ Interval<double> intervalExact(const LinearInputs& in, bool segment) {
 Interval<double> linearInterval(const LinearInputs& in, bool segment) {
   Interval<double> iv{0, 1};
   const bool gate = rangeGateOk(in.max_len, in.max_unitless);
-  if (!(gate && (intervalRunning<RunningDoubleKernel>(in, segment, &iv) ||
-                 intervalRunning<ExtendedKernel>(in, segment, &iv))))
+  if (!(gate &&
+        (intervalFrom(coefsRunning<RunningDoubleKernel>(in), segment, &iv) ||
+         intervalFrom(coefsDoubleWord(in), segment, &iv))))
     iv = intervalExact(in, segment);
   // No arithmetic on the ends here: they may be infinite (a line's), and a
   // compiler may evaluate a guarded operation speculatively. Stage 1 has
-  // resolved a crossing of its ends (intervalRunning); stage 2 cannot cross
+  // resolved a crossing of its ends (intervalFrom); stage 2 cannot cross
   // (truncation to double is monotone). Comparisons and min/max with an
   // infinity raise nothing.
   if (segment) {

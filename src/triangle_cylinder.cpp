@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <optional>
 #include <type_traits>
 
 // TRICYL_PORTABLE_PROLOGUE (CMake option of the same name): the portable
@@ -27,8 +26,9 @@
 #endif
 
 #include "filter.h"
+#include "line_cylinder_impl.h"
+#include "stages.h"
 #include "triangle_cylinder_impl.h"
-#include "tricyl/segment_cylinder.h"
 
 #if defined(__GNUC__) || defined(__clang__)
 #define TRICYL_ALWAYS_INLINE inline __attribute__((always_inline))
@@ -41,12 +41,9 @@
 namespace tricyl {
 namespace {
 
-using detail::ExactKernel;
-using detail::ExtendedKernel;
 using detail::FilterKernel;
 using detail::NaiveKernel;
 using detail::Sign;
-using detail::TrackedKernel;
 using detail::Tri;
 
 // The double kernel works on references to the caller's values; float
@@ -121,47 +118,30 @@ bool validate(const Inputs& in, double* max_len, double* max_unitless) {
 // (a repeated vertex and a single point included); the answer is then the
 // segment query's. The triangle kernel meets such input through signs that
 // are exactly zero (the projected area; for a repeated vertex an edge of
-// length zero), which in a general pose no filter certifies: before this,
-// every one went to GMP (all 1335 exact queries of 10^5 sliver cases, about
-// 14 us each). The segment kernel has no such sign; its own stages decide
-// them (in its fast path, for all of those 1335).
-//   Collinear: (b - a) x (c - a) = 0 exactly. Under the range gate,
-// FilterKernel certifies a non-zero component (degree 2, depth 3,
-// magnitude <= 2^84: inside its budget), and TrackedKernel an exactly zero
-// one when no operation rounds (a repeated vertex, dyadic grids); this
-// cheap part runs before the extended stage. With `exact` (before the
-// exact stage), what both leave is decided with dyadic (GMP) integers, as
-// is everything outside the gate.
+// length zero), which need the exact stage, several times per query; the
+// segment kernel has no such sign, and decides them in double.
+//   Collinear: (b - a) x (c - a) = 0 exactly, a query of its own (degree 2
+// in the inputs' differences): FilterKernel certifies a non-zero component
+// for every triangle that is not close to degenerate, and the adaptive run
+// decides the rest exactly.
 //   Ends: if the vertices differ in coordinate k, the line's direction has a
 // non-zero k component, so coordinate k orders the points along it, and the
 // vertices with the least and greatest coordinate k are the ends (exact
 // comparisons of doubles). If they differ in no coordinate, the hull is the
 // point a.
-enum class Degenerate { kNo, kYes, kUnknown };
+template <class K>
+Tri collinear(const Triangle<double>& t) {
+  auto d = [](double p, double q) { return K::inputDiff(p, q); };
+  const auto ux = d(t.b.x, t.a.x), uy = d(t.b.y, t.a.y), uz = d(t.b.z, t.a.z);
+  const auto vx = d(t.c.x, t.a.x), vy = d(t.c.y, t.a.y), vz = d(t.c.z, t.a.z);
+  Tri zero = isZero(K::sign(ux * vy - uy * vx));
+  if (zero == Tri::kFalse) return zero;
+  zero = kAnd(zero, isZero(K::sign(uy * vz - uz * vy)));
+  if (zero == Tri::kFalse) return zero;
+  return kAnd(zero, isZero(K::sign(uz * vx - ux * vz)));
+}
 
-Degenerate degenerateHull(const Triangle<double>& t, bool gate, bool exact,
-                          Segment<double>* hull) {
-  auto crossIsZero = [&t](auto kernel) {
-    using K = decltype(kernel);
-    auto d = [](double p, double q) { return K::inputDiff(p, q); };
-    const auto ux = d(t.b.x, t.a.x), uy = d(t.b.y, t.a.y), uz = d(t.b.z, t.a.z);
-    const auto vx = d(t.c.x, t.a.x), vy = d(t.c.y, t.a.y), vz = d(t.c.z, t.a.z);
-    bool zero = true;
-    for (const auto& c :
-         {uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx}) {
-      const Sign s = K::sign(c);
-      if (s == Sign::kPos || s == Sign::kNeg) return Degenerate::kNo;
-      zero = zero && s == Sign::kZero;
-    }
-    return zero ? Degenerate::kYes : Degenerate::kUnknown;
-  };
-  Degenerate k = Degenerate::kUnknown;
-  if (gate) {
-    k = crossIsZero(FilterKernel{});
-    if (k == Degenerate::kUnknown) k = crossIsZero(TrackedKernel{});
-  }
-  if (k == Degenerate::kUnknown && exact) k = crossIsZero(ExactKernel{});
-  if (k != Degenerate::kYes) return k;
+Segment<double> collinearHull(const Triangle<double>& t) {
   const Vec3<double>* v[3] = {&t.a, &t.b, &t.c};
   for (int axis = 0; axis < 3; ++axis) {
     auto at = [axis](const Vec3<double>* p) {
@@ -172,104 +152,53 @@ Degenerate degenerateHull(const Triangle<double>& t, bool gate, bool exact,
       if (at(v[i]) < at(v[lo])) lo = i;
       if (at(v[i]) > at(v[hi])) hi = i;
     }
-    if (at(v[lo]) < at(v[hi])) {
-      *hull = {*v[lo], *v[hi]};
-      return k;
-    }
+    if (at(v[lo]) < at(v[hi])) return {*v[lo], *v[hi]};
   }
-  *hull = {t.a, t.a};
-  return k;
+  return {t.a, t.a};
 }
 
-// The full sequence: validate, double filter (unless the fast path already
-// ran it and it could not decide), extended filter and tracked double (in
-// the order chosen below), exact. The inputs' own range gate (rangeGateOk on
-// the inputs) guards the three filter stages.
+// The whole sequence for validated inputs (src/stages.h): the double filter
+// (unless the fast path already ran it and it could not decide), the
+// degenerate hand-off, the adaptive run.
 Decision decide(const Inputs& in, bool filter_done) {
   double max_len = 0, max_unitless = 0;
   if (!validate(in, &max_len, &max_unitless))
     return {Answer::kInvalidInput, Stage::kInvalid};
-  bool early = false;
-  // The cheap degeneracy test's outcome, once it has run (see below).
-  std::optional<Degenerate> degenerate;
-  if (!filter_done && detail::rangeGateOk(max_len, max_unitless)) {
-    const auto q =
-        detail::makeLocal<FilterKernel>(in.cyl, in.pose, in.tri, max_unitless);
-    const Tri t = detail::triangleCylinder<FilterKernel>(q, &early);
+  auto triangle = [&](auto tag, bool* early) {
+    using K = typename decltype(tag)::type;
+    const auto q = detail::makeLocal<K>(in.cyl, in.pose, in.tri, max_unitless);
+    return detail::triangleCylinder<K>(q, early);
+  };
+  const bool gate = detail::rangeGateOk(max_len, max_unitless);
+  if (gate && !filter_done) {
+    bool early = false;
+    const Tri t = triangle(detail::KernelTag<FilterKernel>{}, &early);
     if (t != Tri::kUnknown)
       return {detail::toAnswer(t), early ? Stage::kEarlyOut : Stage::kFastPath};
   }
-  if (detail::rangeGateOk(max_len, max_unitless)) {
-    // Exact zeros (a vertex on the rim, a triangle in a cap plane) that no
-    // bound certifies, computed without rounding (TrackedKernel,
-    // docs/exactness.md, section 5). Where the local frame itself comes out
-    // exact, that is the likely reason the filter failed, and this stage
-    // goes first (the aligned family: 0.6 us a query instead of 2 us
-    // behind the extended stage); elsewhere it runs after the extended
-    // stage, which decides the tiny non-zero signs of near-touching. The
-    // frame is only tried first when every rotation entry is 0 or has at
-    // most 26 significant bits (signed permutations, float inputs): with
-    // a general double rotation it never comes out exact, and computing it
-    // first cost the near and thin families 8% (measured).
-    bool short_rotation = true;
-    for (const auto& row : in.pose.R)
-      for (double v : row)
-        short_rotation =
-            short_rotation && (v == 0 || detail::significantBits(v) <= 26);
-    // Built at most once: first when the rotation is short, else only if
-    // the extended stage fails.
-    std::optional<detail::TriCylLocal<TrackedKernel>> qt;
-    auto trackedFrame = [&]() -> const detail::TriCylLocal<TrackedKernel>& {
-      if (!qt)
-        qt = detail::makeLocal<TrackedKernel>(in.cyl, in.pose, in.tri,
-                                              max_unitless);
-      return *qt;
-    };
-    auto decided = [](Tri x) {
-      return Decision{detail::toAnswer(x), Stage::kTracked};
-    };
-    bool tried = false;
-    if (short_rotation) {
-      const auto& f = trackedFrame();
-      bool exact_frame = true;
-      for (int i = 0; i < 3; ++i)
-        exact_frame =
-            exact_frame && f.x[i].exact && f.y[i].exact && f.Z[i].exact;
-      if (exact_frame) {
-        tried = true;
-        const Tri x = detail::triangleCylinder<TrackedKernel>(f, &early);
-        if (x != Tri::kUnknown) return decided(x);
-      }
-    }
-    // Degenerate input first where that is cheap to certify (no GMP): the
-    // extended stage cannot decide its zero signs either.
-    Segment<double> hull;
-    degenerate = degenerateHull(in.tri, true, false, &hull);
-    if (degenerate == Degenerate::kYes)
-      return decideIntersect(in.cyl, in.pose, hull);
-    const auto q = detail::makeLocal<ExtendedKernel>(in.cyl, in.pose, in.tri,
-                                                     max_unitless);
-    const Tri t = detail::triangleCylinder<ExtendedKernel>(q, &early);
-    if (t != Tri::kUnknown) return {detail::toAnswer(t), Stage::kExtended};
-    if (!tried) {
-      const Tri x =
-          detail::triangleCylinder<TrackedKernel>(trackedFrame(), &early);
-      if (x != Tri::kUnknown) return decided(x);
-    }
+  const Decision degenerate = detail::runStages(
+      [&](auto tag, bool*) {
+        return collinear<typename decltype(tag)::type>(in.tri);
+      },
+      max_len, max_unitless);
+  if (degenerate.answer == Answer::kIntersect) {
+    detail::LinearInputs seg;
+    seg.cyl = in.cyl;
+    seg.pose = in.pose;
+    const Segment<double> hull = collinearHull(in.tri);
+    seg.p = hull.p;
+    seg.q = hull.q;
+    // The hull's inputs are among the triangle's: the same gate holds.
+    seg.max_len = max_len;
+    seg.max_unitless = max_unitless;
+    return detail::runStages(
+        [&](auto tag, bool* early) {
+          return detail::SegmentPred<typename decltype(tag)::type>::run(seg,
+                                                                        early);
+        },
+        max_len, max_unitless);
   }
-  // Degenerate input: the segment (or point) query, whose stages decide
-  // what the zero signs above left open. Where the cheap test already ran
-  // and could not tell, only its GMP part is left to run.
-  Segment<double> hull;
-  if (degenerate != Degenerate::kNo &&
-      degenerateHull(in.tri,
-                     !degenerate && detail::rangeGateOk(max_len, max_unitless),
-                     true, &hull) == Degenerate::kYes)
-    return decideIntersect(in.cyl, in.pose, hull);
-  const auto q =
-      detail::makeLocal<ExactKernel>(in.cyl, in.pose, in.tri, max_unitless);
-  const Tri t = detail::triangleCylinder<ExactKernel>(q, &early);
-  return {detail::toAnswer(t), Stage::kExact};
+  return detail::runAdaptive(triangle, gate);
 }
 
 // Widening a signalling NaN raises FE_INVALID: float inputs are checked by

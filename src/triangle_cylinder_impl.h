@@ -34,15 +34,11 @@
 
 #include <limits>
 
+#include "adaptive.h"
 #include "filter.h"
 #include "tricyl/types.h"
 
 namespace tricyl::detail {
-
-/// A decided Tri (kTrue or kFalse) as the query's answer.
-inline Answer toAnswer(Tri t) {
-  return t == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint;
-}
 
 template <class K>
 struct TriCylLocal {
@@ -93,7 +89,7 @@ inline void toLocal<FilterKernel>(const Pose<double>& pose,
   Z = {z + z, m + m};
 }
 
-/// The running kernels' version (RunningDoubleKernel, ExtendedKernel; value
+/// The running kernel's version (RunningDoubleKernel; value
 /// type T with unit roundoff u and smallest subnormal eta): the values
 /// computed exactly as the generic toLocal computes them, in T, and the
 /// per-operation rules folded into one bound per coordinate (a third of the
@@ -152,11 +148,14 @@ inline void toLocal<RunningDoubleKernel>(const Pose<double>& pose,
                                          Rd& x, Rd& y, Rd& Z) {
   toLocalRunning<RunningDoubleKernel>(pose, p, x, y, Z);
 }
+/// The adaptive run's version: the same double values and magnitudes as
+/// the generic toLocal<FilterKernel>, and one leaf per coordinate whose
+/// stronger values the tape computes only when a sign needs them.
 template <>
-inline void toLocal<ExtendedKernel>(const Pose<double>& pose,
+inline void toLocal<AdaptiveKernel>(const Pose<double>& pose,
                                     const Vec3<double>& p, double /*rho*/,
-                                    Fl& x, Fl& y, Fl& Z) {
-  toLocalRunning<ExtendedKernel>(pose, p, x, y, Z);
+                                    An& x, An& y, An& Z) {
+  tls_tape->toLocal(pose, p, x, y, Z);
 }
 
 template <class K>

@@ -3,15 +3,12 @@
 # the checked-in ones in tests/answers_digest.expected.
 #   answers            every query's answer (52,500 queries, all kinds): one
 #                      value for every compiler, platform and prologue;
-#   intervals-ld<N>    the bits of the segment and line interval ends, per
-#                      long double format (N = LDBL_MANT_DIG: 64 x87, 53
-#                      long double = double, 113 binary128): where the
-#                      double running bound cannot reach the interval's
-#                      accuracy, the long double stage (or, where it is no
-#                      wider than double, the exact stage) computes the end,
-#                      and the last bits depend on which one did; every end
-#                      is within 1.9e-15 max(1, |s*|) of the exact one, and
-#                      scripts/test.sh checks that across the builds
+#   intervals          the bits of the segment and line interval ends: also
+#                      one value everywhere (every stage that computes an
+#                      end is IEEE double arithmetic, with TwoProduct exact
+#                      with or without FMA; no long double); every end is
+#                      within 1.9e-15 max(1, |s*|) of the exact one, and
+#                      scripts/test.sh also checks that across the builds
 #                      (tricyl-answers-digest --compare).
 # On x86-64 with AVX2 it also runs the SSE2 prologue (TRICYL_SCALAR_BASELINE)
 # and, if given, the portable one (a second executable linked with
@@ -25,7 +22,7 @@ portable=${3:-}
 run=(${TRICYL_RUN:-})
 
 digests() {  # the digest lines of one run
-  grep -E '^(queries|answers|intervals-ld[0-9]+) ' <<<"$1"
+  grep -E '^(queries|answers|intervals) ' <<<"$1"
 }
 out=$("${run[@]}" "$exe")
 echo "$out"

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <exception>
 #include <fstream>
 #include <memory>
 #include <random>
@@ -23,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "obj_mesh.h"
 #include "oracle.h"
 #include "test_support.h"
 #include "tricyl/fcl_solver.h"
@@ -38,30 +40,21 @@ struct Mesh {
   std::vector<fcl::Triangle> t;
 };
 
-/// Reads `v x y z` and `f i j k` (1-based; `i/...` forms accepted) lines.
-/// Returns false if the file cannot be opened.
+/// Reads an OBJ file with the repository's reader (support/obj_mesh.h).
+/// Returns false if the file cannot be read.
 inline bool readObj(const std::string& path, Mesh* m) {
-  std::ifstream in(path);
-  if (!in) return false;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream ls(line);
-    std::string tag;
-    ls >> tag;
-    if (tag == "v") {
-      double x, y, z;
-      ls >> x >> y >> z;
-      m->v.emplace_back(x, y, z);
-    } else if (tag == "f") {
-      std::size_t idx[3];
-      for (std::size_t& i : idx) {
-        std::string tok;
-        ls >> tok;
-        i = std::stoul(tok.substr(0, tok.find('/'))) - 1;
-      }
-      m->t.emplace_back(idx[0], idx[1], idx[2]);
-    }
+  obj::Mesh f;
+  try {
+    f = obj::read(path);
+  } catch (const std::exception&) {
+    return false;
   }
+  for (std::size_t i = 0; i < f.numVertices(); ++i)
+    m->v.emplace_back(f.vertices[3 * i], f.vertices[3 * i + 1],
+                      f.vertices[3 * i + 2]);
+  for (std::size_t t = 0; t < f.numTriangles(); ++t)
+    m->t.emplace_back(f.indices[3 * t], f.indices[3 * t + 1],
+                      f.indices[3 * t + 2]);
   return true;
 }
 

@@ -399,7 +399,7 @@ TEST_P(LineCylinderFamily, AgreesWithOracle) {
   const long n = test::scaled(100000);
   long failures = 0, hits = 0, unbounded = 0, single = 0, outside01 = 0,
        float_cases = 0, seg_hits = 0;
-  std::array<long, 6> stages{};
+  test::StageCounts stages;
   double worst = 0, worst_f = 0, worst_seg = 0, max_s = 0;
   auto fail = [&](const char* what, long i, const test::QueryCase& k) {
     ++failures;
@@ -411,7 +411,7 @@ TEST_P(LineCylinderFamily, AgreesWithOracle) {
     const Line<double> line{k.p, k.q};
     const auto ref = oracle::lineInterval(k.cyl, k.pose, line);
     const Decision d = decideIntersect(k.cyl, k.pose, line);
-    ++stages[size_t(d.stage)];
+    stages.add(d.stage);
     if ((d.answer == Answer::kIntersect) == ref.empty) {
       fail("Boolean", i, k);
       continue;
@@ -492,14 +492,12 @@ TEST_P(LineCylinderFamily, AgreesWithOracle) {
   }
   std::printf(
       "[ stats    ] %s: %ld lines (+%ld float), %ld hits (%ld unbounded, %ld "
-      "single points, %ld entirely outside [0, 1], max |s| %.3g); early-out "
-      "%ld, fast %ld, extended %ld, tracked %ld, exact %ld (%.3f%%); worst "
+      "single points, %ld entirely outside [0, 1], max |s| %.3g); %s; worst "
       "relative end "
       "error %.3g (double), %.3g (float); %ld segment hits, worst |segment - "
       "line n [0, 1]| %.3g\n",
       qscenes::familyName(GetParam()), n, float_cases, hits, unbounded, single,
-      outside01, max_s, stages[0], stages[1], stages[4], stages[5], stages[2],
-      100.0 * double(stages[2]) / double(n ? n : 1), worst, worst_f, seg_hits,
+      outside01, max_s, stages.summary(n).c_str(), worst, worst_f, seg_hits,
       worst_seg);
   EXPECT_EQ(failures, 0);
 }

@@ -92,7 +92,7 @@ QueryCase roundedTo(const QueryCase& k) {
 
 struct AgreementStats {
   long cases = 0, hits = 0, float_cases = 0, failures = 0;
-  std::array<long, 6> stages{};
+  test::StageCounts stages;
 };
 
 /// `decide(Typed<S>) -> Decision` for S = double and float (a generic
@@ -107,7 +107,7 @@ AgreementStats runAgreement(Query qy, Family fam, long n, const Decide& decide,
     const bool expect = truth(k);
     const Decision d = decide(typed<double>(k));
     ++st.cases;
-    ++st.stages[size_t(d.stage)];
+    st.stages.add(d.stage);
     st.hits += expect;
     if ((d.answer == Answer::kIntersect) != expect) {
       ++st.failures;
@@ -129,11 +129,9 @@ AgreementStats runAgreement(Query qy, Family fam, long n, const Decide& decide,
   }
   std::printf(
       "[ stats    ] %s: %ld cases (+%ld float), %ld hits, 0 expected "
-      "disagreements, %ld found; early-out %ld, fast %ld, extended %ld, "
-      "tracked %ld, exact %ld (%.3f%%)\n",
+      "disagreements, %ld found; %s\n",
       qscenes::familyName(fam), st.cases, st.float_cases, st.hits, st.failures,
-      st.stages[0], st.stages[1], st.stages[4], st.stages[5], st.stages[2],
-      100.0 * double(st.stages[2]) / double(st.cases ? st.cases : 1));
+      st.stages.summary(st.cases).c_str());
   return st;
 }
 

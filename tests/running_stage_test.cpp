@@ -1,11 +1,12 @@
-// The extended stage's running error bounds (src/filter.h: Rd in double,
-// Fl in long double; docs/exactness.md, section 4): the folded bound of the
-// local frame (toLocalRunning, src/triangle_cylinder_impl.h) encloses the
-// exact local coordinates, computed by the oracle's independent rational
-// transform, in general position, under heavy cancellation, with mixed
-// exponents and (double) with products that underflow; and each stage on
-// its own, run on every case of the scene families, never decides against
-// the exact oracle.
+// The running error bounds of the local frame: the double running bound
+// (src/filter.h's Rd, the line interval's first stage; toLocalRunning,
+// src/triangle_cylinder_impl.h) and the double-word coordinates of the
+// adaptive stage (Tape::dwCoord, src/adaptive.cpp) enclose the exact local
+// coordinates, computed by the oracle's independent rational transform, in
+// general position, under heavy cancellation, with mixed exponents and
+// with products that underflow; and the running kernel on its own, run on
+// every case of the scene families, never decides against the exact
+// oracle.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,6 +17,7 @@
 #include <limits>
 #include <random>
 
+#include "adaptive.h"
 #include "filter.h"
 #include "oracle.h"
 #include "scenes.h"
@@ -26,7 +28,6 @@
 namespace tricyl {
 namespace {
 
-using detail::ExtendedKernel;
 using detail::RunningDoubleKernel;
 using detail::Tri;
 using oracle::Q;
@@ -101,9 +102,37 @@ TEST(RunningFrameExactly, ConvertsEverySignificandBit) {
   EXPECT_EQ(exactly(0.375L), Q(3, 8));
 }
 
+// A point and a pose for case i: four regimes in turn (general position;
+// p = t + R y with tiny y, heavy cancellation; mixed exponents; tiny
+// values whose products underflow).
+void framePoint(std::mt19937_64& g, long i, Pose<double>& pose,
+                Vec3<double>& p) {
+  std::uniform_real_distribution<double> U(-1, 1);
+  const int regime = int(i % 4);
+  if (regime == 0) {  // general position
+    pose = test::randomPose(g, 100);
+    p = {100 * U(g), 100 * U(g), 100 * U(g)};
+  } else if (regime == 1) {  // p = t + R y with tiny y: cancellation
+    pose = test::randomPose(g, 1e3);
+    const double y[3] = {1e-9 * U(g), 1e-9 * U(g), 1e-9 * U(g)};
+    const auto& R = pose.R;
+    p = {pose.t.x + (R[0][0] * y[0] + R[0][1] * y[1] + R[0][2] * y[2]),
+         pose.t.y + (R[1][0] * y[0] + R[1][1] * y[1] + R[1][2] * y[2]),
+         pose.t.z + (R[2][0] * y[0] + R[2][1] * y[1] + R[2][2] * y[2])};
+  } else if (regime == 2) {  // mixed exponents
+    pose = test::randomPose(g, 1e-10);
+    p = {1e10 * U(g), 1e-10 * U(g), U(g)};
+  } else {  // tiny: in double, products fall below 2^-1022
+    pose = test::randomPose(g, 1e-305);
+    for (auto& row : pose.R)
+      for (double& r : row) r *= 1e-12;
+    p = {1e-305 * U(g), 1e-305 * U(g), 1e-305 * U(g)};
+  }
+}
+
 template <class K>
 struct RunningFrameTest : ::testing::Test {};
-using RunningKernels = ::testing::Types<RunningDoubleKernel, ExtendedKernel>;
+using RunningKernels = ::testing::Types<RunningDoubleKernel>;
 TYPED_TEST_SUITE(RunningFrameTest, RunningKernels);
 
 TYPED_TEST(RunningFrameTest, BoundEnclosesTheExactLocalCoordinates) {
@@ -111,7 +140,6 @@ TYPED_TEST(RunningFrameTest, BoundEnclosesTheExactLocalCoordinates) {
   const std::uint64_t seed = test::baseSeed() + 71;
   SCOPED_TRACE(test::seedTrace(seed));
   std::mt19937_64 g(seed);
-  std::uniform_real_distribution<double> U(-1, 1);
   const long n = test::scaled(3000);
   double worst = 0;  // max |v - exact| / e over all coordinates
   long failures = 0;
@@ -119,25 +147,7 @@ TYPED_TEST(RunningFrameTest, BoundEnclosesTheExactLocalCoordinates) {
     const int regime = int(i % 4);
     Pose<double> pose;
     Vec3<double> p;
-    if (regime == 0) {  // general position
-      pose = test::randomPose(g, 100);
-      p = {100 * U(g), 100 * U(g), 100 * U(g)};
-    } else if (regime == 1) {  // p = t + R y with tiny y: cancellation
-      pose = test::randomPose(g, 1e3);
-      const double y[3] = {1e-9 * U(g), 1e-9 * U(g), 1e-9 * U(g)};
-      const auto& R = pose.R;
-      p = {pose.t.x + (R[0][0] * y[0] + R[0][1] * y[1] + R[0][2] * y[2]),
-           pose.t.y + (R[1][0] * y[0] + R[1][1] * y[1] + R[1][2] * y[2]),
-           pose.t.z + (R[2][0] * y[0] + R[2][1] * y[1] + R[2][2] * y[2])};
-    } else if (regime == 2) {  // mixed exponents
-      pose = test::randomPose(g, 1e-10);
-      p = {1e10 * U(g), 1e-10 * U(g), U(g)};
-    } else {  // tiny: in double, products fall below 2^-1022
-      pose = test::randomPose(g, 1e-305);
-      for (auto& row : pose.R)
-        for (double& r : row) r *= 1e-12;
-      p = {1e-305 * U(g), 1e-305 * U(g), 1e-305 * U(g)};
-    }
+    framePoint(g, i, pose, p);
     typename K::Num x, y, Z;
     detail::toLocal<K>(pose, p, 1.0, x, y, Z);
     const oracle::Q3 ex = oracle::toLocal(pose, p);
@@ -160,6 +170,43 @@ TYPED_TEST(RunningFrameTest, BoundEnclosesTheExactLocalCoordinates) {
   // Not vacuous: some coordinate's error comes within a factor 16 of its
   // bound (a bound inflated by that much would cost the stage decisions).
   EXPECT_GT(worst, 1.0 / 16);
+}
+
+// The adaptive stage's double-word local coordinates (Tape::dwCoord): the
+// a-priori bound 2^-100 M + kDwTiny encloses the exact value, for the same
+// points.
+TEST(DoubleWordFrame, BoundEnclosesTheExactLocalCoordinates) {
+  const std::uint64_t seed = test::baseSeed() + 71;
+  SCOPED_TRACE(test::seedTrace(seed));
+  std::mt19937_64 g(seed);
+  const long n = test::scaled(3000);
+  double worst = 0;
+  long failures = 0;
+  for (long i = 0; i < n && failures < 10; ++i) {
+    Pose<double> pose;
+    Vec3<double> p;
+    framePoint(g, i, pose, p);
+    detail::Tape tape;
+    detail::TapeScope scope(&tape);
+    detail::An c[3];
+    tape.toLocal(pose, p, c[0], c[1], c[2]);
+    const oracle::Q3 ex = oracle::toLocal(pose, p);
+    const Q exact[3] = {ex.x, ex.y, 2 * ex.z};
+    for (int k = 0; k < 3; ++k) {
+      detail::DW v;
+      double e;
+      tape.doubleWord(c[k].id, &v, &e);
+      const Q err = abs(exactly(v.hi) + exactly(v.lo) - exact[k]);
+      if (err > exactly(e)) {
+        ++failures;
+        ADD_FAILURE() << "case " << i << ", coordinate " << k << ": error "
+                      << err.get_d() << " > bound " << e;
+      }
+      if (e > 0) worst = std::max(worst, Q(err / exactly(e)).get_d());
+    }
+  }
+  std::printf("[ stats    ] %ld points: worst error / bound %.3g\n", n, worst);
+  EXPECT_EQ(failures, 0);
 }
 
 // Each running kernel alone, through the whole triangle kernel (the

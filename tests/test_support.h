@@ -4,8 +4,10 @@
 #include <fenv.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <random>
 #include <string>
@@ -85,6 +87,28 @@ inline Pose<double> randomPose(std::mt19937_64& rng, double spread) {
   p.t = {spread * g(rng), spread * g(rng), spread * g(rng)};
   return p;
 }
+
+/// How many queries each stage (tricyl::Stage) decided, for the [ stats ]
+/// lines of the family tests.
+struct StageCounts {
+  std::array<long, 8> n{};
+  void add(Stage s) { ++n[std::size_t(s)]; }
+  long exact() const {
+    return n[std::size_t(Stage::kExact)] + n[std::size_t(Stage::kExactGmp)];
+  }
+  std::string summary(long total) const {
+    char buf[256];
+    std::snprintf(
+        buf, sizeof buf,
+        "early-out %ld, fast %ld, double-word %ld, exact %ld "
+        "(stack %ld, GMP %ld: %.3f%%)",
+        n[std::size_t(Stage::kEarlyOut)], n[std::size_t(Stage::kFastPath)],
+        n[std::size_t(Stage::kExtended)], exact(),
+        n[std::size_t(Stage::kExact)], n[std::size_t(Stage::kExactGmp)],
+        100.0 * double(exact()) / double(total ? total : 1));
+    return buf;
+  }
+};
 
 inline std::string seedTrace(std::uint64_t seed) {
   return "seed=" + std::to_string(seed) +

@@ -83,13 +83,13 @@ TEST_P(FamilyTest, AgreesWithOracle) {
   const std::uint64_t seed = test::baseSeed();
   SCOPED_TRACE(test::seedTrace(seed));
   const long n = test::scaled(100000);
-  std::array<long, 6> stages{};
+  test::StageCounts stages;
   long hits = 0, failures = 0;
   for (long i = 0; i < n && failures < 5; ++i) {
     const TriCase k = scenes::generate(GetParam(), seed, std::uint64_t(i));
     const bool truth = oracle::triangleCylinder(k.cyl, k.pose, k.tri);
     const Decision d = decideAs<double>(k);
-    ++stages[size_t(d.stage)];
+    stages.add(d.stage);
     hits += truth;
     if ((d.answer == Answer::kIntersect) != truth) {
       ++failures;
@@ -110,11 +110,8 @@ TEST_P(FamilyTest, AgreesWithOracle) {
     }
   }
   std::printf(
-      "[ stats    ] %s: %ld cases, %ld hits; decided by early-out %ld, "
-      "fast path %ld, extended %ld, tracked %ld, exact fallback %ld "
-      "(%.3f%%)\n",
-      scenes::familyName(GetParam()), n, hits, stages[0], stages[1], stages[4],
-      stages[5], stages[2], 100.0 * double(stages[2]) / double(n));
+      "[ stats    ] %s: %ld cases, %ld hits; %s\n",
+      scenes::familyName(GetParam()), n, hits, stages.summary(n).c_str());
 }
 
 // Vertex order, exact rigid motions of the world (signed axis permutations

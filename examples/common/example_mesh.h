@@ -1,17 +1,21 @@
-// Shared by the FCL examples: a tiny Wavefront OBJ reader, a procedural mesh
+// Shared by the FCL examples: OBJ files (through the repository's reader), a
+// procedural mesh
 // and the fcl::BVHModel they become. Not part of tricyl's API.
 #pragma once
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <exception>
+#include <map>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
+
+#include "obj_mesh.h"
 
 namespace example {
 
@@ -20,38 +24,24 @@ struct Mesh {
   std::vector<fcl::Triangle> triangles;
 };
 
-/// Reads the `v x y z` and `f i j k` lines of an OBJ file (1-based or
-/// negative indices; `f a/b/c` forms keep the vertex index; polygons are
-/// fanned into triangles). Returns false when the file cannot be read or
-/// holds no triangle.
+/// Reads the triangles of an OBJ file (the repository's shared reader,
+/// support/obj_mesh.h, on tinyobjloader). Returns false when the file cannot
+/// be read or holds no triangle.
 inline bool readObj(const std::string& path, Mesh* mesh) {
-  std::ifstream in(path);
-  if (!in) return false;
-  Mesh m;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream ls(line);
-    std::string tag;
-    ls >> tag;
-    if (tag == "v") {
-      double x, y, z;
-      if (ls >> x >> y >> z) m.vertices.emplace_back(x, y, z);
-    } else if (tag == "f") {
-      std::vector<std::size_t> idx;
-      std::string tok;
-      while (ls >> tok) {
-        const long i = std::stol(tok.substr(0, tok.find('/')));
-        const long n = static_cast<long>(m.vertices.size());
-        const long k = i > 0 ? i - 1 : n + i;
-        if (k < 0 || k >= n) return false;
-        idx.push_back(static_cast<std::size_t>(k));
-      }
-      for (std::size_t j = 2; j < idx.size(); ++j)
-        m.triangles.emplace_back(idx[0], idx[j - 1], idx[j]);
-    }
+  tricyl::obj::Mesh m;
+  try {
+    m = tricyl::obj::read(path);
+  } catch (const std::exception&) {
+    return false;
   }
-  if (m.triangles.empty()) return false;
-  *mesh = std::move(m);
+  Mesh out;
+  for (std::size_t i = 0; i < m.numVertices(); ++i)
+    out.vertices.emplace_back(m.vertices[3 * i], m.vertices[3 * i + 1],
+                              m.vertices[3 * i + 2]);
+  for (std::size_t t = 0; t < m.numTriangles(); ++t)
+    out.triangles.emplace_back(m.indices[3 * t], m.indices[3 * t + 1],
+                               m.indices[3 * t + 2]);
+  *mesh = std::move(out);
   return true;
 }
 
@@ -91,6 +81,49 @@ inline Mesh boxMesh(double hx, double hy, double hz) {
                                 {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
   for (const auto& t : f) m.triangles.emplace_back(t[0], t[1], t[2]);
   return m;
+}
+
+/// The mesh split into its connected parts (triangles sharing a vertex
+/// position, since OBJ files often repeat vertices per face), each a mesh of
+/// its own: the bodies a planning scene registers one by one. Parts keep the
+/// order of their first triangle.
+inline std::vector<Mesh> connectedParts(const Mesh& mesh) {
+  // One id per distinct position, then union-find over the triangles.
+  std::map<std::array<double, 3>, std::size_t> ids;
+  std::vector<std::size_t> id(mesh.vertices.size());
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    const auto& v = mesh.vertices[i];
+    id[i] = ids.emplace(std::array<double, 3>{v.x(), v.y(), v.z()}, ids.size())
+                .first->second;
+  }
+  std::vector<std::size_t> up(ids.size());
+  for (std::size_t i = 0; i < up.size(); ++i) up[i] = i;
+  auto root = [&up](std::size_t i) {
+    while (up[i] != i) i = up[i] = up[up[i]];
+    return i;
+  };
+  for (const auto& t : mesh.triangles)
+    for (int k = 1; k < 3; ++k) up[root(id[t[k]])] = root(id[t[0]]);
+  std::map<std::size_t, std::size_t> part_of;  // root -> part number
+  std::vector<Mesh> parts;
+  std::vector<std::map<std::size_t, std::size_t>> remap;  // vertex -> local
+  for (const auto& t : mesh.triangles) {
+    const auto [it, added] = part_of.emplace(root(id[t[0]]), parts.size());
+    if (added) {
+      parts.emplace_back();
+      remap.emplace_back();
+    }
+    Mesh& part = parts[it->second];
+    std::size_t local[3];
+    for (int k = 0; k < 3; ++k) {
+      const auto [v, fresh] =
+          remap[it->second].emplace(t[k], part.vertices.size());
+      if (fresh) part.vertices.push_back(mesh.vertices[t[k]]);
+      local[k] = v->second;
+    }
+    part.triangles.emplace_back(local[0], local[1], local[2]);
+  }
+  return parts;
 }
 
 /// The mesh as FCL's usual BVH (OBBRSS, what MoveIt uses for meshes).

@@ -1,4 +1,7 @@
-// The kernel alone on a few triangles, through the installed package.
+// The core alone (tricyl::tricyl: GMP, no FCL) through the installed
+// package: the kernel on a few triangles, then contact data for the
+// intersecting ones (estimateContact, fcl_contact.h, which needs no FCL).
+#include <tricyl/fcl_contact.h>
 #include <tricyl/tricyl.h>
 
 #include <cstdio>
@@ -15,5 +18,18 @@ int main() {
   for (const auto& tri : cases)
     std::printf("%s\n",
                 tricyl::intersect(cyl, pose, tri) ? "intersect" : "disjoint");
+  // Contact data: a triangle 0.1 deep in the top cap, and the rim touch.
+  const tricyl::Triangle<double> in_cap{
+      {-1, -1, 1.9}, {1, -1, 1.9}, {0, 2, 1.9}};
+  for (const auto& tri : {in_cap, cases[2]}) {
+    tricyl::ContactEstimate<double> c;
+    const tricyl::Answer a = tricyl::estimateContact(cyl, pose, tri, &c);
+    std::printf("contact: %s, normal (%g, %g, %g), depth %s\n",
+                a == tricyl::Answer::kIntersect ? "yes" : "no", c.normal.x,
+                c.normal.y, c.normal.z,
+                c.depth == tricyl::kMinDepth<double>   ? "kMinDepth (touching)"
+                : c.depth > 0.0999 && c.depth < 0.1001 ? "0.1"
+                                                       : "other");
+  }
   return 0;
 }

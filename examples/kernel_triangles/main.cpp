@@ -30,10 +30,10 @@ const char* name(tricyl::Stage s) {
     case tricyl::Stage::kFastPath:
       return "double filter";
     case tricyl::Stage::kExtended:
-      return "extended filter";
-    case tricyl::Stage::kTracked:
-      return "tracked double (no rounding)";
+      return "double-word (a sign re-decided)";
     case tricyl::Stage::kExact:
+      return "exact (stack expansions)";
+    case tricyl::Stage::kExactGmp:
       return "exact (GMP)";
     case tricyl::Stage::kInvalid:
       return "rejected";

@@ -1,41 +1,42 @@
-// The endpoint form of the sources, converted to tricyl's Pose + shape.
-//
-// The sources describe a cylinder by an axis from O along a direction N for
-// a length L (or from a to b) and a radius R, and a cone by its apex O, the
-// axis direction N into the cone, the height L and the base radius R.
-// tricyl's shapes are FCL's: centred in their own frame, axis +z (types.h).
-// These helpers build that pose. The queries are then exact FOR THE
-// RETURNED POSE AND SHAPE; the conversion itself rounds as stated below, so
-// the returned solid can differ from the ideal endpoint-form solid by a few
-// ulps of the inputs' magnitude.
-//
-// What is exact and what rounds (round to nearest, double or float):
-// - radius: copied, exact.
-// - lz: cylinderFromAxis / coneFromApex copy L exactly. cylinderFromEndpoints
-//   computes d = b - a (one rounding per coordinate) and L = |d| (a few
-//   ulps, also scaled first: +Inf only if |d| exceeds the largest finite
-//   value).
-// - axis column R[.][2] = n = N / |N| (N need not be unit; |N| and the
-//   division round: a few ulps; n has unit length to a few ulps). This holds
-//   for every finite non-zero N, however huge or tiny: N is scaled by a power
-//   of two before it is squared (detail::scaledLength), so no square
-//   overflows or underflows (found by fuzz_point_cylinder: unscaled, |N| >
-//   1.3e154 gave a zero axis and |N| < 2e-162 silently gave +z). For
-//   coneFromApex the column is -n (the apex is at +lz/2), negation exact.
-// - the two other columns: Duff et al., "Building an Orthonormal Basis,
-//   Revisited" (JCGT 2017), branch-free from n: orthonormal to a few ulps.
-//   Their choice is irrelevant to every query here (all are symmetric about
-//   the axis) except through those ulps.
-// - centre t: cylinderFromAxis t = O + n (L/2): L/2 is exact except for a
-//   subnormal L; the product and the sum round (two roundings per
-//   coordinate). cylinderFromEndpoints t = a/2 + b/2 (one rounding per
-//   coordinate; halving exact except for subnormals). coneFromApex
-//   t = O + n (L/2) like cylinderFromAxis.
-// Degenerate directions: N = 0 (or a == b) has no axis; the helpers then use
-// n = +z, so cylinderFromEndpoints(a, a, R) is the disk of radius R about a
-// in the plane z = a.z (lz = 0). A NaN or infinite N (or a, b) gives a NaN
-// axis. Inputs are not validated here; the queries validate what they are
-// given, so non-finite inputs end as InvalidInput there.
+/// @file
+/// The endpoint form of the sources, converted to tricyl's Pose + shape.
+///
+/// The sources describe a cylinder by an axis from O along a direction N for
+/// a length L (or from a to b) and a radius R, and a cone by its apex O, the
+/// axis direction N into the cone, the height L and the base radius R.
+/// tricyl's shapes are FCL's: centred in their own frame, axis +z (types.h).
+/// These helpers build that pose. The queries are then exact FOR THE
+/// RETURNED POSE AND SHAPE; the conversion itself rounds as stated below, so
+/// the returned solid can differ from the ideal endpoint-form solid by a few
+/// ulps of the inputs' magnitude.
+///
+/// What is exact and what rounds (round to nearest, double or float):
+/// - radius: copied, exact.
+/// - lz: cylinderFromAxis / coneFromApex copy L exactly. cylinderFromEndpoints
+///   computes d = b - a (one rounding per coordinate) and L = |d| (a few
+///   ulps, also scaled first: +Inf only if |d| exceeds the largest finite
+///   value).
+/// - axis column R[.][2] = n = N / |N| (N need not be unit; |N| and the
+///   division round: a few ulps; n has unit length to a few ulps). This holds
+///   for every finite non-zero N, however huge or tiny: N is scaled by a power
+///   of two before it is squared (detail::scaledLength), so no square
+///   overflows or underflows (found by fuzz_point_cylinder: unscaled, |N| >
+///   1.3e154 gave a zero axis and |N| < 2e-162 silently gave +z). For
+///   coneFromApex the column is -n (the apex is at +lz/2), negation exact.
+/// - the two other columns: Duff et al., "Building an Orthonormal Basis,
+///   Revisited" (JCGT 2017), branch-free from n: orthonormal to a few ulps.
+///   Their choice is irrelevant to every query here (all are symmetric about
+///   the axis) except through those ulps.
+/// - centre t: cylinderFromAxis t = O + n (L/2): L/2 is exact except for a
+///   subnormal L; the product and the sum round (two roundings per
+///   coordinate). cylinderFromEndpoints t = a/2 + b/2 (one rounding per
+///   coordinate; halving exact except for subnormals). coneFromApex
+///   t = O + n (L/2) like cylinderFromAxis.
+/// Degenerate directions: N = 0 (or a == b) has no axis; the helpers then use
+/// n = +z, so cylinderFromEndpoints(a, a, R) is the disk of radius R about a
+/// in the plane z = a.z (lz = 0). A NaN or infinite N (or a, b) gives a NaN
+/// axis. Inputs are not validated here; the queries validate what they are
+/// given, so non-finite inputs end as InvalidInput there.
 #pragma once
 
 #include <cmath>
@@ -45,16 +46,18 @@
 
 namespace tricyl {
 
+/// A cylinder and its pose, as the endpoint and axis forms build them.
 template <class S>
 struct PosedCylinder {
-  Cylinder<S> cylinder;
-  Pose<S> pose;
+  Cylinder<S> cylinder;  ///< FCL's cylinder (centred, axis +z)
+  Pose<S> pose;          ///< its placement: world = R local + t
 };
 
+/// A cone and its pose, as coneFromApex builds them.
 template <class S>
 struct PosedCone {
-  Cone<S> cone;
-  Pose<S> pose;
+  Cone<S> cone;  ///< FCL's cone (centred, apex at z = +lz/2)
+  Pose<S> pose;  ///< its placement: world = R local + t
 };
 
 namespace detail {

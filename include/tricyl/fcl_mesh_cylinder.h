@@ -1,67 +1,68 @@
-// tricyl's own traversal of an FCL BVHModel against a Cylinder: what
-// tricyl::collide runs for a mesh/cylinder pair instead of FCL's traversal
-// (fcl_solver.h). CMake target tricyl::fcl.
-//
-// CONTRACT
-// - Same answer as fcl::collide(mesh, cylinder, &tricyl::Solver, ...): a
-//   triangle collides iff tricyl::tryIntersect says so for the world-frame
-//   triangle FCL would hand the solver (fcl_solver.h, FRAMES: tf_mesh * v,
-//   or v itself for AABB/KDOP meshes whose transform FCL takes for the
-//   identity), so the Boolean is exact for those points. Touching counts.
-// - Contacts: one per colliding triangle, Contact(mesh, cylinder,
-//   triangle index, Contact::NONE), in the order of FCL's depth-first
-//   traversal of the model's own tree (left child first), at most
-//   request.num_max_contacts in total (counting the contacts already in
-//   `result`). With request.enable_contact, pos/normal/penetration_depth are
-//   tricyl::estimateContact's, exactly as the Solver stores them (normal from
-//   the mesh toward the cylinder). Either argument order: like FCL, the
-//   mesh is always o1 of the contacts.
-// - Where the two can differ: (a) FCL's floating-point BV tests may prune a
-//   node holding a triangle that touches the cylinder (rounding); the node
-//   test here is certified, so such triangles ARE reported. (b) For AABB and
-//   KDOP meshes with a non-identity transform FCL rebuilds the tree around
-//   the moved vertices on every call; the set of colliding triangles is the
-//   same, the traversal order (hence which triangles fill a small
-//   num_max_contacts) may differ.
-//
-// METHOD
-// 1. The cylinder is moved into the mesh frame once (centre, unit axis).
-// 2. Depth-first over the model's BVH with an explicit stack. A node is
-//    skipped only when a separating axis proves its box (the OBB of an OBB,
-//    kIOS or OBBRSS node, the box around an RSS, the axis-aligned slabs of an
-//    AABB or KDOP) disjoint from the cylinder: the cylinder's axis, the three
-//    box axes (with the cylinder's exact support along them) and the
-//    distance from the box centre to the axis line. Every comparison carries
-//    a margin that covers all rounding and the departure of both rotations
-//    from orthonormal (derivation in src/fcl/mesh_collide.cpp), so the
-//    test never skips a node with a colliding triangle.
-//    A node that passes with at most 8 triangles below it sends them all to
-//    the next step untested (cheaper than testing the nodes in between).
-// 3. The surviving leaves' triangles are queued in blocks of up to 64,
-//    moved to the world frame together and decided one by one by
-//    tryIntersect (the batch kernel's vertex-code cull rejects few leaves
-//    that passed the node test, and cost more than it saved). Blocks are
-//    flushed in traversal order, and the walk stops as soon as
-//    num_max_contacts is reached.
-//
-// ASSUMED: each node's BV contains its triangles up to rounding, as FCL's
-// builders (fit, refit) make it for finite vertices; FCL's own traversal
-// relies on the same. A model whose root box is not finite or has axes
-// that are not orthonormal (what a NaN or Inf vertex does to FCL's fit) is
-// not handled (below).
-//
-// NOT HANDLED HERE (collideMeshCylinder returns false and touches nothing;
-// tricyl::collide then runs fcl::collide with tricyl::Solver, whose answers
-// are the same): request.enable_cost, num_max_contacts == 0, a model that
-// is not a built triangle mesh or whose root box is spoilt (above), a
-// geometry that is not occupied, NaN/Inf or negative cylinder sizes,
-// non-finite transforms, rotations far from orthonormal
-// (sum |R^T R - I| > 2^-20). A triangle the traversal reaches whose world
-// coordinates are not finite (tf * v overflowed) is reported in collision,
-// as the Solver answers it. No floating-point exception is raised by the
-// traversal itself (quiet comparisons), whatever the input.
-//
-// THREADS: reentrant; no state outside the call.
+/// @file
+/// tricyl's own traversal of an FCL BVHModel against a Cylinder: what
+/// tricyl::collide runs for a mesh/cylinder pair instead of FCL's traversal
+/// (fcl_solver.h). CMake target tricyl::fcl.
+///
+/// ## Contract
+/// - Same answer as fcl::collide(mesh, cylinder, &tricyl::Solver, ...): a
+///   triangle collides iff tricyl::tryIntersect says so for the world-frame
+///   triangle FCL would hand the solver (fcl_solver.h, FRAMES: tf_mesh * v,
+///   or v itself for AABB/KDOP meshes whose transform FCL takes for the
+///   identity), so the Boolean is exact for those points. Touching counts.
+/// - Contacts: one per colliding triangle, Contact(mesh, cylinder,
+///   triangle index, Contact::NONE), in the order of FCL's depth-first
+///   traversal of the model's own tree (left child first), at most
+///   request.num_max_contacts in total (counting the contacts already in
+///   `result`). With request.enable_contact, pos/normal/penetration_depth are
+///   tricyl::estimateContact's, exactly as the Solver stores them (normal from
+///   the mesh toward the cylinder). Either argument order: like FCL, the
+///   mesh is always o1 of the contacts.
+/// - Where the two can differ: (a) FCL's floating-point BV tests may prune a
+///   node holding a triangle that touches the cylinder (rounding); the node
+///   test here is certified, so such triangles ARE reported. (b) For AABB and
+///   KDOP meshes with a non-identity transform FCL rebuilds the tree around
+///   the moved vertices on every call; the set of colliding triangles is the
+///   same, the traversal order (hence which triangles fill a small
+///   num_max_contacts) may differ.
+///
+/// ## Method
+/// 1. The cylinder is moved into the mesh frame once (centre, unit axis).
+/// 2. Depth-first over the model's BVH with an explicit stack. A node is
+///    skipped only when a separating axis proves its box (the OBB of an OBB,
+///    kIOS or OBBRSS node, the box around an RSS, the axis-aligned slabs of an
+///    AABB or KDOP) disjoint from the cylinder: the cylinder's axis, the three
+///    box axes (with the cylinder's exact support along them) and the
+///    distance from the box centre to the axis line. Every comparison carries
+///    a margin that covers all rounding and the departure of both rotations
+///    from orthonormal (derivation in src/fcl/mesh_collide.cpp), so the
+///    test never skips a node with a colliding triangle.
+///    A node that passes with at most 8 triangles below it sends them all to
+///    the next step untested (cheaper than testing the nodes in between).
+/// 3. The surviving leaves' triangles are queued in blocks of up to 64,
+///    moved to the world frame together and decided one by one by
+///    tryIntersect (the batch kernel's vertex-code cull rejects few leaves
+///    that passed the node test, and cost more than it saved). Blocks are
+///    flushed in traversal order, and the walk stops as soon as
+///    num_max_contacts is reached.
+///
+/// ASSUMED: each node's BV contains its triangles up to rounding, as FCL's
+/// builders (fit, refit) make it for finite vertices; FCL's own traversal
+/// relies on the same. A model whose root box is not finite or has axes
+/// that are not orthonormal (what a NaN or Inf vertex does to FCL's fit) is
+/// not handled (below).
+///
+/// NOT HANDLED HERE (collideMeshCylinder returns false and touches nothing;
+/// tricyl::collide then runs fcl::collide with tricyl::Solver, whose answers
+/// are the same): request.enable_cost, num_max_contacts == 0, a model that
+/// is not a built triangle mesh or whose root box is spoilt (above), a
+/// geometry that is not occupied, NaN/Inf or negative cylinder sizes,
+/// non-finite transforms, rotations far from orthonormal
+/// (sum |R^T R - I| > 2^-20). A triangle the traversal reaches whose world
+/// coordinates are not finite (tf * v overflowed) is reported in collision,
+/// as the Solver answers it. No floating-point exception is raised by the
+/// traversal itself (quiet comparisons), whatever the input.
+///
+/// THREADS: reentrant; no state outside the call.
 #pragma once
 
 #include <fcl/narrowphase/collision_object.h>

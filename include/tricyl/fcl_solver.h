@@ -1,81 +1,107 @@
-// tricyl::Solver: FCL 0.7's libccd narrow phase with the exact
-// triangle/cylinder test in place of libccd's MPR for that one pair.
-// CMake target tricyl::fcl. Change one name in user code:
-//
-//   fcl::collide(o1, o2, request, result)   ->  tricyl::collide(...)
-//   fcl::DefaultCollisionFunction<double>   -> tricyl::DefaultCollisionFunction
-//   fcl::DefaultCollisionData<double>       ->  tricyl::DefaultCollisionData
-//   fcl::collide(o1, o2, &solver, ...)      with  tricyl::Solver<double> solver
-//
-// WHAT CHANGES (and nothing else does)
-// - Cylinder vs a BVHModel<BV> triangle (every BV: AABB, KDOP16/18/24 use the
-//   world-frame overload, OBB, RSS, kIOS, OBBRSS the one with the mesh
-//   transform), in either argument order of collide: the Boolean is
-//   tricyl::tryIntersect's, exact for the triangle FCL hands the solver
-//   (see FRAMES). Touching counts as colliding.
-// - TriangleP vs Cylinder and Cylinder vs TriangleP: FCL 0.7 has no entry
-//   for them (collide prints a warning and returns 0); Solver registers one
-//   in its own collision table, with the same exact Boolean.
-// - Contact data for those pairs (request.enable_contact) comes from
-//   tricyl::estimateContact (fcl_contact.h): bounded time, no libccd, point
-//   in triangle ∩ cylinder, unit normal, depth > 0 with a separation
-//   certificate. The Boolean never depends on whether contact data is
-//   requested. libccd's MPR, which has no iteration cap and can hang on thin
-//   cylinders (issue 9), is never reached for these pairs.
-// - Sphere vs Cylinder and Cylinder vs Sphere (shape pairs), Boolean requests
-//   (no contact vector): tricyl::tryIntersect(Cylinder, Pose, Sphere), exact
-//   (sphere_cylinder.h; the sphere's centre is its Transform3's translation,
-//   its radius taken in the cylinder frame). With request.enable_contact the
-//   pair keeps FCL's own path (detail::sphereCylinderIntersect), contact data
-//   included, so the Boolean can differ from the stock one only where FCL's
-//   is wrong. Invalid input (NaN/Inf, negative sizes): "in collision".
-// - tricyl::collide (not fcl::collide with a Solver) walks a BVHModel vs
-//   Cylinder pair itself (fcl_mesh_cylinder.h): same contacts, cheaper
-//   traversal; requests it does not handle run FCL's traversal with Solver.
-// - Every other pair (Box, Capsule, Cone, Convex, ... vs meshes and shapes,
-//   Sphere vs meshes, and distance queries) runs GJKSolver_libccd<S>'s own
-//   code, inherited unchanged.
-//
-// CONVENTIONS (FCL's, for the overloads FCL calls)
-// - shapeTriangleIntersect: `normal` points from the cylinder toward the
-//   triangle (libccd's convention; FCL's traversal stores -normal in
-//   Contact::normal, which then points from o1 = mesh to o2 = cylinder),
-//   `contact_points` is a world-frame point, `penetration_depth` > 0.
-// - shapeIntersect (TriangleP/Cylinder): ContactPoint::normal points from
-//   the first shape to the second, as for FCL's other shape pairs.
-// - No intersection: no output is written.
-// - INVALID INPUT (NaN/Inf anywhere, negative radius or length): the answer
-//   is "in collision" (the safe answer for a collision query), and contact
-//   outputs, if requested, get finite placeholders (fcl_contact.h).
-//
-// FRAMES
-// - World-frame overload (AABB, KDOP meshes): FCL has already moved the mesh
-//   vertices to the world frame (tf * v, rounded, in FCL's initialize); the
-//   cylinder's Transform3 is converted to tricyl::Pose exactly
-//   (R = linear(), t = translation()), so the answer is exact for those
-//   world points.
-// - Mesh-frame overload (OBB, RSS, kIOS, OBBRSS): the vertices are moved to
-//   the world frame with the same Eigen expression, tf_mesh * v, so that
-//   every BV type sees bit-identical triangles; the answer is exact for
-//   those points. (libccd's own path rounds the same way.)
-//
-// THREADS AND STATE
-// - Solver holds only GJKSolver_libccd's tolerances and iteration caps; the
-//   overloads added here are const and read no member. One Solver can be
-//   shared across threads as far as this code is concerned.
-// - The first Solver<S> constructed registers TriangleP/Cylinder in
-//   fcl::getCollisionFunctionLookTable<Solver<S>>() (a thread-safe static).
-//   Nothing else is ever written to FCL's tables; no FCL template is
-//   specialised (libfcl.so has its own instantiations: that would be an ODR
-//   violation).
-//
-// COMPILE TIME
-// - The collision and distance matrices for Solver<double> (FCL's whole
-//   traversal code, ~40 s and ~0.9 GB of compiler memory) are instantiated
-//   once in src/fcl/fcl_solver.cpp; the extern template declarations below
-//   keep every including file from instantiating them again.
-// - request.gjk_solver_type is ignored by tricyl::collide: it always uses
-//   Solver<S> (which is libccd-based).
+/// @file
+/// tricyl::Solver: FCL 0.7's libccd narrow phase with the exact
+/// triangle/cylinder test in place of libccd's MPR for that pair, and
+/// tricyl::collide, the one-name replacement for fcl::collide. CMake target
+/// tricyl::fcl (`find_package(tricyl REQUIRED COMPONENTS fcl)`). For `float`
+/// and `double`. Change one name in user code:
+///
+/// - `fcl::collide(o1, o2, request, result)` becomes
+///   `tricyl::collide(o1, o2, request, result)` (also the geometry form);
+/// - `fcl::DefaultCollisionFunction<S>` becomes
+///   `tricyl::DefaultCollisionFunction<S>`;
+/// - `fcl::DefaultCollisionData<S>` becomes `tricyl::DefaultCollisionData<S>`;
+/// - `fcl::collide(o1, o2, &solver, ...)` takes a `tricyl::Solver<S> solver`.
+///
+/// ## What changes (and nothing else does)
+/// - Cylinder vs a BVHModel<BV> triangle (every BV: AABB, KDOP16/18/24 use
+///   the world-frame overload, OBB, RSS, kIOS, OBBRSS the one with the mesh
+///   transform), in either argument order of collide: the Boolean is
+///   tricyl::tryIntersect's, exact for the triangle FCL hands the solver
+///   (see Frames). Touching counts as colliding.
+/// - TriangleP vs Cylinder and Cylinder vs TriangleP: FCL 0.7 has no entry
+///   for them (collide prints a warning and returns 0); Solver registers one
+///   in its own collision table, with the same exact Boolean.
+/// - Contact data for those pairs (request.enable_contact) comes from
+///   tricyl::estimateContact (fcl_contact.h): bounded time, no libccd, point
+///   in triangle ∩ cylinder, unit normal, depth > 0 with a separation
+///   certificate. The Boolean never depends on whether contact data is
+///   requested. libccd's MPR, which has no iteration cap and can hang on
+///   thin cylinders, is never reached for these pairs.
+/// - Sphere vs Cylinder and Cylinder vs Sphere (shape pairs), Boolean
+///   requests (no contact vector): tricyl::tryIntersect(Cylinder, Pose,
+///   Sphere), exact (sphere_cylinder.h; the sphere's centre is its
+///   Transform3's translation, its radius taken in the cylinder frame). With
+///   request.enable_contact the pair keeps FCL's own path
+///   (detail::sphereCylinderIntersect), contact data included, so the
+///   Boolean can differ from the stock one only where FCL's is wrong.
+///   Invalid input (NaN/Inf, negative sizes): "in collision".
+/// - tricyl::collide (not fcl::collide with a Solver) walks a BVHModel vs
+///   Cylinder pair itself for `double` (fcl_mesh_cylinder.h): same contacts,
+///   cheaper traversal; requests it does not handle, and `float` models, run
+///   FCL's traversal with Solver.
+/// - Every other pair (Box, Capsule, Cone, Convex, ... vs meshes and shapes,
+///   Sphere vs meshes, and distance queries) runs GJKSolver_libccd<S>'s own
+///   code, inherited unchanged; through tricyl::collide, the solver the
+///   request names (see The request).
+///
+/// ## The request (tricyl::collide)
+/// - The pairs tricyl answers itself (cylinder vs mesh or TriangleP in
+///   either order, with or without contacts; sphere vs cylinder without
+///   contacts): request.gjk_solver_type and request.gjk_tolerance are not
+///   used, since the answer is exact and needs neither a solver nor a
+///   tolerance. num_max_contacts, enable_contact and enable_cost are
+///   honoured as fcl::collide honours them.
+/// - Every other pair: exactly what fcl::collide(o1, o2, request, result)
+///   does. GST_LIBCCD: Solver<S> (which is GJKSolver_libccd<S> for those
+///   pairs) with collision_tolerance = request.gjk_tolerance; GST_INDEP:
+///   fcl::collide itself, i.e. FCL's GJKSolver_indep<S> with gjk_tolerance
+///   and epa_tolerance = request.gjk_tolerance; any other value: FCL's answer
+///   to it (a warning and `std::size_t(-1)`).
+///
+/// ## Conventions (FCL's, for the overloads FCL calls)
+/// - shapeTriangleIntersect: `normal` points from the cylinder toward the
+///   triangle (libccd's convention; FCL's traversal stores -normal in
+///   Contact::normal, which then points from o1 = mesh to o2 = cylinder),
+///   `contact_points` is a world-frame point, `penetration_depth` > 0.
+/// - shapeIntersect (TriangleP/Cylinder): ContactPoint::normal points from
+///   the first shape to the second, as for FCL's other shape pairs.
+/// - No intersection: no output is written.
+/// - Invalid input (NaN/Inf anywhere, negative radius or length): the answer
+///   is "in collision" (the safe answer for a collision query), and contact
+///   outputs, if requested, get finite placeholders (fcl_contact.h).
+///
+/// ## Frames
+/// - World-frame overload (AABB, KDOP meshes): FCL has already moved the
+///   mesh vertices to the world frame (tf * v, rounded, in FCL's
+///   initialize); the cylinder's Transform3 is converted to tricyl::Pose
+///   exactly (toPose, fcl_adapters.h), so the answer is exact for those
+///   world points.
+/// - Mesh-frame overload (OBB, RSS, kIOS, OBBRSS): the vertices are moved to
+///   the world frame with the same Eigen expression, tf_mesh * v, so that
+///   every BV type sees bit-identical triangles; the answer is exact for
+///   those points. (libccd's own path rounds the same way.)
+/// - `float`: the same, in float: the answer is exact for the float
+///   world-frame triangle and the float pose.
+///
+/// ## Threads and state
+/// - Solver holds only GJKSolver_libccd's tolerances and iteration caps; the
+///   overloads added here are const and read no member. One Solver can be
+///   shared across threads as far as this code is concerned.
+/// - The first Solver<S> constructed registers TriangleP/Cylinder in
+///   fcl::getCollisionFunctionLookTable<Solver<S>>() (a thread-safe static).
+///   Nothing else is ever written to FCL's tables; no FCL template is
+///   specialised (libfcl.so has its own instantiations: that would be an ODR
+///   violation).
+///
+/// ## Compile time
+/// The collision and distance matrices for Solver<double> and Solver<float>
+/// (FCL's whole traversal code, 30 to 60 s and 0.8 to 1.4 GB of compiler
+/// memory each) are instantiated once in src/fcl/fcl_solver.cpp and
+/// src/fcl/fcl_solver_float.cpp, and FCL's own float fcl::collide (which
+/// libfcl.so does not provide) in src/fcl/fcl_stock_float.cpp; the extern
+/// template declarations at the end of this header keep every including
+/// file from instantiating them again. Solver is provided for S = float and
+/// S = double only.
 #pragma once
 
 #include <fcl/broadphase/default_broadphase_callbacks.h>
@@ -91,22 +117,25 @@
 #include <type_traits>
 #include <vector>
 
+#include "tricyl/fcl_adapters.h"
 #include "tricyl/fcl_contact.h"
 #include "tricyl/fcl_mesh_cylinder.h"
 #include "tricyl/types.h"
 
 namespace tricyl {
 
-/// FCL narrow-phase solver: GJKSolver_libccd<S> plus exact
-/// triangle/cylinder. Use wherever FCL takes a NarrowPhaseSolver.
+/// FCL narrow-phase solver: GJKSolver_libccd<S> plus the exact
+/// triangle/cylinder and sphere/cylinder tests (this file's description).
+/// Use wherever FCL takes a NarrowPhaseSolver. S is float or double.
 template <class S>
 class Solver : public fcl::detail::GJKSolver_libccd<S> {
-  // The members and FCL's matrices are compiled once, for double, in
-  // src/fcl/fcl_solver.cpp. (estimateContact itself supports float.)
-  static_assert(std::is_same_v<S, double>,
-                "tricyl::Solver is built for double only");
+  // The members and FCL's matrices are compiled once per type, in
+  // src/fcl/fcl_solver.cpp (double) and src/fcl/fcl_solver_float.cpp.
+  static_assert(std::is_same_v<S, double> || std::is_same_v<S, float>,
+                "tricyl::Solver is built for float and double");
 
  public:
+  /// The libccd solver this one extends.
   using Base = fcl::detail::GJKSolver_libccd<S>;
 
   /// Same defaults as GJKSolver_libccd; also registers the TriangleP /
@@ -140,6 +169,8 @@ class Solver : public fcl::detail::GJKSolver_libccd<S> {
       const fcl::TriangleP<S>& s1, const fcl::Transform3<S>& tf1,
       const fcl::Cylinder<S>& s2, const fcl::Transform3<S>& tf2,
       std::vector<fcl::ContactPoint<S>>* contacts = nullptr) const;
+  /// Cylinder vs TriangleP: as above, normal from the cylinder to the
+  /// triangle.
   bool shapeIntersect(
       const fcl::Cylinder<S>& s1, const fcl::Transform3<S>& tf1,
       const fcl::TriangleP<S>& s2, const fcl::Transform3<S>& tf2,
@@ -152,6 +183,7 @@ class Solver : public fcl::detail::GJKSolver_libccd<S> {
       const fcl::Sphere<S>& s1, const fcl::Transform3<S>& tf1,
       const fcl::Cylinder<S>& s2, const fcl::Transform3<S>& tf2,
       std::vector<fcl::ContactPoint<S>>* contacts = nullptr) const;
+  /// Cylinder vs Sphere: as above.
   bool shapeIntersect(
       const fcl::Cylinder<S>& s1, const fcl::Transform3<S>& tf1,
       const fcl::Sphere<S>& s2, const fcl::Transform3<S>& tf2,
@@ -165,6 +197,7 @@ class Solver : public fcl::detail::GJKSolver_libccd<S> {
                       const fcl::Transform3<S>& tf2,
                       fcl::Vector3<S>* contact_points, S* penetration_depth,
                       fcl::Vector3<S>* normal) const;
+  /// Cylinder vs TriangleP in the pointer form: as above.
   bool shapeIntersect(const fcl::Cylinder<S>& s1, const fcl::Transform3<S>& tf1,
                       const fcl::TriangleP<S>& s2,
                       const fcl::Transform3<S>& tf2,
@@ -172,42 +205,35 @@ class Solver : public fcl::detail::GJKSolver_libccd<S> {
                       fcl::Vector3<S>* normal) const;
 };
 
-/// FCL's Transform3 as a tricyl::Pose, bit for bit: R[i][j] = linear()(i, j),
-/// t = translation().
+namespace detail {
+
+/// True when tricyl answers the pair itself (The request, in this file's
+/// description): a cylinder against a BVHModel or a TriangleP, either
+/// order; a sphere against a cylinder, either order, without contacts.
 template <class S>
-Pose<S> toPose(const fcl::Transform3<S>& tf) {
-  Pose<S> pose;
-  const auto& L = tf.linear();
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) pose.R[i][j] = L(i, j);
-  pose.t = {tf.translation()(0), tf.translation()(1), tf.translation()(2)};
-  return pose;
+bool answersPair(const fcl::CollisionGeometry<S>* g1,
+                 const fcl::CollisionGeometry<S>* g2,
+                 const fcl::CollisionRequest<S>& request) {
+  const auto meshOrTriangle = [](const fcl::CollisionGeometry<S>* g) {
+    return g->getObjectType() == fcl::OT_BVH ||
+           g->getNodeType() == fcl::GEOM_TRIANGLE;
+  };
+  const fcl::NODE_TYPE t1 = g1->getNodeType(), t2 = g2->getNodeType();
+  if (t1 == fcl::GEOM_CYLINDER && meshOrTriangle(g2)) return true;
+  if (t2 == fcl::GEOM_CYLINDER && meshOrTriangle(g1)) return true;
+  return !request.enable_contact &&
+         ((t1 == fcl::GEOM_SPHERE && t2 == fcl::GEOM_CYLINDER) ||
+          (t1 == fcl::GEOM_CYLINDER && t2 == fcl::GEOM_SPHERE));
 }
 
-/// fcl::collide(o1, o2, request, result) with Solver<S>: the solver's
-/// collision_tolerance is request.gjk_tolerance, as FCL's 4-argument form
-/// sets it for GJKSolver_libccd. A BVHModel/Cylinder pair (double) runs
-/// tricyl's own traversal instead of FCL's (fcl_mesh_cylinder.h: same
-/// answers, certified node test, batched leaves). Returns the number of
-/// contacts.
-template <class S>
-std::size_t collide(const fcl::CollisionObject<S>* o1,
-                    const fcl::CollisionObject<S>* o2,
-                    const fcl::CollisionRequest<S>& request,
-                    fcl::CollisionResult<S>& result) {
-  if constexpr (std::is_same_v<S, double>) {  // mesh/cylinder: own traversal
-    std::size_t n = 0;
-    if (collideMeshCylinder(o1->collisionGeometry().get(), o1->getTransform(),
-                            o2->collisionGeometry().get(), o2->getTransform(),
-                            request, result, &n))
-      return n;
-  }
-  Solver<S> solver;
-  solver.collision_tolerance = request.gjk_tolerance;
-  return fcl::collide(o1, o2, &solver, request, result);
-}
+}  // namespace detail
 
-/// fcl::collide(g1, tf1, g2, tf2, request, result) with Solver<S>.
+/// fcl::collide(g1, tf1, g2, tf2, request, result) with the exact tests:
+/// the pairs tricyl answers go to Solver<S> (a BVHModel/Cylinder pair in
+/// double to tricyl's own traversal, fcl_mesh_cylinder.h: same answers,
+/// certified node test, batched leaves); every other pair is run as
+/// fcl::collide runs it for request.gjk_solver_type (The request, in this
+/// file's description). Returns the number of contacts.
 template <class S>
 std::size_t collide(const fcl::CollisionGeometry<S>* g1,
                     const fcl::Transform3<S>& tf1,
@@ -215,6 +241,9 @@ std::size_t collide(const fcl::CollisionGeometry<S>* g1,
                     const fcl::Transform3<S>& tf2,
                     const fcl::CollisionRequest<S>& request,
                     fcl::CollisionResult<S>& result) {
+  if (request.gjk_solver_type != fcl::GST_LIBCCD &&
+      !detail::answersPair(g1, g2, request))
+    return fcl::collide(g1, tf1, g2, tf2, request, result);
   if constexpr (std::is_same_v<S, double>) {  // mesh/cylinder: own traversal
     std::size_t n = 0;
     if (collideMeshCylinder(g1, tf1, g2, tf2, request, result, &n)) return n;
@@ -222,6 +251,29 @@ std::size_t collide(const fcl::CollisionGeometry<S>* g1,
   Solver<S> solver;
   solver.collision_tolerance = request.gjk_tolerance;
   return fcl::collide(g1, tf1, g2, tf2, &solver, request, result);
+}
+
+/// fcl::collide(o1, o2, request, result) with the exact tests: the same as
+/// the geometry form on the objects' geometries and transforms.
+template <class S>
+std::size_t collide(const fcl::CollisionObject<S>* o1,
+                    const fcl::CollisionObject<S>* o2,
+                    const fcl::CollisionRequest<S>& request,
+                    fcl::CollisionResult<S>& result) {
+  const fcl::CollisionGeometry<S>* g1 = o1->collisionGeometry().get();
+  const fcl::CollisionGeometry<S>* g2 = o2->collisionGeometry().get();
+  if (request.gjk_solver_type != fcl::GST_LIBCCD &&
+      !detail::answersPair(g1, g2, request))
+    return fcl::collide(o1, o2, request, result);
+  if constexpr (std::is_same_v<S, double>) {  // mesh/cylinder: own traversal
+    std::size_t n = 0;
+    if (collideMeshCylinder(g1, o1->getTransform(), g2, o2->getTransform(),
+                            request, result, &n))
+      return n;
+  }
+  Solver<S> solver;
+  solver.collision_tolerance = request.gjk_tolerance;
+  return fcl::collide(o1, o2, &solver, request, result);
 }
 
 /// The broadphase callback data: FCL's own struct (request, result, done).
@@ -246,60 +298,14 @@ bool DefaultCollisionFunction(fcl::CollisionObject<S>* o1,
   return collision_data->done;
 }
 
-extern template class Solver<double>;
-
 }  // namespace tricyl
 
-// Instantiated once, in src/fcl/fcl_solver.cpp (see COMPILE TIME). These are
-// explicit instantiations of FCL templates for OUR solver type, never
+#include "tricyl/detail/fcl_solver_instances.h"
+
+// Instantiated once per type, in src/fcl/fcl_solver.cpp and
+// src/fcl/fcl_solver_float.cpp (see Compile time). These are explicit
+// instantiations of FCL templates for OUR solver type, never
 // specialisations.
-namespace fcl {
-extern template detail::CollisionFunctionMatrix<tricyl::Solver<double>>&
-getCollisionFunctionLookTable<tricyl::Solver<double>>();
-extern template detail::DistanceFunctionMatrix<tricyl::Solver<double>>&
-getDistanceFunctionLookTable<tricyl::Solver<double>>();
-extern template std::size_t collide(const CollisionObject<double>*,
-                                    const CollisionObject<double>*,
-                                    const tricyl::Solver<double>*,
-                                    const CollisionRequest<double>&,
-                                    CollisionResult<double>&);
-extern template std::size_t collide(const CollisionGeometry<double>*,
-                                    const Transform3<double>&,
-                                    const CollisionGeometry<double>*,
-                                    const Transform3<double>&,
-                                    const tricyl::Solver<double>*,
-                                    const CollisionRequest<double>&,
-                                    CollisionResult<double>&);
-extern template double distance(const CollisionObject<double>*,
-                                const CollisionObject<double>*,
-                                const tricyl::Solver<double>*,
-                                const DistanceRequest<double>&,
-                                DistanceResult<double>&);
-extern template double distance(const CollisionGeometry<double>*,
-                                const Transform3<double>&,
-                                const CollisionGeometry<double>*,
-                                const Transform3<double>&,
-                                const tricyl::Solver<double>*,
-                                const DistanceRequest<double>&,
-                                DistanceResult<double>&);
-namespace detail {
-extern template struct CollisionFunctionMatrix<tricyl::Solver<double>>;
-extern template struct DistanceFunctionMatrix<tricyl::Solver<double>>;
-}  // namespace detail
-}  // namespace fcl
-
-namespace tricyl {
-extern template std::size_t collide(const fcl::CollisionObject<double>*,
-                                    const fcl::CollisionObject<double>*,
-                                    const fcl::CollisionRequest<double>&,
-                                    fcl::CollisionResult<double>&);
-extern template std::size_t collide(const fcl::CollisionGeometry<double>*,
-                                    const fcl::Transform3<double>&,
-                                    const fcl::CollisionGeometry<double>*,
-                                    const fcl::Transform3<double>&,
-                                    const fcl::CollisionRequest<double>&,
-                                    fcl::CollisionResult<double>&);
-extern template bool DefaultCollisionFunction(fcl::CollisionObject<double>*,
-                                              fcl::CollisionObject<double>*,
-                                              void*);
-}  // namespace tricyl
+TRICYL_FCL_SOLVER_INSTANCES(extern template, double)
+TRICYL_FCL_SOLVER_INSTANCES(extern template, float)
+TRICYL_FCL_FLOAT_STOCK_COLLIDE(extern template)

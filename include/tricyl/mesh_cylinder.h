@@ -1,59 +1,60 @@
-// Many triangles vs one finite solid cylinder: the batch form of
-// triangle_cylinder.h, for planners that test a cylinder against a mesh.
-//
-// CONTRACT
-// - Cylinder, Pose and the per-triangle answer are exactly those of
-//   tricyl::tryIntersect(cylinder, pose, Triangle) (triangle_cylinder.h):
-//   for every triangle the batch answer IS the kernel's answer, bit for bit,
-//   whatever the options (cull on or off, vertex pass in AVX2 or portable
-//   code). Touching counts; degenerate triangles are valid.
-// - MeshView<S>: an indexed mesh, borrowed (never copied or owned):
-//   `vertices` holds 3 * num_vertices coordinates (x, y, z of vertex 0, then
-//   vertex 1, ...), `indices` holds 3 * num_triangles vertex numbers;
-//   triangle i is (indices[3i], indices[3i+1], indices[3i+2]).
-// - TriangleArrays<S>: structure of arrays, triangle i is
-//   ((ax[i], ay[i], az[i]), (bx[i], ...), (cx[i], ...)).
-// - intersectMask: bit (i % 64) of mask[i / 64] is set iff triangle i meets
-//   the cylinder; mask must hold (num_triangles + 63) / 64 words, all of
-//   which are overwritten (bits past num_triangles are 0). Returns the number
-//   of hits.
-// - intersectIndices: the hits' indices in ascending order, appended.
-// - intersectAny: the LOWEST index of a triangle that meets the cylinder, or
-//   nullopt; the triangle scan stops there.
-//
-// METHOD (docs/batch.md)
-// 1. Setup once per batch: validation, the kernel's range gate and filter
-//    constants, and (cull on) a certified world-frame box around the
-//    cylinder.
-// 2. Vertex pass, branch-free and vectorised (AVX2 when the CPU has it,
-//    detected at run time; SSE2/portable otherwise; no FMA, so both give the
-//    same bits): a code per vertex. Cull on: which faces of the world box the
-//    vertex is strictly beyond (6 compares, no transform). Cull off: the
-//    kernel's own certified early-out signs in the cylinder frame (slab
-//    Z > H, Z < -H; square x > r, x < -r, y > r, y < -r), computed with the
-//    same double error bound as the scalar filter.
-// 3. Triangle pass: a triangle whose three codes share a bit lies strictly
-//    beyond one plane of a region containing the cylinder: disjoint. Every
-//    other triangle goes to the scalar exact kernel (tryIntersect).
-//    Both rejections are certified, so no answer depends on them.
-// The world box needs R close to orthonormal (|R^T R - I| <= 1/2 in the
-// Frobenius norm, certified); otherwise the cull is skipped and the local
-// pass runs instead (BatchStats::cull_used says which).
-//
-// INVALID INPUT
-// - Checked forms (intersectMask, intersectIndices, intersectAny) throw
-//   tricyl::InvalidInput for a NaN/Inf or negative cylinder size, a non-finite
-//   pose, a triangle with a NaN/Inf coordinate, or a vertex index >=
-//   num_vertices (never read out of bounds). A null pointer with a non-zero
-//   count is a precondition violation (not checked).
-// - tryIntersectMask / tryIntersectAny (noexcept) return
-//   Answer::kInvalidInput in those cases and treat what cannot be evaluated
-//   as "in collision" (the safe answer for a planner): every bit is set when
-//   the cylinder or pose is invalid, and the bit of each invalid triangle
-//   (bad coordinate or index) is set; tryIntersectAny reports the lowest
-//   index that is a hit or invalid, whichever comes first.
-//
-// THREADS: every function is reentrant; nothing is shared between calls.
+/// @file
+/// Many triangles vs one finite solid cylinder: the batch form of
+/// triangle_cylinder.h, for planners that test a cylinder against a mesh.
+///
+/// ## Contract
+/// - Cylinder, Pose and the per-triangle answer are exactly those of
+///   tricyl::tryIntersect(cylinder, pose, Triangle) (triangle_cylinder.h):
+///   for every triangle the batch answer IS the kernel's answer, bit for bit,
+///   whatever the options (cull on or off, vertex pass in AVX2 or portable
+///   code). Touching counts; degenerate triangles are valid.
+/// - MeshView<S>: an indexed mesh, borrowed (never copied or owned):
+///   `vertices` holds 3 * num_vertices coordinates (x, y, z of vertex 0, then
+///   vertex 1, ...), `indices` holds 3 * num_triangles vertex numbers;
+///   triangle i is (indices[3i], indices[3i+1], indices[3i+2]).
+/// - TriangleArrays<S>: structure of arrays, triangle i is
+///   ((ax[i], ay[i], az[i]), (bx[i], ...), (cx[i], ...)).
+/// - intersectMask: bit (i % 64) of mask[i / 64] is set iff triangle i meets
+///   the cylinder; mask must hold (num_triangles + 63) / 64 words, all of
+///   which are overwritten (bits past num_triangles are 0). Returns the number
+///   of hits.
+/// - intersectIndices: the hits' indices in ascending order, appended.
+/// - intersectAny: the LOWEST index of a triangle that meets the cylinder, or
+///   nullopt; the triangle scan stops there.
+///
+/// ## Method (docs/batch.md)
+/// 1. Setup once per batch: validation, the kernel's range gate and filter
+///    constants, and (cull on) a certified world-frame box around the
+///    cylinder.
+/// 2. Vertex pass, branch-free and vectorised (AVX2 when the CPU has it,
+///    detected at run time; SSE2/portable otherwise; no FMA, so both give the
+///    same bits): a code per vertex. Cull on: which faces of the world box the
+///    vertex is strictly beyond (6 compares, no transform). Cull off: the
+///    kernel's own certified early-out signs in the cylinder frame (slab
+///    Z > H, Z < -H; square x > r, x < -r, y > r, y < -r), computed with the
+///    same double error bound as the scalar filter.
+/// 3. Triangle pass: a triangle whose three codes share a bit lies strictly
+///    beyond one plane of a region containing the cylinder: disjoint. Every
+///    other triangle goes to the scalar exact kernel (tryIntersect).
+///    Both rejections are certified, so no answer depends on them.
+/// The world box needs R close to orthonormal (|R^T R - I| <= 1/2 in the
+/// Frobenius norm, certified); otherwise the cull is skipped and the local
+/// pass runs instead (BatchStats::cull_used says which).
+///
+/// ## Invalid input
+/// - Checked forms (intersectMask, intersectIndices, intersectAny) throw
+///   tricyl::InvalidInput for a NaN/Inf or negative cylinder size, a non-finite
+///   pose, a triangle with a NaN/Inf coordinate, or a vertex index >=
+///   num_vertices (never read out of bounds). A null pointer with a non-zero
+///   count is a precondition violation (not checked).
+/// - tryIntersectMask / tryIntersectAny (noexcept) return
+///   Answer::kInvalidInput in those cases and treat what cannot be evaluated
+///   as "in collision" (the safe answer for a planner): every bit is set when
+///   the cylinder or pose is invalid, and the bit of each invalid triangle
+///   (bad coordinate or index) is set; tryIntersectAny reports the lowest
+///   index that is a hit or invalid, whichever comes first.
+///
+/// THREADS: every function is reentrant; nothing is shared between calls.
 #pragma once
 
 #include <cstddef>

@@ -1,47 +1,49 @@
-// Triangle vs finite solid cylinder: exact Boolean test-intersection.
-//
-// CONTRACT
-// - Cylinder: FCL's convention (see types.h): the closed solid
-//       C = { y : y0^2 + y1^2 <= r^2, |y2| <= lz/2 },  r >= 0, lz >= 0.
-//   r = 0 (the axis segment) and lz = 0 (a flat disk) are valid.
-// - Pose {R, t}: a world point x is in the cylinder iff y = R^T (x - t),
-//   evaluated exactly, is in C. R is used exactly as given.
-// - Triangle: three world points (or local points, for the local overload);
-//   the closed convex hull. Collinear and coincident vertices are valid.
-// - Answer: true iff the two closed sets share a point. Touching counts.
-//   The answer is exact for the float or double inputs as given: there is no
-//   epsilon and no tolerance parameter anywhere on this path.
-// - Bounded time: no iteration. A query either is decided by the
-//   floating-point fast path (tens of ns) or by the exact rational fallback
-//   (tens of microseconds), see docs/exactness.md.
-//
-// INVALID INPUT
-// - `intersect` throws tricyl::InvalidInput if any coordinate, pose entry,
-//   radius or length is NaN or infinite, or if radius or lz is negative.
-// - `tryIntersect` is noexcept and returns Answer::kInvalidInput instead.
-// - Validation reads bit patterns before any arithmetic: no input, valid or
-//   not (NaN, signalling NaN, Inf), raises FE_INVALID or FE_DIVBYZERO.
-//
-// METHOD (after D. Eberly, "Intersection of a Triangle and a Cylinder", 2010)
-// Eberly moves the triangle into the cylinder frame, clips it to the slab
-// |z| <= h/2 (cases 0a..5 of his Figure 1), projects the clipped piece onto
-// the xy-plane and tests that convex point, segment or polygon against the
-// disk: a vertex inside the disk, an edge within distance r, or the origin
-// inside the polygon. We evaluate exactly the same tests, but without ever
-// constructing the clipped polygon: its vertices are triangle vertices inside
-// the slab and crossings of triangle edges with the planes z = +-h/2, both
-// written homogeneously; its edges are slab-clipped triangle edges and the
-// chords z = +-h/2 of the triangle; "origin inside" is "the axis segment
-// meets the triangle". Every decision is the sign of a polynomial of degree
-// <= 8 in the inputs, so it can be certified in floating point or evaluated
-// exactly. The case map (Figure 1 -> predicate) is in
-// src/triangle_cylinder_impl.h and docs/exactness.md.
-//
-// Two traps of the published versions are avoided by construction: a
-// triangle whose plane contains the axis (projection = segment through the
-// origin) is never answered by an "origin inside the polygon" test (the axis
-// test requires a non-zero projected area), and each slab side is tested
-// against its own plane (there is no shared clip routine to get wrong).
+/// @file
+/// Triangle vs finite solid cylinder: exact Boolean test-intersection.
+///
+/// ## Contract
+/// - Cylinder: FCL's convention (see types.h): the closed solid
+///       C = { y : y0^2 + y1^2 <= r^2, |y2| <= lz/2 },  r >= 0, lz >= 0.
+///   r = 0 (the axis segment) and lz = 0 (a flat disk) are valid.
+/// - Pose {R, t}: a world point x is in the cylinder iff y = R^T (x - t),
+///   evaluated exactly, is in C. R is used exactly as given.
+/// - Triangle: three world points (or local points, for the local overload);
+///   the closed convex hull. Collinear and coincident vertices are valid.
+/// - Answer: true iff the two closed sets share a point. Touching counts.
+///   The answer is exact for the float or double inputs as given: there is no
+///   epsilon and no tolerance parameter anywhere on this path.
+/// - Bounded time: no iteration. A query either is decided by the
+///   floating-point fast path (tens of ns) or by the exact rational fallback
+///   (tens of microseconds), see docs/exactness.md.
+///
+/// ## Invalid input
+/// - `intersect` throws tricyl::InvalidInput if any coordinate, pose entry,
+///   radius or length is NaN or infinite, or if radius or lz is negative.
+/// - `tryIntersect` is noexcept and returns Answer::kInvalidInput instead.
+/// - Validation reads bit patterns before any arithmetic: no input, valid or
+///   not (NaN, signalling NaN, Inf), raises FE_INVALID or FE_DIVBYZERO.
+///
+/// ## Method
+/// After D. Eberly, "Intersection of a Triangle and a Cylinder", 2010.
+/// Eberly moves the triangle into the cylinder frame, clips it to the slab
+/// |z| <= h/2 (cases 0a..5 of his Figure 1), projects the clipped piece onto
+/// the xy-plane and tests that convex point, segment or polygon against the
+/// disk: a vertex inside the disk, an edge within distance r, or the origin
+/// inside the polygon. We evaluate exactly the same tests, but without ever
+/// constructing the clipped polygon: its vertices are triangle vertices inside
+/// the slab and crossings of triangle edges with the planes z = +-h/2, both
+/// written homogeneously; its edges are slab-clipped triangle edges and the
+/// chords z = +-h/2 of the triangle; "origin inside" is "the axis segment
+/// meets the triangle". Every decision is the sign of a polynomial of degree
+/// <= 8 in the inputs, so it can be certified in floating point or evaluated
+/// exactly. The case map (Figure 1 -> predicate) is in
+/// src/triangle_cylinder_impl.h and docs/exactness.md.
+///
+/// Two traps of the published versions are avoided by construction: a
+/// triangle whose plane contains the axis (projection = segment through the
+/// origin) is never answered by an "origin inside the polygon" test (the axis
+/// test requires a non-zero projected area), and each slab side is tested
+/// against its own plane (there is no shared clip routine to get wrong).
 #pragma once
 
 #include "tricyl/types.h"

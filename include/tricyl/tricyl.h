@@ -1,7 +1,9 @@
-// Umbrella header: every core query of tricyl (no FCL, libccd or Eigen).
+/// @file
+/// Umbrella header: every core query of tricyl (no FCL, libccd or Eigen).
 #pragma once
 
 #include "tricyl/endpoint_form.h"
+#include "tricyl/fcl_contact.h"
 #include "tricyl/line_cylinder.h"
 #include "tricyl/mesh_cylinder.h"
 #include "tricyl/point_cone.h"

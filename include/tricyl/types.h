@@ -1,18 +1,19 @@
-// tricyl: plain aggregate types shared by every query.
-//
-// Conventions (the same for every header in include/tricyl/):
-// - Cylinder<S>{radius, lz}: FCL's convention. Centred at the origin of its own
-//   frame, axis +z, full length lz: the closed solid
-//       { y : y0^2 + y1^2 <= radius^2, |y2| <= lz/2 }.
-// - Pose<S>{R, t}: world = R * local + t, R row-major, exactly as FCL's
-//   Transform3 holds linear() and translation(). A world point x maps to the
-//   local point y = R^T (x - t), and every query evaluates that map EXACTLY:
-//   R is used as given, never re-orthonormalised. A rotation a hair off
-//   orthonormal is fine; the solid is then the exact preimage under that map.
-// - Triangle<S>{a, b, c}: the closed convex hull of three points. Collinear or
-//   coincident vertices are valid: the hull is a segment or a point.
-// - Answers are exact for the inputs as given (no epsilon, no tolerance
-//   parameter). Touching counts as intersecting.
+/// @file
+/// tricyl: plain aggregate types shared by every query.
+///
+/// Conventions (the same for every header in include/tricyl/):
+/// - Cylinder<S>{radius, lz}: FCL's convention. Centred at the origin of its
+///   own frame, axis +z, full length lz: the closed solid
+///       { y : y0^2 + y1^2 <= radius^2, |y2| <= lz/2 }.
+/// - Pose<S>{R, t}: world = R * local + t, R row-major, exactly as FCL's
+///   Transform3 holds linear() and translation(). A world point x maps to the
+///   local point y = R^T (x - t), and every query evaluates that map EXACTLY:
+///   R is used as given, never re-orthonormalised. A rotation a hair off
+///   orthonormal is fine; the solid is then the exact preimage under that map.
+/// - Triangle<S>{a, b, c}: the closed convex hull of three points. Collinear or
+///   coincident vertices are valid: the hull is a segment or a point.
+/// - Answers are exact for the inputs as given (no epsilon, no tolerance
+///   parameter). Touching counts as intersecting.
 #pragma once
 
 #include <stdexcept>
@@ -108,15 +109,20 @@ enum class Answer : unsigned char {
 };
 
 /// Which stage of the kernel decided a query (for statistics only; it never
-/// changes the answer).
+/// changes the answer). A query is first run in double with a certified
+/// error bound; where a sign stays open, the query runs once more and only
+/// the open signs are re-decided in stronger arithmetic (docs/exactness.md):
+/// the stage is the strongest arithmetic any sign of the query needed.
 enum class Stage : unsigned char {
   kEarlyOut = 0,  ///< a cheap certified rejection (slab or bounding box)
   kFastPath = 1,  ///< double predicates with a certified error bound
-  kExact = 2,     ///< the exact rational fallback (GMP)
+  kExact = 2,     ///< some sign decided exactly (stack floating-point
+                  ///< expansions: no heap allocation)
   kInvalid = 3,   ///< input rejected before any arithmetic
-  kExtended = 4,  ///< the certified filter re-run in extended precision
-  kTracked = 5,   ///< double arithmetic checked operation by operation:
-                  ///< signs whose computation never rounded (zero too)
+  kExtended = 4,  ///< some sign decided in double-word arithmetic (about
+                  ///< 106 bits) with a running error bound, none exactly
+  kExactGmp = 6,  ///< some sign decided exactly with GMP (inputs outside
+                  ///< the expansions' exponent window)
 };
 
 /// The answer of a query and the kernel stage that decided it.

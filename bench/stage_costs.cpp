@@ -1,0 +1,171 @@
+// tricyl-stage-costs: what each stage of the triangle-cylinder Boolean
+// costs, family by family, as decideIntersect sees it, beside FCL's MPR
+// (GJKSolver_libccd, collision_tolerance 1e-6) on the same cases in the
+// same run. A report, not a test: it asserts nothing.
+//
+// Per family: 4096 cases of compare/scenes.h (seed 7, as bench/), visited
+// in an order the branch predictor cannot learn (bench/walk.h).
+//   - mean per query of whole passes (no clock inside the loop) for tricyl
+//     and for FCL, and their ratio: what a planner pays;
+//   - per query, timed one by one (steady_clock, the clock's own cost
+//     measured and subtracted), median and p99 over all queries, and by
+//     the stage that decided it: share, mean, p99, max.
+// Usage: tricyl-stage-costs [passes] (default 20); markdown on stdout.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+#include "scenes.h"
+#include "tricyl/triangle_cylinder.h"
+#include "walk.h"
+
+#ifdef TRICYL_BENCH_WITH_FCL
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/narrowphase/detail/gjk_solver_libccd.h>
+#endif
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using tricyl::Stage;
+using tricyl::bench::Walk;
+using tricyl::scenes::Family;
+using tricyl::scenes::TriCase;
+
+constexpr int kCases = 4096;
+
+double ns(Clock::duration d) {
+  return std::chrono::duration<double, std::nano>(d).count();
+}
+
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  const std::size_t k = std::min(v.size() - 1, std::size_t(q * double(v.size())));
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
+  return v[k];
+}
+
+const char* stageName(Stage s) {
+  switch (s) {
+    case Stage::kEarlyOut:
+      return "early-out";
+    case Stage::kFastPath:
+      return "double filter";
+    case Stage::kExtended:
+      return "double-word";
+    case Stage::kExact:
+      return "exact (stack)";
+    case Stage::kExactGmp:
+      return "exact (GMP)";
+    case Stage::kInvalid:
+      return "invalid";
+  }
+  return "?";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int passes = argc > 1 ? std::max(1, std::atoi(argv[1])) : 20;
+  // The clock's own cost, subtracted from every single-query time.
+  double clock_ns = 1e300;
+  for (int i = 0; i < 20000; ++i) {
+    const auto a = Clock::now();
+    const auto b = Clock::now();
+    clock_ns = std::min(clock_ns, ns(b - a));
+  }
+  std::printf("# tricyl-stage-costs\n\n%d cases per family, %d passes; "
+              "clock overhead %.1f ns (subtracted from single-query "
+              "times)\n\n",
+              kCases, passes, clock_ns);
+  std::printf("| family | tricyl mean | FCL MPR mean | ratio | tricyl median "
+              "| tricyl p99 | tricyl max |\n|---|---:|---:|---:|---:|---:|---:|"
+              "\n");
+  std::vector<std::string> stage_rows;
+  for (Family fam : tricyl::scenes::kAllFamilies) {
+    std::vector<TriCase> v;
+    for (int i = 0; i < kCases; ++i)
+      v.push_back(tricyl::scenes::generate(fam, 7, std::uint64_t(i)));
+    long hits = 0;
+    // Whole passes: the mean.
+    Walk walk(v.size());
+    const auto t0 = Clock::now();
+    for (int p = 0; p < passes; ++p)
+      for (std::size_t n = 0; n < v.size(); ++n) {
+        const TriCase& c = v[walk.next()];
+        hits += tricyl::tryIntersect(c.cyl, c.pose, c.tri) ==
+                tricyl::Answer::kIntersect;
+      }
+    const double mean = ns(Clock::now() - t0) / double(passes * kCases);
+    double fcl_mean = 0;
+#ifdef TRICYL_BENCH_WITH_FCL
+    {
+      std::vector<fcl::Cylinderd> cyl;
+      std::vector<fcl::Transform3d> tf;
+      for (const TriCase& c : v) {
+        fcl::Transform3d t = fcl::Transform3d::Identity();
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) t.linear()(i, j) = c.pose.R[i][j];
+        t.translation() = fcl::Vector3d(c.pose.t.x, c.pose.t.y, c.pose.t.z);
+        cyl.emplace_back(c.cyl.radius, c.cyl.lz);
+        tf.push_back(t);
+      }
+      fcl::detail::GJKSolver_libccd<double> solver;
+      solver.collision_tolerance = 1e-6;
+      Walk w(v.size());
+      const int fcl_passes = std::max(1, passes / 4);
+      const auto f0 = Clock::now();
+      for (int p = 0; p < fcl_passes; ++p)
+        for (std::size_t n = 0; n < v.size(); ++n) {
+          const std::size_t i = w.next();
+          const TriCase& c = v[i];
+          hits += solver.shapeTriangleIntersect(
+              cyl[i], tf[i], {c.tri.a.x, c.tri.a.y, c.tri.a.z},
+              {c.tri.b.x, c.tri.b.y, c.tri.b.z},
+              {c.tri.c.x, c.tri.c.y, c.tri.c.z}, nullptr, nullptr, nullptr);
+        }
+      fcl_mean = ns(Clock::now() - f0) / double(fcl_passes * kCases);
+    }
+#endif
+    // One by one: the distribution, and the cost of each stage.
+    std::vector<double> all;
+    std::vector<double> by[8];
+    Walk w1(v.size());
+    for (int p = 0; p < passes; ++p)
+      for (std::size_t n = 0; n < v.size(); ++n) {
+        const TriCase& c = v[w1.next()];
+        const auto a = Clock::now();
+        const tricyl::Decision d = tricyl::decideIntersect(c.cyl, c.pose, c.tri);
+        const double t = std::max(0.0, ns(Clock::now() - a) - clock_ns);
+        hits += d.answer == tricyl::Answer::kIntersect;
+        all.push_back(t);
+        by[int(d.stage)].push_back(t);
+      }
+    std::printf("| %s | %.1f ns | %.1f ns | %.1fx | %.1f ns | %.0f ns | %.0f ns |\n",
+                tricyl::scenes::familyName(fam), mean, fcl_mean,
+                fcl_mean > 0 ? fcl_mean / mean : 0.0, quantile(all, 0.5),
+                quantile(all, 0.99), *std::max_element(all.begin(), all.end()));
+    for (Stage s : {Stage::kEarlyOut, Stage::kFastPath, Stage::kExtended,
+                    Stage::kExact, Stage::kExactGmp}) {
+      const auto& b = by[int(s)];
+      if (b.empty()) continue;
+      double sum = 0;
+      for (double t : b) sum += t;
+      char row[256];
+      std::snprintf(row, sizeof row,
+                    "| %s | %s | %.3f %% | %.0f ns | %.0f ns | %.0f ns |\n",
+                    tricyl::scenes::familyName(fam), stageName(s),
+                    100.0 * double(b.size()) / double(all.size()),
+                    sum / double(b.size()), quantile(b, 0.99),
+                    *std::max_element(b.begin(), b.end()));
+      stage_rows.push_back(row);
+    }
+    if (hits == -1) std::printf("\n");  // keep the answers alive
+  }
+  std::printf("\n## By stage (queries timed one by one)\n\n| family | stage | "
+              "share | mean | p99 | max |\n|---|---|---:|---:|---:|---:|\n");
+  for (const auto& r : stage_rows) std::printf("%s", r.c_str());
+  return 0;
+}

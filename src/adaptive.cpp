@@ -1,0 +1,398 @@
+// The escalation of one sign (src/adaptive.h): double-word with a running
+// error bound, then stack expansions, then GMP.
+#include "adaptive.h"
+
+#include <cmath>
+
+namespace tricyl::detail {
+
+// ---------------------------------------------------------------------------
+// Stage 1: double-word values with a running error bound (DwRun).
+//
+// Each node carries a double-word value v (normalised: |v.lo| <=
+// ulp(v.hi) / 2) and a bound e >= |v - E| on its distance to the exact
+// value E of the node's expression. Rules (src/eft.h for the constants):
+//   input x:               v = x, e = 0.
+//   input difference a-b:  v = TwoSum(a, -b), exact: e = 0 (no overflow
+//                          under the range gate).
+//   a +- b:  v = dwAdd(a, +-b),
+//            e = e_a + e_b + kDwAddRel (|a.hi| + |b.hi|);
+//   a * b:   v = dwMul(a, b),
+//            e = |a| e_b + |b| e_a + e_a e_b + kDwRel |v.hi| + kDwTiny,
+//            with |a| = |a.hi| + |a.lo|,
+//   since |v_a v_b - A B| <= |v_a| |v_b - B| + |B| |v_a - A| and
+//   |B| <= |v_b| + e_b; kDwAddRel (...) and kDwRel |v.hi| bound the
+//   double-word operations' own errors (src/eft.h) and kDwTiny the
+//   product's losses to underflow.
+//   local coordinate sum_k R_kj (p_k - t_k): one straight-line
+//   evaluation with an a-priori bound (dwCoord below).
+// e itself is computed with rounding to nearest from non-negative terms, at
+// most 5 roundings per operation: over the deepest chain (depth <= 56 as
+// for FilterKernel) it falls short of the exact bound by at most a factor
+// (1 - u)^280 > 1 - 2^-44, and by absolute underflow losses of at most
+// 2^-1075 per rounding, which the products of later operations multiply by
+// at most the a-priori magnitudes (<= 2^380 under the range gate,
+// docs/exactness.md "Underflow"): below 2^-680 in all. The sign test covers
+// both: with b = (e + |v.lo|) (1 + 2^-40) + 2^-600, hi > b gives
+// E >= hi - |lo| - e_true > 0, and symmetrically.
+namespace {
+
+inline DwRun runAdd(const DwRun& a, const DwRun& b) {
+  DwRun r;
+  r.v = dwAdd(a.v, b.v);
+  r.e = a.e + b.e + kDwAddRel * (std::fabs(a.v.hi) + std::fabs(b.v.hi));
+  return r;
+}
+inline DwRun runMul(const DwRun& a, const DwRun& b) {
+  DwRun r;
+  r.v = dwMul(a.v, b.v);
+  const double ma = std::fabs(a.v.hi) + std::fabs(a.v.lo);
+  const double mb = std::fabs(b.v.hi) + std::fabs(b.v.lo);
+  r.e = ma * b.e + mb * a.e + a.e * b.e + kDwRel * std::fabs(r.v.hi) + kDwTiny;
+  return r;
+}
+}  // namespace
+
+// A local coordinate x = sum_k R_k d_k, d_k = p_k - t_k (R_k = R_kj for
+// the coordinate's column j), as one double word with an a-priori bound,
+// in a few more operations than the double value itself:
+//   (D_k, l_k) = TwoSum(p_k, -t_k)        d_k = D_k + l_k exactly;
+//   (P_k, e_k) = TwoProd(R_k, D_k)        R_k D_k = P_k + e_k exactly;
+//   q_k = fl(R_k l_k);
+//   (s1, f1) = TwoSum(P_0, P_1), (s, f2) = TwoSum(s1, P_2)   exact;
+//   low = fl(f1 + f2 + e_0 + e_1 + e_2 + q_0 + q_1 + q_2);
+//   v = TwoSum(s, low)                                        exact.
+// So x - v = (the rounding of low's seven additions) + sum_k (R_k l_k -
+// q_k). With M = sum_k |R_k| |d_k|: |l_k| <= u |D_k|, |e_k| <= u |P_k|,
+// |f1| <= u |s1|, |f2| <= u |s|, so low's terms sum to at most about
+// 5 u M in magnitude, its additions err by at most 7 u (1 + 7u) 5 u M
+// (the classic gamma_7 bound of recursive summation), and the q_k by
+// u^2 M (1 + u): in all below 37 u^2 M < 2^-100 M' with M' the computed
+// magnitude (three roundings of non-negative terms, (1 - u)^3 M <= M').
+// Underflow (a product or an error term below the normal range) adds at
+// most a few 2^-1075 absolutely: kDwTiny. Z = 2 z: the same, doubled.
+DwRun Tape::dwCoord(const Node& nd) const {
+  const Point& P = pts_[nd.a];
+  const int j = nd.b;
+  double D[3], l[3], Pk[3], e[3], q[3];
+  double m = 0;
+  for (int k = 0; k < 3; ++k) {
+    twoSum(P.p[k], -P.t[k], D[k], l[k]);
+    twoProd(P.R[k][j], D[k], Pk[k], e[k]);
+    q[k] = P.R[k][j] * l[k];
+    m += std::fabs(P.R[k][j]) * std::fabs(D[k]);
+  }
+  double s1, f1, s, f2;
+  twoSum(Pk[0], Pk[1], s1, f1);
+  twoSum(s1, Pk[2], s, f2);
+  const double low =
+      ((((f1 + f2) + (e[0] + e[1])) + e[2]) + (q[0] + q[1])) + q[2];
+  DwRun r;
+  twoSum(s, low, r.v.hi, r.v.lo);
+  // Every term with a zero factor (R_k = 0 or p_k = t_k): an exact 0 with
+  // nothing rounded or underflowed, certified as such (the line interval
+  // tests Dx = Dy = 0 and DZ = 0 that way).
+  bool zero = true;
+  for (int k = 0; k < 3; ++k) zero = zero && (P.R[k][j] == 0 || D[k] == 0);
+  r.e = zero ? 0.0 : 0x1p-100 * m + kDwTiny;
+  if (j == 2) {  // Z = 2 z: exact scaling, bound doubled
+    r.v.hi *= 2;
+    r.v.lo *= 2;
+    r.e *= 2;
+  }
+  return r;
+}
+
+DwRun Tape::dw(std::uint32_t id) {
+  std::uint64_t& word = memo_[id >> 6];
+  const std::uint64_t bit = std::uint64_t(1) << (id & 63);
+  if (word & bit) return dw_[id];
+  const Node nd = nodes_[id];
+  DwRun r;
+  switch (nd.code) {
+    case kLift:
+      r = {{la_[nd.a], 0.0}, 0.0};
+      break;
+    case kDiff:
+      twoSum(la_[nd.a], -lb_[nd.a], r.v.hi, r.v.lo);
+      r.e = 0;
+      break;
+    case kCoord:
+      r = dwCoord(nd);
+      break;
+    case kNeg: {
+      const DwRun a = dw(nd.a);
+      r = {dwNeg(a.v), a.e};
+      break;
+    }
+    case kAdd:
+      r = runAdd(dw(nd.a), dw(nd.b));
+      break;
+    case kSub: {
+      const DwRun a = dw(nd.a);
+      DwRun b = dw(nd.b);
+      b.v = dwNeg(b.v);
+      r = runAdd(a, b);
+      break;
+    }
+    default:  // kMul
+      r = runMul(dw(nd.a), dw(nd.b));
+      break;
+  }
+  dw_[id] = r;
+  word |= bit;
+  return r;
+}
+
+// ---------------------------------------------------------------------------
+// Stage 2: the exact value as a stack expansion (src/expansion.h), which
+// flags the cases it cannot compute exactly. It runs only for signs that
+// are zero or within about 2^-100 of zero relative to their magnitudes,
+// i.e. (almost) only for true ties, which usually come several to a query
+// (a triangle in a cap plane: every slab sign, chord and area term) and
+// share coordinates and sub-expressions: memoised per node in the tape's
+// arena.
+Expansion Tape::expansionCoord(const Node& nd) const {
+  const Point& P = pts_[nd.a];
+  const int j = nd.b;
+  Expansion x;
+  for (int k = 0; k < 3; ++k)
+    x = x + Expansion(P.R[k][j]) * Expansion::difference(P.p[k], P.t[k]);
+  return j == 2 ? x + x : x;
+}
+
+Expansion Tape::expansion(std::uint32_t id) {
+  std::uint64_t& word = xmemo_[id >> 6];
+  const std::uint64_t bit = std::uint64_t(1) << (id & 63);
+  if (word & bit)
+    return Expansion::fromComponents(arena_ + xoff_[id], xlen_[id]);
+  const Node nd = nodes_[id];
+  Expansion r;
+  switch (nd.code) {
+    case kLift:
+      return Expansion(la_[nd.a]);
+    case kDiff:
+      return Expansion::difference(la_[nd.a], lb_[nd.a]);
+    case kCoord:
+      r = expansionCoord(nd);
+      break;
+    case kNeg:
+      r = -expansion(nd.a);
+      break;
+    case kAdd:
+      r = expansion(nd.a) + expansion(nd.b);
+      break;
+    case kSub:
+      r = expansion(nd.a) - expansion(nd.b);
+      break;
+    default: {
+      const Expansion a = expansion(nd.a);
+      if (!a.ok()) return a;
+      r = nd.b == nd.a ? a * a : a * expansion(nd.b);
+      break;
+    }
+  }
+  if (r.ok() && arena_used_ + r.size() <= kArena) {
+    for (int i = 0; i < r.size(); ++i) arena_[arena_used_ + i] = r.data()[i];
+    xoff_[id] = std::uint16_t(arena_used_);
+    xlen_[id] = std::uint16_t(r.size());
+    arena_used_ += r.size();
+    word |= bit;
+  }
+  return r;
+}
+
+// Before the expansions, for a sign whose double value is exactly 0: was
+// the double evaluation itself exact? In exact poses with exact data (signed
+// permutations, dyadic or decimal coordinates that cancel exactly) it often
+// is, and then the value is the exact value. Each operation is re-done in
+// double and checked: a sum by its TwoSum error being 0 (and finite), a
+// product by its TwoProduct error being 0 with the product at least
+// kProdExactMin (so that the error term is itself exact), or by an exact 0
+// factor (then the product is an exact 0 whatever the other factor is). The
+// operations and their order are those of the adaptive run, so the value
+// found is that run's value.
+bool Tape::exactInDouble(std::uint32_t id, double* value) const {
+  const Node nd = nodes_[id];
+  auto sumOk = [](double a, double b, double* out) {
+    double s, e;
+    twoSum(a, b, s, e);
+    *out = s;
+    return e == 0 && std::isfinite(s);
+  };
+  auto prodOk = [](double a, double b, double* out) {
+    if (a == 0 || b == 0) {
+      *out = a * b;
+      return true;
+    }
+    double p, e;
+    twoProd(a, b, p, e);
+    *out = p;
+    return e == 0 && std::fabs(p) >= kProdExactMin && std::isfinite(p);
+  };
+  switch (nd.code) {
+    case kLift:
+      *value = la_[nd.a];
+      return true;
+    case kDiff:
+      return sumOk(la_[nd.a], -lb_[nd.a], value);
+    case kCoord: {
+      const Point& P = pts_[nd.a];
+      const int j = nd.b;
+      double t[3];
+      for (int k = 0; k < 3; ++k) {
+        double d;
+        if (P.R[k][j] == 0) {
+          t[k] = 0;  // an exact zero factor
+          continue;
+        }
+        if (!sumOk(P.p[k], -P.t[k], &d) || !prodOk(P.R[k][j], d, &t[k]))
+          return false;
+      }
+      double s1, v;
+      if (!sumOk(t[0], t[1], &s1) || !sumOk(s1, t[2], &v)) return false;
+      *value = j == 2 ? v + v : v;
+      return std::isfinite(*value);
+    }
+    case kNeg: {
+      if (!exactInDouble(nd.a, value)) return false;
+      *value = -*value;
+      return true;
+    }
+    case kAdd:
+    case kSub: {
+      double a, b;
+      if (!exactInDouble(nd.a, &a) || !exactInDouble(nd.b, &b)) return false;
+      return sumOk(a, nd.code == kSub ? -b : b, value);
+    }
+    default: {  // kMul
+      double a, b;
+      const bool ea = exactInDouble(nd.a, &a);
+      if (ea && a == 0) {
+        *value = 0;
+        return true;
+      }
+      if (!exactInDouble(nd.b, &b)) return false;
+      if (b == 0) {
+        *value = 0;
+        return true;
+      }
+      return ea && prodOk(a, b, value);
+    }
+  }
+}
+
+// Stage 3: GMP dyadic rationals (ExactKernel), exact for every finite input.
+Dyadic Tape::dyadicCoord(const Node& nd) const {
+  const Point& P = pts_[nd.a];
+  const int j = nd.b;
+  Dyadic x;
+  for (int k = 0; k < 3; ++k)
+    x = x +
+        ExactKernel::lift(P.R[k][j]) * ExactKernel::inputDiff(P.p[k], P.t[k]);
+  return j == 2 ? x + x : x;
+}
+
+Dyadic Tape::dyadic(std::uint32_t id) const {
+  const Node nd = nodes_[id];
+  switch (nd.code) {
+    case kLift:
+      return ExactKernel::lift(la_[nd.a]);
+    case kDiff:
+      return ExactKernel::inputDiff(la_[nd.a], lb_[nd.a]);
+    case kCoord:
+      return dyadicCoord(nd);
+    case kNeg:
+      return -dyadic(nd.a);
+    case kAdd:
+      return dyadic(nd.a) + dyadic(nd.b);
+    case kSub:
+      return dyadic(nd.a) - dyadic(nd.b);
+    default:
+      return dyadic(nd.a) * dyadic(nd.b);
+  }
+}
+
+// ---------------------------------------------------------------------------
+
+void Tape::toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x,
+                   An& y, An& Z) {
+  const double pp[3] = {p.x, p.y, p.z};
+  const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
+  // The double values of the generic toLocal: d_k = fl(p_k - t_k), then
+  // ((R_0j d_0 + R_1j d_1) + R_2j d_2), and the folded running bound of
+  // toLocalRunning (src/triangle_cylinder_impl.h, derived there) from
+  // S = sum_k |R_kj| |d_k|.
+  double d[3], a[3];
+  for (int k = 0; k < 3; ++k) {
+    d[k] = pp[k] - tt[k];
+    a[k] = std::fabs(d[k]);
+  }
+  An* out[3] = {&x, &y, &Z};
+  std::uint32_t point = 0;
+  const bool room = points_ < kMaxPoints;
+  if (room) {
+    Point& P = pts_[points_];
+    point = std::uint32_t(points_++);
+    for (int k = 0; k < 3; ++k) {
+      P.p[k] = pp[k];
+      P.t[k] = tt[k];
+      for (int j = 0; j < 3; ++j) P.R[k][j] = pose.R[k][j];
+    }
+  } else {
+    overflow_ = true;
+  }
+  for (int j = 0; j < 3; ++j) {
+    const double* R0 = pose.R[0];
+    const double* R1 = pose.R[1];
+    const double* R2 = pose.R[2];
+    const double s1 = R0[j] * d[0] + R1[j] * d[1];
+    double v = s1 + R2[j] * d[2];
+    double m = (std::fabs(R0[j]) * a[0] + std::fabs(R1[j]) * a[1]) +
+               std::fabs(R2[j]) * a[2];  // S, then the bound
+    {
+      constexpr double c = 0x1p-53 + 0x1p-53 * 0x1p-40;
+      const bool zero = (R0[j] == 0 || d[0] == 0) &&
+                        (R1[j] == 0 || d[1] == 0) && (R2[j] == 0 || d[2] == 0);
+      m = (((m + m) + std::fabs(s1)) + std::fabs(v)) * c +
+          (zero ? 0.0 : 4 * 0x1p-1074);
+    }
+    if (j == 2) {
+      v = v + v;
+      m = m + m;
+    }
+    *out[j] = {v, m, this, op(kCoord, point, std::uint32_t(j))};
+  }
+}
+
+Sign Tape::escalate(std::uint32_t id, double v) {
+  if (overflow_) return Sign::kZero;  // the driver discards this run
+  ++escalations_;
+  // A double value that is exactly 0 is almost always a true tie (an exact
+  // pose and exact data: the double arithmetic did not round), which no
+  // bound certifies: straight to the exact stage. Otherwise double-word
+  // first. Either order gives the same sign.
+  if (v != 0) {
+    const DwRun d = dw(id);
+    const double b = (d.e + std::fabs(d.v.lo)) * (1 + 0x1p-40) + 0x1p-600;
+    if (level_ < 1) level_ = 1;
+    if (d.v.hi > b) return Sign::kPos;
+    if (d.v.hi < -b) return Sign::kNeg;
+  } else {
+    double exact = 0;
+    if (exactInDouble(id, &exact)) {
+      if (level_ < 2) level_ = 2;
+      return exact > 0 ? Sign::kPos : (exact < 0 ? Sign::kNeg : Sign::kZero);
+    }
+  }
+  const Expansion x = expansion(id);
+  if (x.ok()) {
+    if (level_ < 2) level_ = 2;
+    const int s = x.sign();
+    return s > 0 ? Sign::kPos : (s < 0 ? Sign::kNeg : Sign::kZero);
+  }
+  level_ = 3;
+  return ExactKernel::sign(dyadic(id));
+}
+
+}  // namespace tricyl::detail

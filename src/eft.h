@@ -1,0 +1,130 @@
+// Error-free transformations and double-word ("double-double") arithmetic:
+// the portable building blocks of the intermediate stage (src/adaptive.h)
+// and of the stack-resident exact stage (src/expansion.h). Every operation
+// here is an IEEE-754 binary64 operation in round-to-nearest-even; nothing
+// depends on the width of long double or on x87 (docs/exactness.md,
+// section 4).
+//
+// References:
+//   D. E. Knuth, TAOCP vol. 2, 4.2.2 (TwoSum).
+//   T. J. Dekker, "A floating-point technique for extending the available
+//     precision", Numer. Math. 18 (1971) (Split, TwoProduct without FMA).
+//   S. Boldo, "Pitfalls of a full floating-point proof: example on the
+//     formal proof of the Veltkamp/Dekker algorithms" (IJCAR 2006): the
+//     exactness conditions under underflow.
+//   M. Joldes, J.-M. Muller, V. Popescu, "Tight and rigorous error bounds
+//     for basic building blocks of double-word arithmetic", ACM TOMS 44(2),
+//     2017: relative error of DWTimesDW1 (Algorithm 10) <= 7u^2, u = 2^-53,
+//     in the absence of underflow and overflow. The addition is their
+//     sloppy one, with its own bound (dwAdd).
+#pragma once
+
+#include <cmath>
+
+#if defined(__FP_FAST_FMA) || defined(FP_FAST_FMA) || defined(__FMA__) || \
+    defined(__aarch64__)
+#define TRICYL_HAVE_FMA 1
+#else
+#define TRICYL_HAVE_FMA 0
+#endif
+
+namespace tricyl::detail {
+
+/// s = fl(a + b) and e = (a + b) - s EXACTLY, for any finite a, b whose sum
+/// does not overflow, with no condition on their order (Knuth). Gradual
+/// underflow cannot make it inexact: the error of a sum is always a double.
+inline void twoSum(double a, double b, double& s, double& e) {
+  s = a + b;
+  const double bb = s - a;
+  e = (a - (s - bb)) + (b - bb);
+}
+
+/// Dekker's split: a = hi + lo with hi, lo of at most 26 significant bits
+/// each (|a| < 2^996, so that 134217729 a does not overflow).
+inline void split(double a, double& hi, double& lo) {
+  const double c = 134217729.0 * a;  // 2^27 + 1
+  hi = c - (c - a);
+  lo = a - hi;
+}
+
+/// p = fl(a b) and e = a b - p. EXACT when a b is finite and either p = 0
+/// with a = 0 or b = 0, or |p| >= kProdExactMin (then the exponents of a
+/// and b add up to at least emin + 53, so the error, a multiple of the
+/// product of their last bits' weights below ulp(p) / 2, is a double;
+/// Boldo 2006 for the split variant). Callers that need exactness test
+/// that condition (Expansion); the double-word operations below count a
+/// possible violation as an absolute error instead (kDwTiny).
+inline constexpr double kProdExactMin = 0x1p-900;
+inline void twoProd(double a, double b, double& p, double& e) {
+  p = a * b;
+#if TRICYL_HAVE_FMA
+  e = std::fma(a, b, -p);
+#else
+  double ah, al, bh, bl;
+  split(a, ah, al);
+  split(b, bh, bl);
+  e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+#endif
+}
+
+/// A double-word number hi + lo with |lo| <= ulp(hi) / 2 (normalised by a
+/// final FastTwoSum in every operation below).
+struct DW {
+  double hi;
+  double lo;
+};
+
+/// x + y with an error bounded by the operands' magnitudes (the "sloppy"
+/// double-word addition, with a TwoSum at the end so that no ordering of
+/// the final pair is assumed): (sh, sl) = TwoSum(xh, yh) is exact;
+/// v = fl(xl + yl) and w = fl(sl + v) round once each; (zh, zl) =
+/// TwoSum(sh, w) is exact. So z - (x + y) = (xl + yl) d1 + (sl + v) d2 with
+/// |d1|, |d2| <= u, and with |xl| <= u |xh|, |yl| <= u |yh|, |sl| <= u |sh|,
+/// |sh| <= (1 + u)(|xh| + |yh|):
+///   |z - (x + y)| <= 3 u^2 (1 + u) (|xh| + |yh|) <= kDwAddRel (|xh| + |yh|).
+/// Additions of doubles are exact in the subnormal range: no underflow
+/// term. (Not accurate relative to a cancelling sum, which the running
+/// bound of src/adaptive.cpp does not need: it is 2^-104 of the operands,
+/// where a double filter has 2^-47.)
+inline DW dwAdd(DW x, DW y) {
+  double sh, sl;
+  twoSum(x.hi, y.hi, sh, sl);
+  const double v = x.lo + y.lo;
+  const double w = sl + v;
+  DW z;
+  twoSum(sh, w, z.hi, z.lo);
+  return z;
+}
+inline constexpr double kDwAddRel = 0x1p-104;  // 4 u^2
+
+inline DW dwNeg(DW x) { return {-x.hi, -x.lo}; }
+
+/// x * y: Algorithm 10 (DWTimesDW1; relative error <= 7u^2 of the exact
+/// product x y, without underflow). Its TwoProduct is exact with or without
+/// FMA, and nothing else in it could be fused (-ffp-contract=off), so the
+/// result is the same bits on every platform.
+inline DW dwMul(DW x, DW y) {
+  double ch, cl1;
+  twoProd(x.hi, y.hi, ch, cl1);
+  const double tl1 = x.hi * y.lo;
+  const double tl2 = x.lo * y.hi;
+  const double cl2 = tl1 + tl2;
+  const double cl3 = cl1 + cl2;
+  DW z;
+  twoSum(ch, cl3, z.hi, z.lo);
+  return z;
+}
+
+/// The relative error bound of dwMul used by the running bound of
+/// src/adaptive.cpp: 2^-103 = 8u^2 covers 7u^2 with room for the (1 + u)
+/// between |x y| and |z.hi|.
+inline constexpr double kDwRel = 0x1p-103;
+/// The absolute allowance per double-word operation for underflow: each of
+/// its at most 12 IEEE operations loses at most 2^-1075 absolutely when its
+/// result is subnormal (and a TwoProduct's error term may then be inexact
+/// by as much), and nothing in the short straight-line sequences amplifies
+/// such a loss by more than a factor 4: 2^-1060 covers 2^-1075 * 12 * 4
+/// with ample room. Sums of doubles are exact in the subnormal range.
+inline constexpr double kDwTiny = 0x1p-1060;
+
+}  // namespace tricyl::detail
