@@ -180,9 +180,16 @@ inline TriCase uniformCase(Rng& g) {
   const Cylinder<double> cyl{g.logUniform(0.1, 2), g.logUniform(0.1, 4)};
   const V c = {g.uniform(-1, 1), g.uniform(-1, 1), g.uniform(-1, 1)};
   const double size = g.logUniform(0.05, 2);
-  return posed(cyl, randomPose(g, 1), add(c, scale(randomUnit(g), size)),
-               add(c, scale(randomUnit(g), size)),
-               add(c, scale(randomUnit(g), size)));
+  // Every draw in its own statement: the arguments of one call are
+  // evaluated in an unspecified order (GCC right to left, clang left to
+  // right), so draws inside a call's arguments made the families depend on
+  // the compiler (issue 20). The order kept is the one GCC used.
+  const V uc = randomUnit(g);
+  const V ub = randomUnit(g);
+  const V ua = randomUnit(g);
+  const Pose<double> pose = randomPose(g, 1);
+  return posed(cyl, pose, add(c, scale(ua, size)), add(c, scale(ub, size)),
+               add(c, scale(uc, size)));
 }
 
 /// Relative offsets for the near family: 1e-1 .. 1e-15, or 1..4 ulps.
@@ -213,25 +220,34 @@ inline TriCase nearCase(Rng& g, double r, double lz, const Pose<double>& pose,
   };
   const Cylinder<double> cyl{r, lz};
   TriCase k;
+  // Every draw in its own statement: the arguments of one call are
+  // evaluated in an unspecified order (GCC right to left, clang left to
+  // right), so draws inside a call's arguments made the families depend on
+  // the compiler (issue 20). The order kept is the one GCC used: c2, c1, b2, b1
+  // for out(v, .., b1, b2) and out(v, .., c1, c2).
+  auto draw = [&g](double lo, double hi) { return g.uniform(lo, hi); };
   switch (g.integer(7)) {
     case 0: {  // vertex on the side
       const V v = add(scale(rad, r * s), {0, 0, zin});
-      k = posed(cyl, pose, v, out(v, 1, g.uniform(-1, 1), g.uniform(-1, 1)),
-                out(v, 1, g.uniform(-1, 1), g.uniform(-1, 1)));
+      const double c2 = draw(-1, 1), c1 = draw(-1, 1), b2 = draw(-1, 1),
+                   b1 = draw(-1, 1);
+      k = posed(cyl, pose, v, out(v, 1, b1, b2), out(v, 1, c1, c2));
       k.feature = "vertex_side";
       break;
     }
     case 1: {  // vertex on a cap
       const V v = add(scale(rad, r * g.uniform(0, 0.9)), scale(up, h * s));
-      k = posed(cyl, pose, v, out(v, g.uniform(-1, 1), g.uniform(-1, 1), 1),
-                out(v, g.uniform(-1, 1), g.uniform(-1, 1), 1));
+      const double c2 = draw(-1, 1), c1 = draw(-1, 1), b2 = draw(-1, 1),
+                   b1 = draw(-1, 1);
+      k = posed(cyl, pose, v, out(v, b1, b2, 1), out(v, c1, c2, 1));
       k.feature = "vertex_cap";
       break;
     }
     case 2: {  // vertex on the rim
       const V v = add(scale(rad, r * s), scale(up, h * s));
-      k = posed(cyl, pose, v, out(v, 1, g.uniform(-1, 1), g.uniform(0, 1)),
-                out(v, g.uniform(0, 1), g.uniform(-1, 1), 1));
+      const double c2 = draw(-1, 1), c1 = draw(0, 1), b2 = draw(0, 1),
+                   b1 = draw(-1, 1);
+      k = posed(cyl, pose, v, out(v, 1, b1, b2), out(v, c1, c2, 1));
       k.feature = "vertex_rim";
       break;
     }
@@ -240,24 +256,27 @@ inline TriCase nearCase(Rng& g, double r, double lz, const Pose<double>& pose,
       const double a = g.uniform(0.1, 1) * len, b = g.uniform(0.1, 1) * len;
       const double tilt = g.uniform(-0.5, 0.5);
       const V e = {tan.x, tan.y, tilt};
+      const double c2 = draw(-1, 1), c1 = draw(-1, 1);
       k = posed(cyl, pose, add(m, scale(e, a)), add(m, scale(e, -b)),
-                out(m, 1, g.uniform(-1, 1), g.uniform(-1, 1)));
+                out(m, 1, c1, c2));
       k.feature = "edge_side";
       break;
     }
     case 4: {  // edge lying on a cap plane, across the disk
       const V m = add(scale(rad, r * g.uniform(0, 0.9)), scale(up, h * s));
       const double a = g.uniform(0.1, 1) * len, b = g.uniform(0.1, 1) * len;
+      const double c2 = draw(-1, 1), c1 = draw(-1, 1);
       k = posed(cyl, pose, add(m, scale(tan, a)), add(m, scale(tan, -b)),
-                out(m, g.uniform(-1, 1), g.uniform(-1, 1), 1));
+                out(m, c1, c2, 1));
       k.feature = "edge_cap";
       break;
     }
     case 5: {  // edge tangent to the rim circle, in the cap plane
       const V m = add(scale(rad, r * s), scale(up, h * s));
       const double a = g.uniform(0.1, 1) * len, b = g.uniform(0.1, 1) * len;
+      const double c2 = draw(-1, 1), c1 = draw(0, 1);
       k = posed(cyl, pose, add(m, scale(tan, a)), add(m, scale(tan, -b)),
-                out(m, g.uniform(0, 1), g.uniform(-1, 1), 1));
+                out(m, c1, c2, 1));
       k.feature = "edge_rim";
       break;
     }
@@ -289,9 +308,12 @@ inline TriCase thinCase(Rng& g) {
                          g.uniform(-3, 3) * lz};
   const double size = g.coin() ? scale_thin * g.logUniform(0.5, 20)
                                : scale_long * g.logUniform(1e-3, 1);
-  TriCase k = posed({r, lz}, pose, add(c, scale(randomUnit(g), size)),
-                    add(c, scale(randomUnit(g), size)),
-                    add(c, scale(randomUnit(g), size)));
+  // One draw per statement (see uniformCase), in GCC's order.
+  const V uc = randomUnit(g);
+  const V ub = randomUnit(g);
+  const V ua = randomUnit(g);
+  TriCase k = posed({r, lz}, pose, add(c, scale(ua, size)),
+                    add(c, scale(ub, size)), add(c, scale(uc, size)));
   k.feature = needle ? "needle" : "disc";
   return k;
 }
@@ -350,26 +372,34 @@ inline TriCase alignedCase(Rng& g) {
   auto d = [&g](int n) { return double(g.integer(2 * n + 1) - n) * 0.125; };
   const Cylinder<double> cyl{r, lz};
   TriCase k;
+  // One draw per statement (see uniformCase), in GCC's order: the third
+  // vertex first, each vertex's coordinates in order.
   switch (g.integer(5)) {
     case 0: {  // in a cap plane (or just off it)
       const double z = (g.coin() ? h : -h) + (g.integer(3) - 1) * 0.0625;
-      k = posed(cyl, pose, {d(16), d(16), z}, {d(16), d(16), z},
-                {d(16), d(16), z});
+      const V c = {d(16), d(16), z};
+      const V b = {d(16), d(16), z};
+      const V a = {d(16), d(16), z};
+      k = posed(cyl, pose, a, b, c);
       k.feature = "cap_plane";
       break;
     }
     case 1: {  // parallel to the axis: a vertical triangle x = const
       const double x = (g.integer(3) - 1) * 0.0625 + (g.coin() ? r : -r);
-      k = posed(cyl, pose, {x, d(16), d(24)}, {x, d(16), d(24)},
-                {x, d(16), d(24)});
+      const V c = {x, d(16), d(24)};
+      const V b = {x, d(16), d(24)};
+      const V a = {x, d(16), d(24)};
+      k = posed(cyl, pose, a, b, c);
       k.feature = "parallel_axis";
       break;
     }
     case 2: {  // plane containing the axis: y = m x
       const double m = d(8);
       const double x0 = d(16), x1 = d(16), x2 = d(16);
-      k = posed(cyl, pose, {x0, m * x0, d(24)}, {x1, m * x1, d(24)},
-                {x2, m * x2, d(24)});
+      const V c = {x2, m * x2, d(24)};
+      const V b = {x1, m * x1, d(24)};
+      const V a = {x0, m * x0, d(24)};
+      k = posed(cyl, pose, a, b, c);
       k.feature = "contains_axis";
       break;
     }
@@ -383,8 +413,10 @@ inline TriCase alignedCase(Rng& g) {
       break;
     }
     default: {  // axis-aligned box-like triangles on the grid
-      k = posed(cyl, pose, {d(16), d(16), d(24)}, {d(16), d(16), d(24)},
-                {d(16), d(16), d(24)});
+      const V c = {d(16), d(16), d(24)};
+      const V b = {d(16), d(16), d(24)};
+      const V a = {d(16), d(16), d(24)};
+      k = posed(cyl, pose, a, b, c);
       k.feature = "grid";
       break;
     }
@@ -411,11 +443,16 @@ inline TriCase generate(Family family, std::uint64_t seed,
       return internal::nearCase(g, r, lz, pose, internal::nearDelta(g));
     }
     case Family::kFar: {
-      TriCase k = g.coin()
-                      ? internal::uniformCase(g)
-                      : internal::nearCase(
-                            g, g.logUniform(0.1, 2), g.logUniform(0.1, 4),
-                            internal::randomPose(g, 1), internal::nearDelta(g));
+      TriCase k;
+      if (g.coin()) {
+        k = internal::uniformCase(g);
+      } else {  // one draw per statement (see uniformCase), GCC's order
+        const double delta = internal::nearDelta(g);
+        const Pose<double> pose = internal::randomPose(g, 1);
+        const double lz = g.logUniform(0.1, 4);
+        const double r = g.logUniform(0.1, 2);
+        k = internal::nearCase(g, r, lz, pose, delta);
+      }
       const double mag = g.logUniform(1e3, 1e9);
       const internal::V T = internal::scale(internal::randomUnit(g), mag);
       k.pose.t = internal::add(k.pose.t, T);

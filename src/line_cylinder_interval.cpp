@@ -26,10 +26,11 @@
 // no separate side/cap test, hence no crack at the rims.
 // Emptiness is NOT read from these numbers: it is the exact Boolean.
 //
-// ERROR BOUND. Stage 1 evaluates every candidate with the running error
-// bound of ExtendedKernel (src/filter.h), first in double (with an explicit
-// underflow allowance, see Rd), then, if that is not accurate enough, in
-// long double (filter.h's Fl), extended here by division and square root
+// ERROR BOUND. Stage 1 evaluates every candidate with a running error
+// bound, first from coefficients in double (filter.h's Rd, with an explicit
+// underflow allowance), then, if that is not accurate enough, from the same
+// coefficients in double-word (coefsDoubleWord), extended here by division
+// and square root
 // (derivations at flDiv and flSqrt), which gives each candidate an
 // enclosure [v - e, v + e] of its exact value; its ends are computed with
 // a widened e (see `ends`) so that their own rounding cannot shrink it.
@@ -71,16 +72,17 @@ namespace tricyl::detail {
 namespace {
 
 // ---------------------------------------------------------------------------
-// Stage 1: running error bounds, double then long double.
+// Stage 1: running error bounds, coefficients in double then double-word.
 
-// The running error bound in plain double is filter.h's Rd
-// (RunningDoubleKernel): ExtendedKernel's rules with u = 2^-53, plus an
-// absolute 2^-1074 on every product (here also on every quotient) for a
-// possible underflow, for a cheaper first attempt. The long double stage
-// (filter.h's Fl, covered there by the range gate) runs only when this one
-// cannot reach the accuracy.
+// The running error bound is filter.h's Rd (RunningDoubleKernel): every
+// product (here also every quotient) adds the smallest subnormal for a
+// possible underflow. No argument below depends on long double (issue 20:
+// with a long double of double width and no underflow allowance, an
+// underflowed Dy * Dy was taken for a certified A = 0). The only values
+// taken as certified zeros are local coordinates with e = 0, which
+// toLocalRunning gives only when every term has an exact zero factor.
 
-/// Per running type (Fl, Rd): u', the absolute underflow allowance of a
+/// Per running type (Rd): u', the absolute underflow allowance of a
 /// product or quotient, and the floating type (filter.h's RunningTraits).
 template <class N>
 using Run = RunningTraits<decltype(N::v)>;
@@ -178,7 +180,7 @@ struct Extremum {
 
 constexpr double kAccept = 0x1p-49;
 
-/// Rounds an end to double; a long double end beyond the double range (a
+/// Rounds an end to double; an end beyond the double range (a
 /// line's parameter can reach 2^1100 with inputs inside the range gate)
 /// becomes the infinity of its sign explicitly.
 template <class T>
@@ -435,7 +437,7 @@ Interval<double> linearInterval(const LinearInputs& in, bool segment) {
     iv = intervalExact(in, segment);
   // No arithmetic on the ends here: they may be infinite (a line's), and a
   // compiler may evaluate a guarded operation speculatively. Stage 1 has
-  // resolved a crossing of its ends (intervalRunning); stage 2 cannot cross
+  // resolved a crossing of its ends (intervalFrom); stage 2 cannot cross
   // (truncation to double is monotone). Comparisons and min/max with an
   // infinity raise nothing.
   if (segment) {
