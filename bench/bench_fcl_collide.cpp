@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // End-to-end collide of a cylinder against env.obj and bunny.obj
 // (BVHModel<OBBRSS>), in the same binary, first hit (num_max_contacts = 1)
 // and exhaustive, contact data off and on; and paired rows on grazing

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The batch mesh scan against the scalar kernel and FCL, in one
 // binary. Counter `ns_per_tri`: wall time per triangle of the mesh.
 //

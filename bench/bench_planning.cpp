@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // bench_planning (issue 22): tricyl::collide against stock fcl::collide
 // inside a real planner, OMPL's RRTConnect, on the scenes of
 // examples/ompl_planner (env.obj, bunny.obj).

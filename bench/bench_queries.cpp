@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The cylinder query family against the straightforward formulas
 // of the sources (seeds/001 pseudo-code, Freesteel's slab-and-quadratic
 // interval for the segment and the line, and Freesteel's three-surfaces

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Scalar triangle-cylinder Boolean: tricyl (exact, double and float) against
 // FCL 0.7's GJKSolver_libccd<double>::shapeTriangleIntersect with
 // collision_tolerance = 1e-6 (the value fcl::collide sets), on the same

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # bench_fcl_collide: end-to-end collide, tricyl::Solver vs the stock
 # GJKSolver_libccd (included from bench/CMakeLists.txt when FCL was found).
 if(TRICYL_HAVE_FCL AND TARGET tricyl_fcl)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shared by tests/ompl_planner_test.cpp and bench/bench_planning.cpp
 // (issue 22): the scenes of examples/ompl_planner as the exact oracle of
 // compare/ sees them, near-surface robot poses, and a dense re-check of a

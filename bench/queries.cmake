@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # bench_queries: the cylinder query family (issue 5) against the
 # straightforward formulas of the sources in double. Included from
 # bench/CMakeLists.txt.

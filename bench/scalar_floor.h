@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The floor of the scalar triangle-cylinder design (the 20x target;
 // docs/performance.md): truncated versions of the world-pose entry point's
 // first stage, each adding one piece of work that an exact answer needs,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // tricyl-stage-costs: what each stage of the triangle-cylinder Boolean
 // costs, family by family, as decideIntersect sees it, beside FCL's MPR
 // (GJKSolver_libccd, collision_tolerance 1e-6) on the same cases in the

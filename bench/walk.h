@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The order in which a benchmark visits its cases (shared by the suites).
 #pragma once
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # FindGMP: GMP and its C++ interface gmpxx (Debian: libgmp-dev).
 # Defines GMP::gmp and GMP::gmpxx imported targets and GMP_FOUND.
 find_path(GMP_INCLUDE_DIR NAMES gmpxx.h gmp.h)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # tricyl_set_warnings(<target>): the project's warning set, and the
 # floating-point flags every exact predicate relies on.
 function(tricyl_set_warnings target)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Cross-compiling tricyl's core (kernel and tests, no FCL) for AArch64 Linux
 # with Debian's g++-aarch64-linux-gnu and the arm64 multiarch -dev packages
 # (libgmp-dev:arm64, libgtest-dev:arm64; scripts/deps.sh --arm64), run under

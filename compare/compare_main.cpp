@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // tricyl-compare: tricyl against FCL's GJK/libccd paths, settled by an exact
 // oracle. See compare/README.md.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Names of small enums from a table indexed by the enumerator's value,
 // shared by the scene headers (scenes.h, query_scenes.h).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // tricyl-compare: the pieces shared by the executable and its tests.
 //
 // A run is a list of CaseSets (a scene family, a mesh family, or one point

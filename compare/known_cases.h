@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Bit-exact cases kept in every default run of tricyl-compare and in the
 // tests: inputs on which a method is known to fail in a way the seeded
 // families may not show. Header-only, no FCL.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The `mesh` family of tricyl-compare: a cylinder against a triangle mesh.
 // Header-only, no FCL: built-in procedural meshes, OBJ files as triangle
 // soups (support/obj_mesh.h: link tricyl_obj_mesh), the seeded

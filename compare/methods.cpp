@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The methods tricyl-compare runs, the oracle glue and the case text format.
 #include <fcl/fcl.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The exact reference oracle for triangle vs cylinder: GMP rationals,
 // written for clarity, not speed, and deliberately NOT sharing any code or
 // formulation with the kernel (src/triangle_cylinder_impl.h):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Exact GMP oracles for the cylinder query family: point in
 // cylinder, point in cone, sphere vs cylinder, segment and line vs cylinder
 // and their entry/exit intervals. Written for clarity, with mpq_class, and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Seeded case generators for the cylinder query family: point in
 // cylinder, point in cone, sphere vs cylinder, segment and line vs cylinder.
 // Shared

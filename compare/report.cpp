@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Output files of tricyl-compare. Every number in report.md comes from the
 // same rows as results.csv / results.json.
 #include "report.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Writing the results of a tricyl-compare run: report.md, results.csv,
 // stability.csv, results.json, hangs.txt and the gnuplot figures.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Forked workers with a per-query time limit.
 //
 // Why processes: libccd's MPR loops have no iteration cap, so an

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The evaluation loop of tricyl-compare: forked workers, a per-query time
 // limit, and the aggregation of every answer into statistics.
 #pragma once

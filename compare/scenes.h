@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Seeded triangle/cylinder scene generators, shared by the tests, the
 // benchmarks and tricyl-compare. Header-only, no FCL.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Stability sweeps of tricyl-compare: near-touching configurations from the
 // `near` generator (scenes.h) with one quantity swept and the rest drawn as
 // in that family. Header-only, no FCL. Each sweep point is a CaseSet.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Property checking shared by the fuzz targets: failure reporting (the case
 // in hex floats, then abort, which libFuzzer records as a crash input), the
 // floating-point trap scope and a few exact helpers.

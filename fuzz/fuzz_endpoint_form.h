@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Properties of the endpoint-form helpers (include/tricyl/endpoint_form.h)
 // on the shapes the query targets build with them (Form::kAxis and
 // Form::kEndpoints of fuzz_input.h). What the header states, checked as

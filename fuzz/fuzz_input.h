@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Decoding raw fuzzer bytes into query inputs (shared by the fuzz targets).
 //
 // Every scalar is produced by a one-byte tag followed by its payload, so the

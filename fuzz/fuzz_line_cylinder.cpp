@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: tricyl::intersect / tryIntersect / decideIntersect for
 // an unbounded line and a cylinder and the entry/exit interval tricyl::clip
 // / tryClip along the line (include/tricyl/line_cylinder.h), with the

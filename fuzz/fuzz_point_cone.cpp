@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: tricyl::contains / tryContains / decideContains for a
 // point in a cone (include/tricyl/point_cone.h), with the cone given
 // directly or built by coneFromApex (include/tricyl/endpoint_form.h), on

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: tricyl::contains / tryContains / decideContains for a
 // point in a cylinder (include/tricyl/point_cylinder.h), with the cylinder
 // given directly or built by cylinderFromAxis / cylinderFromEndpoints

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: tricyl::intersect / tryIntersect / decideIntersect for
 // a segment and a cylinder and the entry/exit interval tricyl::clip /
 // tryClip (include/tricyl/segment_cylinder.h), with the cylinder given

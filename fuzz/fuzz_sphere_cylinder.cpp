@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: tricyl::intersect / tryIntersect / decideIntersect for
 // a sphere and a cylinder (include/tricyl/sphere_cylinder.h), with the
 // cylinder given directly or built by cylinderFromAxis /

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: tricyl::intersect / tryIntersect / decideIntersect
 // (include/tricyl/triangle_cylinder.h) on inputs decoded from raw bytes
 // (fuzz_input.h: full double or float bit patterns mixed with structured

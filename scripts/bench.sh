@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Runs every Google Benchmark suite of tricyl in one Release build and writes
 # bench/results/<machine>.json: one object per suite, each the suite's own
 # --benchmark_format=json output (context + benchmarks). See

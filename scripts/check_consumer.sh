@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs the build tree $1 to a temporary prefix, then, against it:
 #   1. a kernel-only consumer on a "machine without FCL": examples/consumer
 #      configured with -DCMAKE_DISABLE_FIND_PACKAGE_fcl=ON, so that

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Runs an example and compares its standard output with the expected file.
 # Usage: check_example.sh <expected.txt> <executable> [args...]
 # Exit 77 (ctest: skipped) when the example itself exits 77 (a missing

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The comparison harness from scratch: packages, Release build with
 # tricyl-compare, and a default run writing report/ (report.md, results.csv,
 # results.json, stability.csv, hangs.txt, worst_cases.txt, error_vs_time*.png,

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs the Debian packages tricyl builds, tests and compares with.
 # Idempotent: does nothing when they are all present. Needs root (or sudo).
 # Usage: bash scripts/deps.sh [--cross]

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Generates the API reference from the public headers' comments, with
 # README.md as the main page and docs/ as related pages (Doxyfile), into
 # <outdir>/html (default build/docs) and fails on any Doxygen warning

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Doxygen INPUT_FILTER for the public headers. Keeps the line count, so line
 # numbers in warnings stay right.
 # - In `///` comment lines, writes a template argument list such as

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Builds the libFuzzer targets with clang-14 (ASan + UBSan + coverage) in
 # $FUZZ_BUILD_DIR (default build/fuzz) and runs each for the given time on
 # its seed corpus.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Writes the seed corpus of the fuzz targets (fuzz/corpus/<query>/).
 
 Each seed uses the plainest encoding of fuzz/fuzz_input.h: a flags byte, then

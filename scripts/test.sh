@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The whole test suite from scratch: packages, then
 #   1. a Release build with everything (FCL solver, harness, benchmarks) and
 #      ctest (including a one-iteration smoke run of every benchmark, and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The escalation of one sign (src/adaptive.h): double-word with a running
 // error bound, then stack expansions, then GMP.
 #include "adaptive.h"

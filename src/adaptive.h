@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The adaptive kernel: escalate the PREDICATE, not the query.
 //
 // Every query of tricyl is written once over a kernel K (src/filter.h) and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Bounded-time contact data for an intersecting triangle/cylinder pair.
 // The contract, method and accuracy are in include/tricyl/fcl_contact.h.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The cylinder query family, each predicate written ONCE over a kernel K of
 // src/filter.h and decided by the same driver as the triangle kernel
 // (runStages, src/stages.h): FilterKernel (certified double), then, for a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Error-free transformations and double-word ("double-double") arithmetic:
 // the portable building blocks of the intermediate stage (src/adaptive.h)
 // and of the stack-resident exact stage (src/expansion.h). Every operation

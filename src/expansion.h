@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Exact arithmetic on the stack: Shewchuk's floating-point expansions with
 // a fixed capacity, for the exact stage of src/adaptive.h.
 //

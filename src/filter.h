@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The one filter-and-fallback mechanism behind every exact query in tricyl.
 //
 // A query is written ONCE as a template over a kernel K, using only +, -, *

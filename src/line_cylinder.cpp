@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Line vs cylinder: the exact Boolean (three stages of src/filter.h,
 // predicate lineCylinder<K> in src/cylinder_queries_impl.h) and the
 // entry/exit interval along the unbounded line (the segment's interval

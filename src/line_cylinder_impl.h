@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shared by the segment and the line queries (src/segment_cylinder.cpp,
 // src/line_cylinder.cpp): widened and validated inputs, and the entry/exit
 // interval (src/line_cylinder_interval.cpp). A segment is the line through

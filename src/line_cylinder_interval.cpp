@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The entry/exit interval of a segment or a line against the cylinder,
 // written once for both (src/line_cylinder_impl.h): a segment is the line
 // restricted to [0, 1], i.e. two more candidates, 0 for the lower end and 1

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Batch triangle-cylinder test (mesh_cylinder.h): a vectorised vertex pass,
 // a triangle pass over outcodes, and the scalar exact kernel for the rest.
 // The bounds are derived next to the code that relies on them; docs/batch.md

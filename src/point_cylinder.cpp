@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Point in cylinder: validate, then the three stages of src/filter.h.
 #include "tricyl/point_cylinder.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Segment vs cylinder: the exact Boolean (three stages of src/filter.h,
 // predicate segmentCylinder<K> in src/cylinder_queries_impl.h) and the
 // entry/exit interval. The interval is the line's (a segment is the line

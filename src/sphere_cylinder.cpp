@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Sphere vs cylinder: validate, then the three stages of src/filter.h.
 #include "tricyl/sphere_cylinder.h"
 

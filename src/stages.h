@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The one stage driver of every exact query in tricyl (the triangle, the
 // cylinder queries, the degenerate-triangle hand-off): a query is a
 // callable pred(KernelTag<K>{}, &early) -> Tri written once over a kernel

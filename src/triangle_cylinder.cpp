@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Dispatch for the triangle-cylinder test: validate, filter, fall back.
 #include "tricyl/triangle_cylinder.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The triangle-cylinder test, written once over a kernel K (src/filter.h).
 //
 // Frame: the cylinder frame, with every z coordinate DOUBLED (Z = 2 z, an

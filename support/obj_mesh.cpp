@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "obj_mesh.h"
 
 #include <tiny_obj_loader.h>

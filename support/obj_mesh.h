@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The one Wavefront OBJ reader of the repository's tools (tricyl-compare,
 // the tests, the benchmarks and the examples), on tinyobjloader. Not part of
 // tricyl's API or install.

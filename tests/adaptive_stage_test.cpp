@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The adaptive stages (src/adaptive.h, src/eft.h, src/expansion.h;
 // docs/exactness.md, section 4): the exact expansion arithmetic against GMP,
 // the double-word running bound against the exact value, the tape of the

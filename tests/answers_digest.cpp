@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // tricyl-answers-digest: the answers of a fixed set of queries, as one hash
 // (issue 20: the same answers on every compiler and platform). Every query
 // kind (triangle in double and in float, point in cylinder, point in cone,

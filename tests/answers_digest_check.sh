@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The ctest answers_digest (issue 20): tricyl-answers-digest's digests equal
 # the checked-in ones in tests/answers_digest.expected.
 #   answers            every query's answer (52,500 queries, all kinds): one

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Tests of the comparison harness (issue 4) and its time limit (issue 9):
 // the oracle on hand cases, the near generator's claimed clearance checked
 // exactly, the output files of a small end-to-end run, and the libccd hang

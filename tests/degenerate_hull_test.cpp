@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Degenerate triangles in a general pose (src/triangle_cylinder.cpp,
 // degenerateHull; docs/exactness.md, section 6). Three exactly collinear
 // vertices (a repeated vertex and a single point included) are decided as

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // fcl_adapters.h: every conversion is bit for bit, the converted values give
 // the answers tricyl::Solver / tricyl::collide give on FCL's objects, and the
 // batch scan over a BvhMeshView of a BVHModel gives the kernel's answer for

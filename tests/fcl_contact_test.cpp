@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // tricyl::estimateContact (fcl_contact.h) on its own: the contract on
 // random and degenerate inputs (same Boolean as tryIntersect, outputs
 // untouched when disjoint, point in both sets, unit normal, depth > 0, the

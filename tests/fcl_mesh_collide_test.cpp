@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // tricyl's own BVHModel/Cylinder traversal (fcl_mesh_cylinder.h), which
 // tricyl::collide runs for mesh/cylinder pairs: the same answers as
 // fcl::collide with tricyl::Solver (FCL's traversal, exact leaves), contact

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // tricyl::Solver<S>, tricyl::collide<S> and tricyl::DefaultCollisionFunction
 // for S = float and S = double: every BV type, both argument orders, against
 // the exact oracle on the very world-frame triangles (in S) that FCL hands

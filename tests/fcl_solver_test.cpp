@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // tricyl::Solver inside FCL: every BV type, both call orders, contact
 // on/off, num_max_contacts 1 and large, against the exact oracle triangle by
 // triangle; contact conventions on scenes with known answers; other shape

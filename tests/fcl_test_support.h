@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shared by the FCL solver tests: meshes (OBJ files and procedural), seeded
 // scene generation, the exact oracle's colliding set, and collide helpers.
 #pragma once

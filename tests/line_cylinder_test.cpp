@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Line vs cylinder: the exact Boolean and the entry/exit interval along the
 // unbounded line p (1 - s) + q s. Hand cases with known answers (typed over
 // float and double): parallel to the axis inside / outside / on the side,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The batch query (mesh_cylinder.h, issue 6). Its contract is that every
 // per-triangle answer equals tricyl::tryIntersect's, whatever the options,
 // so the tests compare against the scalar kernel triangle by triangle (the

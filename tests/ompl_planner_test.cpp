@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // OMPL planning with tricyl (issue 22), judged by the exact oracle of
 // compare/ (GMP, compare/oracle.h), never by tricyl itself:
 // - a seeded RRTConnect plan through env.obj with the example's validity

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Point in cone (FCL's cone: apex at +lz/2, base disk of radius r at
 // -lz/2): hand cases for every region and for lz = 0 and r = 0 (typed over
 // float and double), the sources' apex form, invalid input, and seeded

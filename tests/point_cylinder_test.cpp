@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Point in cylinder: hand cases for every region (typed over float and
 // double), the endpoint form of the sources, invalid input, and seeded
 // agreement with the exact oracle over the four families.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Same answers on every compiler and platform (issue 20): regressions for
 // the four defects found by building tricyl with clang-14, with a long
 // double no wider than double (-mlong-double-64), and for AArch64. Each

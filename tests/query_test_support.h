@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shared driver for the random oracle-agreement tests of the cylinder query
 // family (tests/{point_cylinder,point_cone,sphere_cylinder,segment_cylinder}
 // _test.cpp): seeded cases from compare/query_scenes.h, checked against the

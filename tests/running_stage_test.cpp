@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The running error bounds of the local frame: the double running bound
 // (src/filter.h's Rd, the line interval's first stage; toLocalRunning,
 // src/triangle_cylinder_impl.h) and the double-word coordinates of the

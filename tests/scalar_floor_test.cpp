@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The floor benchmark's truncated first stages (bench/scalar_floor.h,
 // BM_Floor) must do the kernel's real work, or the floor they measure would
 // be a floor of something cheaper: every answer a certified level (3, 4, 5)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Segment vs cylinder: the exact Boolean and the entry/exit interval.
 // Hand cases for every region (typed over float and double), the source
 // pseudo-code's failing cases as regressions, lines parallel/perpendicular

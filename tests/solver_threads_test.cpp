@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Thread safety (issue 7): one shared tricyl::Solver<double> and the kernel
 // entry points hammered from 4 threads over shared meshes. Every thread's
 // results must equal a single-threaded reference bit for bit (Boolean,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Sphere vs cylinder: hand cases for every region of the source's case
 // split (typed over float and double), the meaning of the radius for a
 // non-orthonormal R, invalid input, and seeded agreement with the exact

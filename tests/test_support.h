@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shared test support: seeded randomness (TRICYL_SEED), FP traps, helpers.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Hand-built triangle/cylinder cases with known answers, one or more per
 // case of Eberly's Figure 1 (0a .. 5), both sides of each, the published
 // bugs, and the degenerate inputs. Each case is run for float and double,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Seeded random and adversarial agreement with the exact oracle, and the
 // invariances of the contract, over every scene family of compare/scenes.h.
 // Case counts: 1e5 per family (x TRICYL_CASES_SCALE). Zero disagreements.

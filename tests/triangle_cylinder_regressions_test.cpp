@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Regressions with the literal inputs and a paragraph on the mechanism, and
 // the documented behaviour on hostile input.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Example 3: a broadphase scene checked the way a motion planner's state
 // validity checker runs it: the environment (meshes) in one
 // DynamicAABBTreeCollisionManager, the robot's links (cylinders) in

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shared by the FCL examples: OBJ files (through the repository's reader), a
 // procedural mesh
 // and the fcl::BVHModel they become. Not part of tricyl's API.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // tricyl::fcl through the installed package: tricyl::collide on a cylinder
 // and a two-triangle mesh, then the same pair in a broadphase manager with
 // tricyl's callback.

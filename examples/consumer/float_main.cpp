@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // tricyl::fcl for float through the installed package: tricyl::collide on
 // float objects (a cylinder over a two-triangle floor, a BVHModel<OBBRSSf>),
 // the same pair through fcl::collide with a tricyl::Solver<float>, and a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The core alone (tricyl::tricyl: GMP, no FCL) through the installed
 // package: the kernel on a few triangles, then contact data for the
 // intersecting ones (estimateContact, fcl_contact.h, which needs no FCL).

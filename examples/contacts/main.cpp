@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Example 4: contacts on request. The Boolean never depends on whether
 // contacts are asked for; with request.enable_contact, tricyl::collide fills
 // fcl::Contact the way FCL does, with tricyl::estimateContact's point,

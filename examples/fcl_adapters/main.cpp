@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Example: tricyl on FCL's own objects, converting nothing by hand
 // (include/tricyl/fcl_adapters.h).
 //   1. An fcl::Cylinder at an fcl::Transform3 against an fcl::TriangleP:

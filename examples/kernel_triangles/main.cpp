@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Example 1: the exact kernel alone (tricyl::tricyl, no FCL).
 //
 // A cylinder of radius 0.5 and length 4 (FCL's convention: centred, axis

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Example 2: a cylinder against a triangle mesh through tricyl::collide, the
 // drop-in replacement for fcl::collide.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Example 5: a cylinder robot planned through a triangle mesh with OMPL
 // (SimpleSetup + RRTConnect), every state checked by tricyl::collide.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The pieces an OMPL planner needs to plan a rigid cylinder through a
 // triangle mesh with tricyl (issue 22): the environment as FCL holds it, a
 // StateValidityChecker that calls tricyl::collide (directly, or through

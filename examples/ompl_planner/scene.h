@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The planning problems of the OMPL example, its test and the planning
 // benchmark (issue 22): a rigid cylinder, sized from the mesh's bounding-box
 // diagonal, between a start and a goal chosen in the mesh's own coordinates.

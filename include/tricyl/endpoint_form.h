@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /// @file
 /// The endpoint form of the sources, converted to tricyl's Pose + shape.
 ///

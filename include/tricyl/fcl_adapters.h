@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /// @file
 /// Adapters from FCL 0.7's types to tricyl's, so that an FCL user converts
 /// nothing by hand. Header-only; needs FCL's headers (CMake target

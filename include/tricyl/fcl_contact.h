@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /// @file
 /// Contact data for an intersecting triangle/cylinder pair, in bounded time,
 /// in the convention FCL's libccd solver uses for shape/triangle queries.

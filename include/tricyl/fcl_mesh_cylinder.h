@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /// @file
 /// tricyl's own traversal of an FCL BVHModel against a Cylinder: what
 /// tricyl::collide runs for a mesh/cylinder pair instead of FCL's traversal

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /// @file
 /// tricyl::Solver: FCL 0.7's libccd narrow phase with the exact
 /// triangle/cylinder test in place of libccd's MPR for that pair, and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /// @file
 /// Line vs finite solid cylinder: exact Boolean, and the entry/exit interval
 /// along the unbounded line.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /// @file
 /// Many triangles vs one finite solid cylinder: the batch form of
 /// triangle_cylinder.h, for planners that test a cylinder against a mesh.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /// @file
 /// Sphere vs finite solid cylinder: exact Boolean.
 ///

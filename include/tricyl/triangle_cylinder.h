@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /// @file
 /// Triangle vs finite solid cylinder: exact Boolean test-intersection.
 ///

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /// @file
 /// Umbrella header: every core query of tricyl (no FCL, libccd or Eigen).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /// @file
 /// tricyl: plain aggregate types shared by every query.
 ///

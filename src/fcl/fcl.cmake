@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # tricyl::fcl: the FCL 0.7 narrow-phase solver (include/tricyl/fcl_solver.h).
 # Included from src/CMakeLists.txt when FCL was found (TRICYL_HAVE_FCL).
 # fcl_solver.cpp and fcl_solver_float.cpp hold FCL's collision/distance

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // tricyl::Solver<float>'s members (fcl_solver_impl.h) and the ONE place
 // where FCL's collision and distance matrices are instantiated for it, with
 // tricyl::collide<float> (FCL's own float collide, which that calls for the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // tricyl::Solver<S>'s members, for any S (fcl_solver.h). Included by the two
 // files that instantiate them: fcl_solver.cpp (double) and
 // fcl_solver_float.cpp (float), each with FCL's collision and distance

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // FCL's own fcl::collide(..., request, result) for float, which
 // tricyl::collide<float> calls for the pairs it does not answer (libfcl.so
 // instantiates only double). It instantiates FCL's libccd and

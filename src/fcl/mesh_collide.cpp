@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // tricyl's BVHModel/Cylinder traversal (fcl_mesh_cylinder.h): a certified
 // node test over the model's own tree, then the scalar kernel on the leaves.
 #include <fcl/geometry/bvh/BVH_model.h>

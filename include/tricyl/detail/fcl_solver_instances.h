@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The explicit instantiations behind tricyl::Solver<S> and tricyl::collide
 // (fcl_solver.h, Compile time), written once for both uses:
 //   TRICYL_FCL_SOLVER_INSTANCES(extern template, S)  in fcl_solver.h, and
