@@ -26,8 +26,7 @@
 #include "walk.h"
 
 #ifdef TRICYL_BENCH_WITH_FCL
-#include <fcl/geometry/shape/cylinder.h>
-#include <fcl/narrowphase/detail/gjk_solver_libccd.h>
+#include "fcl_cases.h"
 #endif
 
 namespace {
@@ -109,30 +108,13 @@ int main(int argc, char** argv) {
     double fcl_mean = 0;
 #ifdef TRICYL_BENCH_WITH_FCL
     {
-      std::vector<fcl::Cylinderd> cyl;
-      std::vector<fcl::Transform3d> tf;
-      for (const TriCase& c : v) {
-        fcl::Transform3d t = fcl::Transform3d::Identity();
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) t.linear()(i, j) = c.pose.R[i][j];
-        t.translation() = fcl::Vector3d(c.pose.t.x, c.pose.t.y, c.pose.t.z);
-        cyl.emplace_back(c.cyl.radius, c.cyl.lz);
-        tf.push_back(t);
-      }
+      const tricyl::bench::FclCases fc(v);
       fcl::detail::GJKSolver_libccd<double> solver;
       solver.collision_tolerance = 1e-6;
       Walk w(v.size());
       const int fcl_passes = std::max(1, passes / 4);
       const auto f0 = Clock::now();
-      for (int p = 0; p < fcl_passes; ++p)
-        for (std::size_t n = 0; n < v.size(); ++n) {
-          const std::size_t i = w.next();
-          const TriCase& c = v[i];
-          hits += solver.shapeTriangleIntersect(
-              cyl[i], tf[i], {c.tri.a.x, c.tri.a.y, c.tri.a.z},
-              {c.tri.b.x, c.tri.b.y, c.tri.b.z},
-              {c.tri.c.x, c.tri.c.y, c.tri.c.z}, nullptr, nullptr, nullptr);
-        }
+      for (int p = 0; p < fcl_passes; ++p) hits += fc.pass(solver, w);
       fcl_mean = ns(Clock::now() - f0) / double(fcl_passes * kCases);
     }
 #endif
