@@ -51,14 +51,14 @@ inline bool readObj(const std::string& path, Mesh* mesh) {
 /// mesh, and every answer about it, is the same on every machine.
 inline Mesh pyramidTerrain() {
   Mesh m;
-  const int n = 16;  // cells per side
+  constexpr int n = 16;  // cells per side (a constant: no capture needed)
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
       const double x = -2 + 0.25 * i, y = -2 + 0.25 * j;
       const double h = 1 - std::abs(x) - std::abs(y);
       m.vertices.emplace_back(x, y, h > 0 ? h : 0.0);
     }
-  auto at = [n](int i, int j) {
+  auto at = [](int i, int j) {
     return static_cast<std::size_t>(j * (n + 1) + i);
   };
   for (int j = 0; j < n; ++j)
