@@ -12,12 +12,19 @@
 //   --benchmark_report_aggregates_only
 #include <benchmark/benchmark.h>
 
+#ifdef TRICYL_BENCH_WITH_FCL
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/detail/primitive_shape_algorithm/sphere_cylinder.h>
+#endif
+
 #include <cmath>
 #include <vector>
 
 #include "query_scenes.h"
 #include "tricyl/line_cylinder.h"
 #include "tricyl/tricyl.h"
+#include "walk.h"
 
 namespace {
 
@@ -239,13 +246,12 @@ void setLabel(benchmark::State& st) {
   st.SetLabel(tricyl::qscenes::familyName(familyOf(st)));
 }
 
+// Cases in a new order on every pass (bench/walk.h): a fixed sequence of a
+// few thousand queries is one the branch predictor learns.
 template <class F>
 void run(benchmark::State& st, const F& f) {
-  int i = 0;
-  for (auto _ : st) {
-    benchmark::DoNotOptimize(f(i));
-    i = (i + 1) & (kCases - 1);
-  }
+  tricyl::bench::Walk walk(kCases);
+  for (auto _ : st) benchmark::DoNotOptimize(f(int(walk.next())));
   st.SetItemsProcessed(st.iterations());
   setLabel(st);
 }
@@ -278,6 +284,32 @@ void BM_Sphere_tricyl(benchmark::State& st) {
                              tricyl::Sphere<double>{cs[i].p, cs[i].rho});
   });
 }
+#ifdef TRICYL_BENCH_WITH_FCL
+// FCL 0.7's own sphere-cylinder test (primitive_shape_algorithm,
+// tolerance-based), the one fcl::collide uses for this pair.
+void BM_Sphere_fcl(benchmark::State& st) {
+  const auto cs = cases(Query::kSphere, familyOf(st));
+  std::vector<fcl::Sphered> sph;
+  std::vector<fcl::Cylinderd> cyl;
+  std::vector<fcl::Transform3d> X_FS, X_FC;
+  for (const QueryCase& c : cs) {
+    sph.emplace_back(c.rho);
+    cyl.emplace_back(c.cyl.radius, c.cyl.lz);
+    fcl::Transform3d s = fcl::Transform3d::Identity();
+    s.translation() = fcl::Vector3d(c.p.x, c.p.y, c.p.z);
+    X_FS.push_back(s);
+    fcl::Transform3d t = fcl::Transform3d::Identity();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) t.linear()(i, j) = c.pose.R[i][j];
+    t.translation() = fcl::Vector3d(c.pose.t.x, c.pose.t.y, c.pose.t.z);
+    X_FC.push_back(t);
+  }
+  run(st, [&](int i) {
+    return fcl::detail::sphereCylinderIntersect<double>(sph[i], X_FS[i], cyl[i],
+                                                        X_FC[i], nullptr);
+  });
+}
+#endif
 void BM_Sphere_source(benchmark::State& st) {
   const auto ss = sources(cases(Query::kSphere, familyOf(st)), false);
   run(st, [&](int i) { return srcSphereCylinder(ss[i], ss[i].p, ss[i].rho); });
@@ -361,6 +393,9 @@ BENCHMARK(BM_PointCone_tricyl)->Apply(families);
 BENCHMARK(BM_PointCone_source)->Apply(families);
 BENCHMARK(BM_Sphere_tricyl)->Apply(families);
 BENCHMARK(BM_Sphere_source)->Apply(families);
+#ifdef TRICYL_BENCH_WITH_FCL
+BENCHMARK(BM_Sphere_fcl)->Apply(families);
+#endif
 BENCHMARK(BM_Segment_tricyl)->Apply(families);
 BENCHMARK(BM_Segment_source)->Apply(families);
 BENCHMARK(BM_Clip_tricyl)->Apply(families);

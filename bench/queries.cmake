@@ -9,3 +9,7 @@ target_link_libraries(bench_queries PRIVATE tricyl::tricyl benchmark::benchmark_
 target_include_directories(bench_queries PRIVATE ${PROJECT_SOURCE_DIR}/compare)
 tricyl_set_warnings(bench_queries)
 tricyl_set_fp_flags(bench_queries)
+if(TRICYL_HAVE_FCL)
+  target_link_libraries(bench_queries PRIVATE fcl)
+  target_compile_definitions(bench_queries PRIVATE TRICYL_BENCH_WITH_FCL=1)
+endif()
