@@ -110,9 +110,9 @@ TEST_P(FamilyTest, AgreesWithOracle) {
       }
     }
   }
-  std::printf(
-      "[ stats    ] %s: %ld cases, %ld hits; %s\n",
-      scenes::familyName(GetParam()), n, hits, stages.summary(n).c_str());
+  std::printf("[ stats    ] %s: %ld cases, %ld hits; %s\n",
+              scenes::familyName(GetParam()), n, hits,
+              stages.summary(n).c_str());
 }
 
 // Vertex order, exact rigid motions of the world (signed axis permutations
