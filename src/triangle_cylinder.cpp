@@ -629,10 +629,10 @@ __attribute__((target("avx2"), always_inline)) inline EdgeLanes edgeLanes(
 // The same Fd expressions as triangleCylinderTests, values and magnitudes in
 // separate registers, except the slab condition: here H L -+ (Z_i L +
 // g (Z_j - Z_i)), the kernel's (H -+ Z_i) L -+ g (Z_j - Z_i), the same
-// polynomial grouped for the tracked stage. Each is a certified sign of that
-// polynomial, so the lanes still decide only what is true; every one of the
-// six signs must be certain. (Eberly's polygon test "an edge within r of
-// the origin", on an unclipped edge.)
+// polynomial grouped so that an edge in a cap plane is an exact 0. Each is a
+// certified sign of that polynomial, so the lanes still decide only what is
+// true; every one of the six signs must be certain. (Eberly's polygon test "an
+// edge within r of the origin", on an unclipped edge.)
 __attribute__((target("avx2"), always_inline)) inline bool edgeHitAvx2(
     const EdgeLanes& e, __m256d x, __m256d y, __m256d Z, __m256d me, __m256d r2,
     __m256d HH) {

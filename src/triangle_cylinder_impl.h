@@ -319,7 +319,7 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
   // |Z_i + mu (Z_j - Z_i)| <= H, i.e. |Z_i L + g (Z_j - Z_i)| <= H L,
   // evaluated as (H -+ Z_i) L -+ g (Z_j - Z_i) >= 0: the same polynomials,
   // grouped so that an edge lying in a cap plane (Z_i = Z_j = +-H) gives
-  // products of exact zeros, an exact 0 that the tracked stage certifies
+  // products of exact zeros, an exact 0 that the exact stage certifies cheaply
   // (a wall standing on the floor plane of a cylinder's cap), where
   // H L - Z_i L would cancel two rounded products.
   // L = 0 (an edge parallel to the axis) is covered by (V) and (X).
@@ -355,7 +355,7 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
   // oriented positive and w = o20 (Z1 - Z0) + o01 (Z2 - Z0),
   //   (H - Z0) A2 - w >= 0  and  (H + Z0) A2 + w >= 0.
   // This grouping makes a triangle lying in a cap plane (the floor under a
-  // standing cylinder) an exact 0 from exact zeros, which the tracked stage
+  // standing cylinder) an exact 0 from exact zeros, which the exact stage
   // certifies; H A2 - (o12 Z0 + ...) would cancel rounded products.
   // A2 = 0: see the header comment.
   {

@@ -5,8 +5,8 @@
 // the segment between the two extreme vertices. Mechanism: the triangle
 // kernel meets such input through signs that are exactly zero (the
 // projected area; for a repeated vertex an edge of length zero); in a
-// general pose the local frame rounds, so neither the filters nor the
-// tracked stage certify them, and every such query used to reach GMP
+// general pose the local frame rounds, so no error bound certifies them,
+// and every such query used to reach GMP
 // (all 1335 exact queries of 10^5 sliver cases, seed 20261122). The
 // segment kernel has no such sign.
 #include <gtest/gtest.h>

@@ -213,8 +213,9 @@ TEST(DoubleWordFrame, BoundEnclosesTheExactLocalCoordinates) {
 // Each running kernel alone, through the whole triangle kernel (the
 // largest predicate set in tricyl), on every case of the families (not only
 // those the double filter leaves): whatever it decides is the oracle's
-// answer. The double one decides the cylinder queries' extended stage;
-// its sign() is tested here on far more predicates than those use.
+// answer. Its rules are the adaptive run's first check of every sign
+// (src/adaptive.h) and the line interval's first stage; its sign() is
+// tested here on the whole triangle kernel.
 template <class K>
 void agreesWithOracle(scenes::Family family, long n, std::uint64_t seed) {
   long decided = 0, failures = 0;
