@@ -368,7 +368,6 @@ void Tape::toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x,
 
 Sign Tape::escalate(std::uint32_t id, double v) {
   if (overflow_) return Sign::kZero;  // the driver discards this run
-  ++escalations_;
   // A double value that is exactly 0 is almost always a true tie (an exact
   // pose and exact data: the double arithmetic did not round), which no
   // bound certifies: straight to the exact stage. Otherwise double-word

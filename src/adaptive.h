@@ -142,14 +142,6 @@ class Tape {
     *e = d.e;
   }
   Dyadic exact(std::uint32_t id) const { return dyadic(id); }
-  /// For diagnostics: how many signs escalated, and how many nodes the
-  /// double-word stage evaluated.
-  int escalations() const { return escalations_; }
-  int doubleWordNodes() const {
-    int n = 0;
-    for (std::uint64_t w : memo_) n += __builtin_popcountll(w);
-    return n;
-  }
 
  private:
   // No member of a character type: a store through one may alias anything,
@@ -173,7 +165,6 @@ class Tape {
 
   bool overflow_ = false;
   int level_ = 0;
-  int escalations_ = 0;
   int n_ = 0;
   int leaves_ = 0;
   Node nodes_[kMaxNodes];
