@@ -213,7 +213,27 @@ Expansion Tape::expansion(std::uint32_t id) {
 // factor (then the product is an exact 0 whatever the other factor is). The
 // operations and their order are those of the adaptive run, so the value
 // found is that run's value.
-bool Tape::exactInDouble(std::uint32_t id, double* value) const {
+bool Tape::exactInDouble(std::uint32_t id, double* value) {
+  // Memoised per node: the signs of one tie share their sub-DAGs.
+  const std::uint64_t bit = std::uint64_t(1) << (id & 63);
+  std::uint64_t& done = edone_[id >> 6];
+  std::uint64_t& ok = eok_[id >> 6];
+  if (done & bit) {
+    *value = ev_[id];
+    return (ok & bit) != 0;
+  }
+  const bool exact = exactInDoubleNode(id, value);
+  done |= bit;
+  if (exact) {
+    ok |= bit;
+    ev_[id] = *value;
+  } else {
+    ok &= ~bit;
+  }
+  return exact;
+}
+
+bool Tape::exactInDoubleNode(std::uint32_t id, double* value) {
   const Node nd = nodes_[id];
   auto sumOk = [](double a, double b, double* out) {
     double s, e;
@@ -368,23 +388,25 @@ void Tape::toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x,
 
 Sign Tape::escalate(std::uint32_t id, double v) {
   if (overflow_) return Sign::kZero;  // the driver discards this run
-  // A double value that is exactly 0 is almost always a true tie (an exact
-  // pose and exact data: the double arithmetic did not round), which no
-  // bound certifies: straight to the exact stage. Otherwise double-word
-  // first. Either order gives the same sign.
-  if (v != 0) {
-    const DwRun d = dw(id);
-    const double b = (d.e + std::fabs(d.v.lo)) * (1 + 0x1p-40) + 0x1p-600;
-    if (level_ < 1) level_ = 1;
-    if (d.v.hi > b) return Sign::kPos;
-    if (d.v.hi < -b) return Sign::kNeg;
-  } else {
+  // A double value that is exactly 0 may be a true tie that the double
+  // arithmetic computed without rounding (an exact pose and exact data),
+  // which no bound certifies: checked first, at the cost of a pass over
+  // the sign's sub-DAG in double. Otherwise (and when that check fails:
+  // in the aligned family most zeros are cancellations that rounded to 0,
+  // with a non-zero exact value) double-word, and the exact stage only
+  // for what double-word cannot decide. Any order gives the same sign.
+  if (v == 0) {
     double exact = 0;
     if (exactInDouble(id, &exact)) {
       if (level_ < 2) level_ = 2;
       return exact > 0 ? Sign::kPos : (exact < 0 ? Sign::kNeg : Sign::kZero);
     }
   }
+  const DwRun d = dw(id);
+  const double b = (d.e + std::fabs(d.v.lo)) * (1 + 0x1p-40) + 0x1p-600;
+  if (level_ < 1) level_ = 1;
+  if (d.v.hi > b) return Sign::kPos;
+  if (d.v.hi < -b) return Sign::kNeg;
   const Expansion x = expansion(id);
   if (x.ok()) {
     if (level_ < 2) level_ = 2;
