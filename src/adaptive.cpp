@@ -338,52 +338,44 @@ Dyadic Tape::dyadic(std::uint32_t id) const {
 
 void Tape::toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x,
                    An& y, An& Z) {
-  const double pp[3] = {p.x, p.y, p.z};
-  const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
   // The double values of the generic toLocal: d_k = fl(p_k - t_k), then
   // ((R_0j d_0 + R_1j d_1) + R_2j d_2), and the folded running bound of
   // toLocalRunning (src/triangle_cylinder_impl.h, derived there) from
   // S = sum_k |R_kj| |d_k|.
-  double d[3], a[3];
-  for (int k = 0; k < 3; ++k) {
-    d[k] = pp[k] - tt[k];
-    a[k] = std::fabs(d[k]);
-  }
-  An* out[3] = {&x, &y, &Z};
+  const double d0 = p.x - pose.t.x, d1 = p.y - pose.t.y, d2 = p.z - pose.t.z;
+  const double a0 = std::fabs(d0), a1 = std::fabs(d1), a2 = std::fabs(d2);
   std::uint32_t point = 0;
-  const bool room = points_ < kMaxPoints;
-  if (room) {
+  if (points_ < kMaxPoints) {
     Point& P = pts_[points_];
     point = std::uint32_t(points_++);
-    for (int k = 0; k < 3; ++k) {
-      P.p[k] = pp[k];
-      P.t[k] = tt[k];
-      for (int j = 0; j < 3; ++j) P.R[k][j] = pose.R[k][j];
-    }
+    P.p[0] = p.x;
+    P.p[1] = p.y;
+    P.p[2] = p.z;
+    P.t[0] = pose.t.x;
+    P.t[1] = pose.t.y;
+    P.t[2] = pose.t.z;
+    P.R = pose.R;
   } else {
     overflow_ = true;
   }
-  for (int j = 0; j < 3; ++j) {
-    const double* R0 = pose.R[0];
-    const double* R1 = pose.R[1];
-    const double* R2 = pose.R[2];
-    const double s1 = R0[j] * d[0] + R1[j] * d[1];
-    double v = s1 + R2[j] * d[2];
-    double m = (std::fabs(R0[j]) * a[0] + std::fabs(R1[j]) * a[1]) +
-               std::fabs(R2[j]) * a[2];  // S, then the bound
-    {
-      constexpr double c = 0x1p-53 + 0x1p-53 * 0x1p-40;
-      const bool zero = (R0[j] == 0 || d[0] == 0) &&
-                        (R1[j] == 0 || d[1] == 0) && (R2[j] == 0 || d[2] == 0);
-      m = (((m + m) + std::fabs(s1)) + std::fabs(v)) * c +
-          (zero ? 0.0 : 4 * 0x1p-1074);
-    }
-    if (j == 2) {
-      v = v + v;
-      m = m + m;
-    }
-    *out[j] = {v, m, this, op(kCoord, point, std::uint32_t(j))};
-  }
+  auto coord = [&](int j) {
+    const double r0 = pose.R[0][j], r1 = pose.R[1][j], r2 = pose.R[2][j];
+    const double s1 = r0 * d0 + r1 * d1;
+    const double v = s1 + r2 * d2;
+    const double S =
+        (std::fabs(r0) * a0 + std::fabs(r1) * a1) + std::fabs(r2) * a2;
+    constexpr double c = 0x1p-53 + 0x1p-53 * 0x1p-40;
+    const bool zero =
+        (r0 == 0 || d0 == 0) & (r1 == 0 || d1 == 0) & (r2 == 0 || d2 == 0);
+    const double m = (((S + S) + std::fabs(s1)) + std::fabs(v)) * c +
+                     (zero ? 0.0 : 4 * 0x1p-1074);
+    return An{v, m, this, op(kCoord, point, std::uint32_t(j))};
+  };
+  x = coord(0);
+  y = coord(1);
+  Z = coord(2);
+  Z.v = Z.v + Z.v;
+  Z.m = Z.m + Z.m;
 }
 
 Sign Tape::escalate(std::uint32_t id, double v) {

@@ -155,9 +155,11 @@ class Tape {
     std::uint16_t a, b;  // operands; a leaf's index; a coordinate's point
                          // and axis (b: 0 x, 1 y, 2 Z)
   };
-  /// A point's data for its coordinate leaves: p - t and column j of R.
+  /// A point's data for its coordinate leaves: p, t and R (the pose's own
+  /// rotation: the pose outlives the run, which is one call of the query).
   struct Point {
-    double p[3], t[3], R[3][3];
+    double p[3], t[3];
+    const double (*R)[3];
   };
   DwRun dw(std::uint32_t id);
   DwRun dwCoord(const Node& nd) const;

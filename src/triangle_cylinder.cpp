@@ -160,23 +160,26 @@ Segment<double> collinearHull(const Triangle<double>& t) {
 
 // The whole sequence for validated inputs (src/stages.h): the double filter
 // (unless the fast path already ran it and it could not decide), the
-// degenerate hand-off, the adaptive run.
-Decision decide(const Inputs& in, bool filter_done) {
+// degenerate hand-off, the adaptive run. `undecided`: 0, or the tests the
+// fast path's filter left undecided (detail::TestMask); the adaptive run
+// re-decides only those.
+Decision decide(const Inputs& in, std::uint32_t undecided) {
   double max_len = 0, max_unitless = 0;
   if (!validate(in, &max_len, &max_unitless))
     return {Answer::kInvalidInput, Stage::kInvalid};
-  auto triangle = [&](auto tag, bool* early) {
-    using K = typename decltype(tag)::type;
-    const auto q = detail::makeLocal<K>(in.cyl, in.pose, in.tri, max_unitless);
-    return detail::triangleCylinder<K>(q, early);
-  };
   const bool gate = detail::rangeGateOk(max_len, max_unitless);
-  if (gate && !filter_done) {
+  if (gate && undecided == 0) {
     bool early = false;
-    const Tri t = triangle(detail::KernelTag<FilterKernel>{}, &early);
+    detail::TestMask mask;
+    const auto q =
+        detail::makeLocal<FilterKernel>(in.cyl, in.pose, in.tri, max_unitless);
+    const Tri t = detail::triangleCylinder<FilterKernel>(q, &early, &mask);
     if (t != Tri::kUnknown)
       return {detail::toAnswer(t), early ? Stage::kEarlyOut : Stage::kFastPath};
+    undecided = mask.unknown;
   }
+  // Outside the gate no filter ran: every test.
+  if (undecided == 0) undecided = detail::kAllTests;
   const Decision degenerate = detail::runStages(
       [&](auto tag, bool*) {
         return collinear<typename decltype(tag)::type>(in.tri);
@@ -199,7 +202,14 @@ Decision decide(const Inputs& in, bool filter_done) {
         },
         max_len, max_unitless);
   }
-  return detail::runAdaptive(triangle, gate);
+  return detail::runAdaptive(
+      [&](auto tag, bool*) {
+        using K = typename decltype(tag)::type;
+        const auto q =
+            detail::makeLocal<K>(in.cyl, in.pose, in.tri, max_unitless);
+        return detail::triangleCylinderUndecided<K>(q, undecided);
+      },
+      gate);
 }
 
 // Widening a signalling NaN raises FE_INVALID: float inputs are checked by
@@ -221,17 +231,17 @@ bool floatBitsFinite(const Cylinder<float>& cylinder, const Pose<float>& pose,
 TRICYL_NOINLINE Decision decideSlow(const Cylinder<double>& cylinder,
                                     const Pose<double>& pose,
                                     const Triangle<double>& triangle,
-                                    bool filter_done) {
-  return decide(Inputs{cylinder, pose, triangle}, filter_done);
+                                    std::uint32_t undecided) {
+  return decide(Inputs{cylinder, pose, triangle}, undecided);
 }
 TRICYL_NOINLINE Decision decideSlow(const Cylinder<float>& cylinder,
                                     const Pose<float>& pose,
                                     const Triangle<float>& triangle,
-                                    bool filter_done) {
+                                    std::uint32_t undecided) {
   if (!floatBitsFinite(cylinder, pose, triangle))
     return {Answer::kInvalidInput, Stage::kInvalid};
   const Widened w = widen(cylinder, pose, triangle);
-  return decide(Inputs{w.cyl, w.pose, w.tri}, filter_done);
+  return decide(Inputs{w.cyl, w.pose, w.tri}, undecided);
 }
 
 // ---------------------------------------------------------------------------
@@ -1007,7 +1017,9 @@ inline bool directionSeparates(const detail::TriCylLocal<FilterKernel>& q) {
 
 // The rest of the double filter after the early-outs (not inlined: the
 // early-outs decide most queries).
-TRICYL_NOINLINE Tri filterTests(const Local& L) {
+// `undecided`: set to the tests left undecided when it returns kUnknown
+// (detail::TestMask).
+TRICYL_NOINLINE Tri filterTests(const Local& L, std::uint32_t* undecided) {
   // FilterKernel::sign, branch-free: kPos (1), kNeg (-1) or kUnknown (2).
   auto sgn = [](double v, double b) {
     const int pos = v > b, neg = v < -b;
@@ -1033,7 +1045,10 @@ TRICYL_NOINLINE Tri filterTests(const Local& L) {
   // prologues' use the looser 2 s).
   if (detail::certainlyBeyond<FilterKernel>(q, top, bot)) return Tri::kFalse;
   if (edgeSeparates(q)) return Tri::kFalse;
-  return detail::triangleCylinderTests<FilterKernel>(q, top, bot);
+  detail::TestMask mask;
+  const Tri t = detail::triangleCylinderTests<FilterKernel>(q, top, bot, &mask);
+  *undecided = mask.unknown;
+  return t;
 }
 
 // The scalar fast path: the double filter (FilterKernel) with validation and
@@ -1044,7 +1059,8 @@ TRICYL_NOINLINE Tri filterTests(const Local& L) {
 template <bool kAvx2, class S>
 TRICYL_ALWAYS_INLINE Fast decideFast(const Cylinder<S>& cyl,
                                      const Pose<S>& pose,
-                                     const Triangle<S>& tri, Decision* out) {
+                                     const Triangle<S>& tri, Decision* out,
+                                     std::uint32_t* undecided) {
   Local L;
 #if TRICYL_FAST_AVX2
   const Pre f =
@@ -1063,7 +1079,7 @@ TRICYL_ALWAYS_INLINE Fast decideFast(const Cylinder<S>& cyl,
     return Fast::kDecided;
   }
   if (f == Pre::kGateMiss) return Fast::kGateMiss;
-  const Tri t = filterTests(L);
+  const Tri t = filterTests(L, undecided);
   if (t == Tri::kUnknown) return Fast::kUnknown;
   *out = {detail::toAnswer(t), Stage::kFastPath};
   return Fast::kDecided;
@@ -1074,9 +1090,11 @@ TRICYL_ALWAYS_INLINE Decision decideBody(const Cylinder<S>& cylinder,
                                          const Pose<S>& pose,
                                          const Triangle<S>& triangle) {
   Decision d;
-  const Fast f = decideFast<kAvx2>(cylinder, pose, triangle, &d);
+  std::uint32_t undecided = 0;
+  const Fast f = decideFast<kAvx2>(cylinder, pose, triangle, &d, &undecided);
   if (f == Fast::kDecided) return d;
-  return decideSlow(cylinder, pose, triangle, f == Fast::kUnknown);
+  return decideSlow(cylinder, pose, triangle,
+                    f == Fast::kUnknown ? undecided : 0);
 }
 
 #if TRICYL_FAST_AVX2
