@@ -4,6 +4,21 @@
 #include "adaptive.h"
 
 #include <cmath>
+#include <cstdlib>
+
+// On x86-64 builds that do not assume FMA (the default: SSE2), the
+// double-word stage picks an FMA-compiled copy at run time (Tape::dw).
+#if (defined(__x86_64__) || defined(__i386__)) && \
+    (defined(__GNUC__) || defined(__clang__)) && !TRICYL_HAVE_FMA
+#define TRICYL_DW_FMA_DISPATCH 1
+#else
+#define TRICYL_DW_FMA_DISPATCH 0
+#endif
+#if defined(__GNUC__) || defined(__clang__)
+#define TRICYL_EFT_INLINE inline __attribute__((always_inline))
+#else
+#define TRICYL_EFT_INLINE inline
+#endif
 
 namespace tricyl::detail {
 
@@ -44,9 +59,10 @@ inline DwRun runAdd(const DwRun& a, const DwRun& b) {
   r.e = a.e + b.e + kDwAddRel * (std::fabs(a.v.hi) + std::fabs(b.v.hi));
   return r;
 }
+template <bool kFma>
 inline DwRun runMul(const DwRun& a, const DwRun& b) {
   DwRun r;
-  r.v = dwMul(a.v, b.v);
+  r.v = dwMulT<kFma>(a.v, b.v);
   const double ma = std::fabs(a.v.hi) + std::fabs(a.v.lo);
   const double mb = std::fabs(b.v.hi) + std::fabs(b.v.lo);
   r.e = ma * b.e + mb * a.e + a.e * b.e + kDwRel * std::fabs(r.v.hi) + kDwTiny;
@@ -72,6 +88,7 @@ inline DwRun runMul(const DwRun& a, const DwRun& b) {
 // magnitude (three roundings of non-negative terms, (1 - u)^3 M <= M').
 // Underflow (a product or an error term below the normal range) adds at
 // most a few 2^-1075 absolutely: kDwTiny. Z = 2 z: the same, doubled.
+template <bool kFma>
 DwRun Tape::dwCoord(const Node& nd) const {
   const Point& P = pts_[nd.a];
   const int j = nd.b;
@@ -79,7 +96,7 @@ DwRun Tape::dwCoord(const Node& nd) const {
   double m = 0;
   for (int k = 0; k < 3; ++k) {
     twoSum(P.p[k], -P.t[k], D[k], l[k]);
-    twoProd(P.R[k][j], D[k], Pk[k], e[k]);
+    twoProdT<kFma>(P.R[k][j], D[k], Pk[k], e[k]);
     q[k] = P.R[k][j] * l[k];
     m += std::fabs(P.R[k][j]) * std::fabs(D[k]);
   }
@@ -104,10 +121,17 @@ DwRun Tape::dwCoord(const Node& nd) const {
   return r;
 }
 
-DwRun Tape::dw(std::uint32_t id) {
+template <bool kFma>
+TRICYL_EFT_INLINE DwRun Tape::dwNode(std::uint32_t id) {
   std::uint64_t& word = memo_[id >> 6];
   const std::uint64_t bit = std::uint64_t(1) << (id & 63);
   if (word & bit) return dw_[id];
+  auto rec = [this](std::uint32_t c) {
+    if constexpr (kFma)
+      return dwFma(c);
+    else
+      return dwPlain(c);
+  };
   const Node nd = nodes_[id];
   DwRun r;
   switch (nd.code) {
@@ -119,31 +143,61 @@ DwRun Tape::dw(std::uint32_t id) {
       r.e = 0;
       break;
     case kCoord:
-      r = dwCoord(nd);
+      r = dwCoord<kFma>(nd);
       break;
     case kNeg: {
-      const DwRun a = dw(nd.a);
+      const DwRun a = rec(nd.a);
       r = {dwNeg(a.v), a.e};
       break;
     }
     case kAdd:
-      r = runAdd(dw(nd.a), dw(nd.b));
+      r = runAdd(rec(nd.a), rec(nd.b));
       break;
     case kSub: {
-      const DwRun a = dw(nd.a);
-      DwRun b = dw(nd.b);
+      const DwRun a = rec(nd.a);
+      DwRun b = rec(nd.b);
       b.v = dwNeg(b.v);
       r = runAdd(a, b);
       break;
     }
     default:  // kMul
-      r = runMul(dw(nd.a), dw(nd.b));
+      r = runMul<kFma>(rec(nd.a), rec(nd.b));
       break;
   }
   dw_[id] = r;
   word |= bit;
   return r;
 }
+
+DwRun Tape::dwPlain(std::uint32_t id) {
+  return dwNode<TRICYL_HAVE_FMA != 0>(id);
+}
+
+#if TRICYL_DW_FMA_DISPATCH
+// The same evaluation compiled for FMA (dwNode, dwCoord, runMul and the
+// double-word operations inline into it), for CPUs that have it; chosen
+// once per process, and never with TRICYL_SCALAR_BASELINE=1 in the
+// environment (tests/answers_digest_check.sh compares the two paths'
+// digests, which include the bits of interval ends computed from these
+// values). Before this flag is initialised (a static constructor of
+// another translation unit calling in) it reads false: the same bits.
+namespace {
+bool cpuHasFma() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("fma") != 0 &&
+         std::getenv("TRICYL_SCALAR_BASELINE") == nullptr;
+}
+const bool kHasFma = cpuHasFma();
+}  // namespace
+
+__attribute__((target("fma"))) DwRun Tape::dwFma(std::uint32_t id) {
+  return dwNode<true>(id);
+}
+DwRun Tape::dw(std::uint32_t id) { return kHasFma ? dwFma(id) : dwPlain(id); }
+#else
+DwRun Tape::dwFma(std::uint32_t id) { return dwPlain(id); }
+DwRun Tape::dw(std::uint32_t id) { return dwPlain(id); }
+#endif
 
 // ---------------------------------------------------------------------------
 // Stage 2: the exact value as a stack expansion (src/expansion.h), which

@@ -161,7 +161,15 @@ class Tape {
     double p[3], t[3];
     const double (*R)[3];
   };
+  // Double-word values: dw dispatches once per escalation to dwFma (x86-64
+  // CPUs with FMA, in builds that do not assume it) or dwPlain; both run
+  // dwNode, whose TwoProducts are exact either way: the same bits.
   DwRun dw(std::uint32_t id);
+  DwRun dwPlain(std::uint32_t id);
+  DwRun dwFma(std::uint32_t id);
+  template <bool kFma>
+  DwRun dwNode(std::uint32_t id);
+  template <bool kFma>
   DwRun dwCoord(const Node& nd) const;
   Expansion expansionCoord(const Node& nd) const;
   Dyadic dyadicCoord(const Node& nd) const;
