@@ -432,6 +432,54 @@ void Tape::toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x,
   Z.m = Z.m + Z.m;
 }
 
+// The bound from M. With S_j = sum_k |R_kj| |d_k| (the exact sum of the
+// computed differences' terms), toLocal's derivation (toLocalRunning,
+// src/triangle_cylinder_impl.h) gives
+//   |x^ - x| <= u (1 + 8.5 u) (2 S_j + |s1| + |x^|) + 2 eta,
+// and |s1| <= (1 + u)^2 S_j. M = fl(rho fl(fl(|d_0| + |d_1|) + |d_2|))
+// >= (1 - u)^3 rho sum_k |d_k| >= (1 - u)^3 S_j, so 2 S_j + |s1| <=
+// 3 (1 + 2u) S_j <= 3 (1 + 6u) M, and
+//   e = fl(fl(fl(3 M) + |x^|) c) + 4 eta,   c = u (1 + 2^-40),
+// covers it: the three roundings of e and every (1 + k u) factor above
+// stay far inside the 2^-40 slack. An exact zero (every term with a zero
+// factor) keeps e = 0, as in toLocal; it is checked only when x^ = 0.
+void Tape::coordinates(const Pose<double>& pose, const Vec3<double>& p,
+                       double x, double y, double Z, double M, An& ax, An& ay,
+                       An& aZ) {
+  std::uint32_t point = 0;
+  if (points_ < kMaxPoints) {
+    Point& P = pts_[points_];
+    point = std::uint32_t(points_++);
+    P.p[0] = p.x;
+    P.p[1] = p.y;
+    P.p[2] = p.z;
+    P.t[0] = pose.t.x;
+    P.t[1] = pose.t.y;
+    P.t[2] = pose.t.z;
+    P.R = pose.R;
+  } else {
+    overflow_ = true;
+  }
+  constexpr double c = 0x1p-53 + 0x1p-53 * 0x1p-40;
+  const double M3 = 3 * M;
+  auto leaf = [&](int j, double v) {
+    double m = (M3 + std::fabs(v)) * c + 4 * 0x1p-1074;
+    if (v == 0) {  // an exact zero? (rare: the check only then)
+      const double d[3] = {p.x - pose.t.x, p.y - pose.t.y, p.z - pose.t.z};
+      bool zero = true;
+      for (int k = 0; k < 3; ++k)
+        zero = zero && (pose.R[k][j] == 0 || d[k] == 0);
+      if (zero) m = 0;
+    }
+    return An{v, m, this, op(kCoord, point, std::uint32_t(j))};
+  };
+  ax = leaf(0, x);
+  ay = leaf(1, y);
+  aZ = leaf(2, Z * 0.5);
+  aZ.v = Z;
+  aZ.m = aZ.m + aZ.m;
+}
+
 Sign Tape::escalate(std::uint32_t id, double v) {
   if (overflow_) return Sign::kZero;  // the driver discards this run
   // A double value that is exactly 0 may be a true tie that the double

@@ -131,6 +131,14 @@ class Tape {
   void toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x, An& y,
                An& Z);
 
+  /// As toLocal, from double values the caller already computed exactly as
+  /// toLocal does (x, y and Z = 2 z: the scalar fast path's), with `M` >=
+  /// rho (|d_0| + |d_1| + |d_2|) rounded as that path rounds it (rho >=
+  /// every |R_jk|, d_k = fl(p_k - t_k)). The running bound is then derived
+  /// from M (src/adaptive.cpp) instead of per-coordinate sums.
+  void coordinates(const Pose<double>& pose, const Vec3<double>& p, double x,
+                   double y, double Z, double M, An& ax, An& ay, An& aZ);
+
   /// The sign of node `id`, which the running double bound could not
   /// certify.
   /// `v`: its double value.

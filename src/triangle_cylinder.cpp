@@ -163,7 +163,12 @@ Segment<double> collinearHull(const Triangle<double>& t) {
 // degenerate hand-off, the adaptive run. `undecided`: 0, or the tests the
 // fast path's filter left undecided (detail::TestMask); the adaptive run
 // re-decides only those.
-Decision decide(const Inputs& in, std::uint32_t undecided) {
+struct Local;
+detail::TriCylLocal<detail::AdaptiveKernel> adaptiveLocal(const Inputs& in,
+                                                          const Local& L);
+
+Decision decide(const Inputs& in, std::uint32_t undecided,
+                const Local* fast = nullptr) {
   double max_len = 0, max_unitless = 0;
   if (!validate(in, &max_len, &max_unitless))
     return {Answer::kInvalidInput, Stage::kInvalid};
@@ -205,6 +210,13 @@ Decision decide(const Inputs& in, std::uint32_t undecided) {
   return detail::runAdaptive(
       [&](auto tag, bool*) {
         using K = typename decltype(tag)::type;
+        if constexpr (std::is_same_v<K, detail::AdaptiveKernel>) {
+          // The fast path's local frame, when it ran: the same values, not
+          // computed twice (Tape::coordinates).
+          if (fast != nullptr)
+            return detail::triangleCylinderUndecided<K>(
+                adaptiveLocal(in, *fast), undecided);
+        }
         const auto q =
             detail::makeLocal<K>(in.cyl, in.pose, in.tri, max_unitless);
         return detail::triangleCylinderUndecided<K>(q, undecided);
@@ -231,13 +243,15 @@ bool floatBitsFinite(const Cylinder<float>& cylinder, const Pose<float>& pose,
 TRICYL_NOINLINE Decision decideSlow(const Cylinder<double>& cylinder,
                                     const Pose<double>& pose,
                                     const Triangle<double>& triangle,
-                                    std::uint32_t undecided) {
-  return decide(Inputs{cylinder, pose, triangle}, undecided);
+                                    std::uint32_t undecided, const Local* L) {
+  return decide(Inputs{cylinder, pose, triangle}, undecided,
+                undecided != 0 ? L : nullptr);
 }
 TRICYL_NOINLINE Decision decideSlow(const Cylinder<float>& cylinder,
                                     const Pose<float>& pose,
                                     const Triangle<float>& triangle,
-                                    std::uint32_t undecided) {
+                                    std::uint32_t undecided,
+                                    const Local* /*L*/) {
   if (!floatBitsFinite(cylinder, pose, triangle))
     return {Answer::kInvalidInput, Stage::kInvalid};
   const Widened w = widen(cylinder, pose, triangle);
@@ -276,6 +290,20 @@ struct Local {
   double x[4], y[4], Z[4], m[4];  // [3]: scratch (the AVX2 lane 3)
   double r, H;
 };
+
+// The adaptive run's local frame from the fast path's (double inputs).
+detail::TriCylLocal<detail::AdaptiveKernel> adaptiveLocal(const Inputs& in,
+                                                          const Local& L) {
+  detail::TriCylLocal<detail::AdaptiveKernel> q;
+  detail::Tape* tape = detail::tls_tape;
+  const Vec3<double>* P[3] = {&in.tri.a, &in.tri.b, &in.tri.c};
+  for (int i = 0; i < 3; ++i)
+    tape->coordinates(in.pose, *P[i], L.x[i], L.y[i], L.Z[i], L.m[i], q.x[i],
+                      q.y[i], q.Z[i]);
+  q.H = detail::AdaptiveKernel::lift(in.cyl.lz);
+  q.r = detail::AdaptiveKernel::lift(in.cyl.radius);
+  return q;
+}
 
 // Early-outs, the certified signs of triangleCylinder: Z_i - H and Z_i + H
 // have magnitude fl(2 m_i + lz), x_i - r, -x_i - r, y_i - r and -y_i - r
@@ -1060,8 +1088,8 @@ template <bool kAvx2, class S>
 TRICYL_ALWAYS_INLINE Fast decideFast(const Cylinder<S>& cyl,
                                      const Pose<S>& pose,
                                      const Triangle<S>& tri, Decision* out,
-                                     std::uint32_t* undecided) {
-  Local L;
+                                     std::uint32_t* undecided, Local* Lout) {
+  Local& L = *Lout;
 #if TRICYL_FAST_AVX2
   const Pre f =
       kAvx2 ? prologueAvx2(cyl, pose, tri, &L) : prologue(cyl, pose, tri, &L);
@@ -1091,10 +1119,12 @@ TRICYL_ALWAYS_INLINE Decision decideBody(const Cylinder<S>& cylinder,
                                          const Triangle<S>& triangle) {
   Decision d;
   std::uint32_t undecided = 0;
-  const Fast f = decideFast<kAvx2>(cylinder, pose, triangle, &d, &undecided);
+  Local L;
+  const Fast f =
+      decideFast<kAvx2>(cylinder, pose, triangle, &d, &undecided, &L);
   if (f == Fast::kDecided) return d;
   return decideSlow(cylinder, pose, triangle,
-                    f == Fast::kUnknown ? undecided : 0);
+                    f == Fast::kUnknown ? undecided : 0, &L);
 }
 
 #if TRICYL_FAST_AVX2
