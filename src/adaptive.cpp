@@ -121,16 +121,20 @@ DwRun Tape::dwCoord(const Node& nd) const {
   return r;
 }
 
+// Node `id`'s double-word value, into dw_[id] (not memoised yet). Its
+// operands are looked up in the memo first, so that a memoised operand
+// (about half of them) costs no call; the recursion returns nothing and
+// the values are read from dw_ in place.
 template <bool kFma>
-TRICYL_EFT_INLINE DwRun Tape::dwNode(std::uint32_t id) {
-  std::uint64_t& word = memo_[id >> 6];
-  const std::uint64_t bit = std::uint64_t(1) << (id & 63);
-  if (word & bit) return dw_[id];
-  auto rec = [this](std::uint32_t c) {
-    if constexpr (kFma)
-      return dwFma(c);
-    else
-      return dwPlain(c);
+TRICYL_EFT_INLINE void Tape::dwNode(std::uint32_t id) {
+  auto get = [this](std::uint32_t c) -> const DwRun& {
+    if ((memo_[c >> 6] >> (c & 63) & 1) == 0) {
+      if constexpr (kFma)
+        dwFma(c);
+      else
+        dwPlain(c);
+    }
+    return dw_[c];
   };
   const Node nd = nodes_[id];
   DwRun r;
@@ -146,32 +150,35 @@ TRICYL_EFT_INLINE DwRun Tape::dwNode(std::uint32_t id) {
       r = dwCoord<kFma>(nd);
       break;
     case kNeg: {
-      const DwRun a = rec(nd.a);
+      const DwRun& a = get(nd.a);
       r = {dwNeg(a.v), a.e};
       break;
     }
-    case kAdd:
-      r = runAdd(rec(nd.a), rec(nd.b));
+    case kAdd: {
+      const DwRun& a = get(nd.a);
+      const DwRun& b = get(nd.b);
+      r = runAdd(a, b);
       break;
+    }
     case kSub: {
-      const DwRun a = rec(nd.a);
-      DwRun b = rec(nd.b);
+      const DwRun& a = get(nd.a);
+      DwRun b = get(nd.b);
       b.v = dwNeg(b.v);
       r = runAdd(a, b);
       break;
     }
-    default:  // kMul
-      r = runMul<kFma>(rec(nd.a), rec(nd.b));
+    default: {  // kMul
+      const DwRun& a = get(nd.a);
+      const DwRun& b = get(nd.b);
+      r = runMul<kFma>(a, b);
       break;
+    }
   }
   dw_[id] = r;
-  word |= bit;
-  return r;
+  memo_[id >> 6] |= std::uint64_t(1) << (id & 63);
 }
 
-DwRun Tape::dwPlain(std::uint32_t id) {
-  return dwNode<TRICYL_HAVE_FMA != 0>(id);
-}
+void Tape::dwPlain(std::uint32_t id) { dwNode<TRICYL_HAVE_FMA != 0>(id); }
 
 #if TRICYL_DW_FMA_DISPATCH
 // The same evaluation compiled for FMA (dwNode, dwCoord, runMul and the
@@ -190,14 +197,24 @@ bool cpuHasFma() {
 const bool kHasFma = cpuHasFma();
 }  // namespace
 
-__attribute__((target("fma"))) DwRun Tape::dwFma(std::uint32_t id) {
-  return dwNode<true>(id);
+__attribute__((target("fma"))) void Tape::dwFma(std::uint32_t id) {
+  dwNode<true>(id);
 }
-DwRun Tape::dw(std::uint32_t id) { return kHasFma ? dwFma(id) : dwPlain(id); }
 #else
-DwRun Tape::dwFma(std::uint32_t id) { return dwPlain(id); }
-DwRun Tape::dw(std::uint32_t id) { return dwPlain(id); }
+void Tape::dwFma(std::uint32_t id) { dwPlain(id); }
 #endif
+
+DwRun Tape::dw(std::uint32_t id) {
+  if ((memo_[id >> 6] >> (id & 63) & 1) == 0) {
+#if TRICYL_DW_FMA_DISPATCH
+    if (kHasFma)
+      dwFma(id);
+    else
+#endif
+      dwPlain(id);
+  }
+  return dw_[id];
+}
 
 // ---------------------------------------------------------------------------
 // Stage 2: the exact value as a stack expansion (src/expansion.h), which

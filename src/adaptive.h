@@ -173,10 +173,10 @@ class Tape {
   // CPUs with FMA, in builds that do not assume it) or dwPlain; both run
   // dwNode, whose TwoProducts are exact either way: the same bits.
   DwRun dw(std::uint32_t id);
-  DwRun dwPlain(std::uint32_t id);
-  DwRun dwFma(std::uint32_t id);
+  void dwPlain(std::uint32_t id);
+  void dwFma(std::uint32_t id);
   template <bool kFma>
-  DwRun dwNode(std::uint32_t id);
+  void dwNode(std::uint32_t id);
   template <bool kFma>
   DwRun dwCoord(const Node& nd) const;
   Expansion expansionCoord(const Node& nd) const;
