@@ -129,27 +129,43 @@ Sign signWithRoot(const typename K::Num& a, const typename K::Num& b,
   return s2 == Sign::kPos ? sa : sb;
 }
 
+/// What is known exactly about the triangle's normal n in the cylinder
+/// frame: nothing (the kernel's signs decide), n = 0 (the triangle is a
+/// segment or a point), n_x = n_y = 0 != n_z (a horizontal plane), or
+/// n_x^2 + n_y^2 > 0.
+enum class NormalHint { kNone, kZero, kHorizontal, kTilted };
+
 /// The face part (see the file comment): does the foot on the triangle's
 /// plane of one of the rim points +-r (n_x, n_y)/|n_xy| lie in the triangle
 /// within m of that rim point? Only called for a triangle that misses the
-/// rim circle and whose edges miss the torus.
+/// rim circle and whose edges miss the torus. `*needs_hint` is set when the
+/// answer is kUnknown only because the zero pattern of n is open.
 template <class K>
-Tri faceFeet(const TorusInput<K>& t) {
+Tri faceFeet(const TorusInput<K>& t, NormalHint hint, bool* needs_hint) {
   using N = typename K::Num;
   const N ex0 = t.X[1] - t.X[0], ey0 = t.Y[1] - t.Y[0], ez0 = t.Z[1] - t.Z[0];
   const N ex1 = t.X[2] - t.X[0], ey1 = t.Y[2] - t.Y[0], ez1 = t.Z[2] - t.Z[0];
   const N n[3] = {ey0 * ez1 - ez0 * ey1, ez0 * ex1 - ex0 * ez1,
                   ex0 * ey1 - ey0 * ex1};
-  const Sign sn[3] = {K::sign(n[0]), K::sign(n[1]), K::sign(n[2])};
-  bool any_unknown = false, nonzero = false;
-  for (Sign s : sn) {
-    if (s == Sign::kUnknown) any_unknown = true;
-    if (s == Sign::kPos || s == Sign::kNeg) nonzero = true;
-  }
-  if (!nonzero) return any_unknown ? Tri::kUnknown : Tri::kFalse;  // segment
+  *needs_hint = false;
+  if (hint == NormalHint::kZero) return Tri::kFalse;  // a segment or a point
   const N D = n[0] * n[0] + n[1] * n[1];
-  const Sign sD = K::sign(D);
-  if (sD == Sign::kUnknown) return Tri::kUnknown;
+  Sign sD = hint == NormalHint::kHorizontal ? Sign::kZero
+            : hint == NormalHint::kTilted   ? Sign::kPos
+                                            : K::sign(D);
+  if (hint == NormalHint::kNone) {
+    const Sign sn[3] = {K::sign(n[0]), K::sign(n[1]), K::sign(n[2])};
+    bool any_unknown = false, nonzero = false;
+    for (Sign s : sn) {
+      if (s == Sign::kUnknown) any_unknown = true;
+      if (s == Sign::kPos || s == Sign::kNeg) nonzero = true;
+    }
+    if (!nonzero && !any_unknown) return Tri::kFalse;  // a segment or point
+    if (!nonzero || sD == Sign::kUnknown) {
+      *needs_hint = true;
+      return Tri::kUnknown;
+    }
+  }
   const N n2 = D + n[2] * n[2];
   const N R2 = t.R * t.R, M2 = t.M * t.M;
   // Edge normals in the plane, c_i = n x E_i, E_i = V_{i+1} - V_i.
@@ -231,8 +247,12 @@ using Rd = detail::Rd;
 /// an interval <= 0? kTrue if an end value is certainly < 0, kFalse if every
 /// coefficient is certainly > 0 (convex-hull property), else subdivides at
 /// the midpoint (de Casteljau; halving is exact but for underflow, which the
-/// running bound's product rule covers), to `depth` more levels.
-Tri bernsteinAnyNonPos(const Rd* b, int n, int depth) {
+/// running bound's product rule covers), to `depth` more levels and at most
+/// `*budget` intervals in all (a near-double root needs a few intervals per
+/// level around it; a polynomial that is 0 within its bound everywhere, e.g.
+/// a point edge on the torus, would need all 2^depth).
+Tri bernsteinAnyNonPos(const Rd* b, int n, int depth, int* budget) {
+  if (--*budget < 0) return Tri::kUnknown;
   const Sign s0 = Rk::sign(b[0]), sn = Rk::sign(b[n]);
   if (s0 == Sign::kNeg || sn == Sign::kNeg) return Tri::kTrue;
   bool all_pos = true;
@@ -248,12 +268,13 @@ Tri bernsteinAnyNonPos(const Rd* b, int n, int depth) {
     right[n - k] = w[n - k];
     for (int i = 0; i < n - k; ++i) w[i] = (w[i] + w[i + 1]) * half;
   }
-  const Tri l = bernsteinAnyNonPos(left, n, depth - 1);
+  const Tri l = bernsteinAnyNonPos(left, n, depth - 1, budget);
   if (l == Tri::kTrue) return l;
-  return kOr(l, bernsteinAnyNonPos(right, n, depth - 1));
+  return kOr(l, bernsteinAnyNonPos(right, n, depth - 1, budget));
 }
 
-constexpr int kBernsteinDepth = 6;
+constexpr int kBernsteinDepth = 24;
+constexpr int kBernsteinBudget = 96;
 
 Tri edgeFilter(const TorusInput<Rk>& t, int a, int b) {
   Rd l[3], q[5];
@@ -266,9 +287,11 @@ Tri edgeFilter(const TorusInput<Rk>& t, int a, int b) {
   const Rd qb[5] = {q0, q0 + k(3) * q[1], q0 + k(6) * q[1] + k(2) * q[2],
                     q0 + k(9) * q[1] + k(6) * q[2] + k(3) * q[3],
                     k(12) * ((q[0] + q[1]) + (q[2] + q[3]) + q[4])};
-  const Tri tq = bernsteinAnyNonPos(qb, 4, kBernsteinDepth);
+  int budget = kBernsteinBudget;
+  const Tri tq = bernsteinAnyNonPos(qb, 4, kBernsteinDepth, &budget);
   if (tq == Tri::kTrue) return tq;
-  return kOr(tq, bernsteinAnyNonPos(lb, 2, kBernsteinDepth));
+  budget = kBernsteinBudget;
+  return kOr(tq, bernsteinAnyNonPos(lb, 2, kBernsteinDepth, &budget));
 }
 
 // ---- The exact stage: GMP rationals, Sturm sequence ------------------------
@@ -349,16 +372,22 @@ bool torusExact(const TorusInput<QKernel>& t) {
   static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
   for (const auto& e : kEdge)
     if (edgeExact(t, e[0], e[1])) return true;
-  return faceFeet<QKernel>(t) == Tri::kTrue;
+  bool unused = false;
+  return faceFeet<QKernel>(t, NormalHint::kNone, &unused) == Tri::kTrue;
 }
 
-/// One torus in the filter.
-Tri torusFilter(const TorusInput<Rk>& t) {
+/// One torus in the filter. `hint` is computed (exactly, once per query)
+/// only if the face part needs it.
+template <class HintFn>
+Tri torusFilter(const TorusInput<Rk>& t, const HintFn& hint) {
   static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
   detail::AnyOf any;
   for (const auto& e : kEdge)
     if (any.add(edgeFilter(t, e[0], e[1]))) return Tri::kTrue;
-  if (any.add(faceFeet<Rk>(t))) return Tri::kTrue;
+  bool needs_hint = false;
+  Tri f = faceFeet<Rk>(t, NormalHint::kNone, &needs_hint);
+  if (needs_hint) f = faceFeet<Rk>(t, hint(), &needs_hint);
+  if (any.add(f)) return Tri::kTrue;
   return any.result();
 }
 
@@ -457,6 +486,33 @@ Decision cylinderPartExact(const Query& q, bool grow_radius) {
   return detail::runAdaptive(pred, gate);
 }
 
+/// The zero pattern of the triangle's normal in the cylinder frame, exactly
+/// (its components are polynomials of degree 4 in the inputs, inside the
+/// budget of src/filter.h: the filter, then the adaptive kernel decide).
+NormalHint normalHint(const Query& q) {
+  auto zero = [&](bool all) {
+    return detail::runStages(
+               [&](auto tag, bool*) {
+                 using K = typename decltype(tag)::type;
+                 using N = typename K::Num;
+                 const auto l = detail::makeLocal<K>(q.cyl, q.pose, q.tri,
+                                                     q.max_unitless);
+                 const N ux = l.x[1] - l.x[0], uy = l.y[1] - l.y[0],
+                         uz = l.Z[1] - l.Z[0];
+                 const N wx = l.x[2] - l.x[0], wy = l.y[2] - l.y[0],
+                         wz = l.Z[2] - l.Z[0];
+                 Tri t = kAnd(detail::isZero(K::sign(uy * wz - uz * wy)),
+                              detail::isZero(K::sign(uz * wx - ux * wz)));
+                 if (all) t = kAnd(t, detail::isZero(K::sign(ux * wy - uy * wx)));
+                 return t;
+               },
+               q.max_len, q.max_unitless)
+               .answer == Answer::kIntersect;
+  };
+  if (!zero(false)) return NormalHint::kTilted;
+  return zero(true) ? NormalHint::kZero : NormalHint::kHorizontal;
+}
+
 bool intersects(double r, double lz, const Query& q) {
   return tryIntersect(Cylinder<double>{r, lz}, q.pose, q.tri) ==
          Answer::kIntersect;
@@ -518,8 +574,15 @@ Decision decide(const Query& q) {
   Tri t[2] = {Tri::kUnknown, Tri::kUnknown};
   TorusInput<Rk> ft[2];
   if (torusFilterInputs(q, &ft[0], &ft[1])) {
+    bool have_hint = false;
+    NormalHint hint = NormalHint::kNone;
+    auto get_hint = [&] {
+      if (!have_hint) hint = normalHint(q);
+      have_hint = true;
+      return hint;
+    };
     for (int i = 0; i < 2; ++i) {
-      t[i] = torusFilter(ft[i]);
+      t[i] = torusFilter(ft[i], get_hint);
       if (t[i] == Tri::kTrue) return yes(stage);
     }
     if (t[0] == Tri::kFalse && t[1] == Tri::kFalse) return no(stage);
