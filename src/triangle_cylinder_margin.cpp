@@ -46,6 +46,8 @@
 #include <gmpxx.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 #include <utility>
@@ -69,18 +71,32 @@ using detail::Tri;
 // Exact sums of two doubles: the rounded sum and its error (Knuth's TwoSum),
 // and the neighbouring doubles below and above the exact sum.
 
+/// The next double above x >= 0 (finite), and below x > 0, by the bits
+/// (the sizes here are never negative).
+double nextUp(double x) {
+  std::uint64_t b;
+  std::memcpy(&b, &x, sizeof b);
+  b += 1;
+  std::memcpy(&x, &b, sizeof b);
+  return x;
+}
+double nextDown(double x) {
+  std::uint64_t b;
+  std::memcpy(&b, &x, sizeof b);
+  b -= 1;
+  std::memcpy(&x, &b, sizeof b);
+  return x;
+}
+
+/// For a, b >= 0 (+0, never -0): the rounded sum s >= 0, its error e, and
+/// the neighbouring doubles below and above the exact sum (e < 0 implies
+/// s > 0; e > 0 with s the largest double gives +inf, checked by callers).
 struct TwoSum {
   double s;       // fl(a + b), finite
   double e;       // a + b - s exactly
   bool finite;    // false: the rounded sum overflowed (e is then 0)
-  double down() const {
-    return e < 0 ? std::nextafter(s, -std::numeric_limits<double>::infinity())
-                 : s;
-  }
-  double up() const {
-    return e > 0 ? std::nextafter(s, std::numeric_limits<double>::infinity())
-                 : s;
-  }
+  double down() const { return e < 0 ? nextDown(s) : s; }
+  double up() const { return e > 0 ? nextUp(s) : s; }
 };
 
 TwoSum twoSum(double a, double b) {
@@ -396,8 +412,8 @@ Tri torusFilter(const TorusInput<Rk>& t, const HintFn& hint) {
 
 struct Query {
   Cylinder<double> cyl;
-  Pose<double> pose;
-  Triangle<double> tri;
+  const Pose<double>& pose;
+  const Triangle<double>& tri;
   double m;
   double max_len;
   double max_unitless;
@@ -616,16 +632,18 @@ Decision validateAndDecide(const Cylinder<double>& cyl,
 template <class S>
 Decision decideAs(const Cylinder<S>& cyl, const Pose<S>& pose,
                   const Triangle<S>& tri, S m) noexcept {
-  if constexpr (std::is_same_v<S, float>) {
-    const Cylinder<float> mm{m, m};
-    if (!detail::floatBitsFinite(cyl, pose, tri, mm))  // before widening
-      return {Answer::kInvalidInput, Stage::kInvalid};
-  }
   try {
-    return validateAndDecide(
-        {double(cyl.radius), double(cyl.lz)}, detail::widen(pose),
-        {detail::widen(tri.a), detail::widen(tri.b), detail::widen(tri.c)},
-        double(m));
+    if constexpr (std::is_same_v<S, float>) {
+      const Cylinder<float> mm{m, m};
+      if (!detail::floatBitsFinite(cyl, pose, tri, mm))  // before widening
+        return {Answer::kInvalidInput, Stage::kInvalid};
+      return validateAndDecide(
+          {double(cyl.radius), double(cyl.lz)}, detail::widen(pose),
+          {detail::widen(tri.a), detail::widen(tri.b), detail::widen(tri.c)},
+          double(m));
+    } else {
+      return validateAndDecide(cyl, pose, tri, m);
+    }
   } catch (...) {  // std::bad_alloc from GMP or a vector: nothing else throws
     std::terminate();
   }
