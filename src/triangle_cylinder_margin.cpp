@@ -145,43 +145,29 @@ Sign signWithRoot(const typename K::Num& a, const typename K::Num& b,
   return s2 == Sign::kPos ? sa : sb;
 }
 
-/// What is known exactly about the triangle's normal n in the cylinder
-/// frame: nothing (the kernel's signs decide), n = 0 (the triangle is a
-/// segment or a point), n_x = n_y = 0 != n_z (a horizontal plane), or
-/// n_x^2 + n_y^2 > 0.
-enum class NormalHint { kNone, kZero, kHorizontal, kTilted };
-
 /// The face part (see the file comment): does the foot on the triangle's
 /// plane of one of the rim points +-r (n_x, n_y)/|n_xy| lie in the triangle
-/// within m of that rim point? Only called for a triangle that misses the
-/// rim circle and whose edges miss the torus. `*needs_hint` is set when the
-/// answer is kUnknown only because the zero pattern of n is open.
+/// within m of that rim point? Only asked for a triangle that misses the rim
+/// circle and whose edges miss the torus. Degree 24 in the inputs (12 in the
+/// local coordinates): run on inputs scaled to unit size (see
+/// ScaledInputs), where every magnitude stays below 2^90.
 template <class K>
-Tri faceFeet(const TorusInput<K>& t, NormalHint hint, bool* needs_hint) {
+Tri faceFeet(const TorusInput<K>& t) {
   using N = typename K::Num;
   const N ex0 = t.X[1] - t.X[0], ey0 = t.Y[1] - t.Y[0], ez0 = t.Z[1] - t.Z[0];
   const N ex1 = t.X[2] - t.X[0], ey1 = t.Y[2] - t.Y[0], ez1 = t.Z[2] - t.Z[0];
   const N n[3] = {ey0 * ez1 - ez0 * ey1, ez0 * ex1 - ex0 * ez1,
                   ex0 * ey1 - ey0 * ex1};
-  *needs_hint = false;
-  if (hint == NormalHint::kZero) return Tri::kFalse;  // a segment or a point
-  const N D = n[0] * n[0] + n[1] * n[1];
-  Sign sD = hint == NormalHint::kHorizontal ? Sign::kZero
-            : hint == NormalHint::kTilted   ? Sign::kPos
-                                            : K::sign(D);
-  if (hint == NormalHint::kNone) {
-    const Sign sn[3] = {K::sign(n[0]), K::sign(n[1]), K::sign(n[2])};
-    bool any_unknown = false, nonzero = false;
-    for (Sign s : sn) {
-      if (s == Sign::kUnknown) any_unknown = true;
-      if (s == Sign::kPos || s == Sign::kNeg) nonzero = true;
-    }
-    if (!nonzero && !any_unknown) return Tri::kFalse;  // a segment or point
-    if (!nonzero || sD == Sign::kUnknown) {
-      *needs_hint = true;
-      return Tri::kUnknown;
-    }
+  const Sign sn[3] = {K::sign(n[0]), K::sign(n[1]), K::sign(n[2])};
+  bool any_unknown = false, nonzero = false;
+  for (Sign s : sn) {
+    if (s == Sign::kUnknown) any_unknown = true;
+    if (s == Sign::kPos || s == Sign::kNeg) nonzero = true;
   }
+  if (!nonzero) return any_unknown ? Tri::kUnknown : Tri::kFalse;  // segment
+  const N D = n[0] * n[0] + n[1] * n[1];
+  const Sign sD = K::sign(D);
+  if (sD == Sign::kUnknown) return Tri::kUnknown;
   const N n2 = D + n[2] * n[2];
   const N R2 = t.R * t.R, M2 = t.M * t.M;
   // Edge normals in the plane, c_i = n x E_i, E_i = V_{i+1} - V_i.
@@ -383,27 +369,16 @@ bool edgeExact(const TorusInput<QKernel>& t, int a, int b) {
   return sturmRootsInUnit(Poly(q, q + 5)) > 0;
 }
 
-/// One torus, exactly.
-bool torusExact(const TorusInput<QKernel>& t) {
-  static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
-  for (const auto& e : kEdge)
-    if (edgeExact(t, e[0], e[1])) return true;
-  bool unused = false;
-  return faceFeet<QKernel>(t, NormalHint::kNone, &unused) == Tri::kTrue;
-}
-
-/// One torus in the filter. `hint` is computed (exactly, once per query)
-/// only if the face part needs it.
-template <class HintFn>
-Tri torusFilter(const TorusInput<Rk>& t, const HintFn& hint) {
+/// The edges of one torus in the filter: kTrue if one certainly meets it,
+/// kFalse if none does; `open[e]` flags the edges left open.
+Tri edgesFilter(const TorusInput<Rk>& t, bool* open) {
   static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
   detail::AnyOf any;
-  for (const auto& e : kEdge)
-    if (any.add(edgeFilter(t, e[0], e[1]))) return Tri::kTrue;
-  bool needs_hint = false;
-  Tri f = faceFeet<Rk>(t, NormalHint::kNone, &needs_hint);
-  if (needs_hint) f = faceFeet<Rk>(t, hint(), &needs_hint);
-  if (any.add(f)) return Tri::kTrue;
+  for (int e = 0; e < 3; ++e) {
+    const Tri r = edgeFilter(t, kEdge[e][0], kEdge[e][1]);
+    open[e] = r == Tri::kUnknown;
+    if (any.add(r)) return Tri::kTrue;
+  }
   return any.result();
 }
 
@@ -444,43 +419,76 @@ TorusInput<QKernel> torusExactInput(const Query& q, int sgn) {
   return t;
 }
 
-/// The same in the filter, on the inputs scaled by 2^-k (k = the exponent of
-/// the largest length), which keeps every magnitude of the torus tests
-/// below 2^60 so that the bound computations' own underflow stays far below
-/// the filter's absolute slack. False if the scaling is not exact (a
-/// length would become subnormal) or the inputs are outside the range gate.
-bool torusFilterInputs(const Query& q, TorusInput<Rk>* top,
-                       TorusInput<Rk>* bot) {
+/// The inputs scaled by 2^-k, k the exponent of the largest length, so
+/// that every length is below 2 and the magnitudes of the torus tests
+/// (degree <= 24 in the inputs) stay below 2^90: far inside the budget of
+/// the filters' absolute slack (src/filter.h, "Underflow"). `ok` is false if
+/// the scaling is not exact (a length would become subnormal) or the inputs
+/// are outside the range gate; the tori are then decided in GMP alone.
+struct ScaledInputs {
+  Cylinder<double> cyl;
+  Pose<double> pose;
+  Triangle<double> tri;
+  double m;
+  bool ok;
+};
+
+ScaledInputs scaleInputs(const Query& q) {
+  ScaledInputs s{q.cyl, q.pose, q.tri, q.m, false};
   if (!detail::rangeGateOk(q.max_len, q.max_unitless) || q.max_len == 0)
-    return false;
+    return s;
   const int k = std::ilogb(q.max_len);
   bool exact = true;
-  auto sc = [&](double v) {
+  auto sc = [&](double& v) {
     const double w = std::ldexp(v, -k);
     if (std::ldexp(w, k) != v) exact = false;  // w became subnormal
-    return w;
+    v = w;
   };
-  const Vec3<double>* v[3] = {&q.tri.a, &q.tri.b, &q.tri.c};
-  const double tx = sc(q.pose.t.x), ty = sc(q.pose.t.y), tz = sc(q.pose.t.z);
-  const Rd two = Rk::lift(2.0);
-  for (int i = 0; i < 3; ++i) {
-    const Rd d0 = Rk::inputDiff(sc(v[i]->x), tx);
-    const Rd d1 = Rk::inputDiff(sc(v[i]->y), ty);
-    const Rd d2 = Rk::inputDiff(sc(v[i]->z), tz);
-    Rd o[3];
-    for (int c = 0; c < 3; ++c)
-      o[c] = two * (Rk::lift(q.pose.R[0][c]) * d0 +
-                    Rk::lift(q.pose.R[1][c]) * d1 +
-                    Rk::lift(q.pose.R[2][c]) * d2);
-    top->X[i] = bot->X[i] = o[0];
-    top->Y[i] = bot->Y[i] = o[1];
-    top->Z[i] = o[2];
-    bot->Z[i] = -o[2];
+  sc(s.cyl.radius);
+  sc(s.cyl.lz);
+  sc(s.m);
+  sc(s.pose.t.x);
+  sc(s.pose.t.y);
+  sc(s.pose.t.z);
+  for (Vec3<double>* v : {&s.tri.a, &s.tri.b, &s.tri.c}) {
+    sc(v->x);
+    sc(v->y);
+    sc(v->z);
   }
-  top->R = bot->R = Rk::lift(2 * sc(q.cyl.radius));
-  top->M = bot->M = Rk::lift(2 * sc(q.m));
-  top->C = bot->C = Rk::lift(sc(q.cyl.lz));
-  return exact;
+  s.ok = exact;
+  return s;
+}
+
+/// The torus at +h (top) or -h, mirrored to +h, in kernel K from the local
+/// frame of src/triangle_cylinder_impl.h (x, y, Z = 2z, H = lz): doubled
+/// coordinates X = 2x, Y = 2y, Z, doubled sizes R = 2r, M = 2m, C = lz.
+template <class K>
+TorusInput<K> torusInput(const detail::TriCylLocal<K>& l, double m, bool top) {
+  TorusInput<K> t;
+  const auto two = K::lift(2.0);
+  for (int i = 0; i < 3; ++i) {
+    t.X[i] = two * l.x[i];
+    t.Y[i] = two * l.y[i];
+    t.Z[i] = top ? l.Z[i] : -l.Z[i];
+  }
+  t.R = l.r + l.r;
+  t.M = K::lift(m) + K::lift(m);
+  t.C = l.H;
+  return t;
+}
+
+/// The face part of one torus through the stage driver (src/stages.h):
+/// FilterKernel, then the adaptive kernel, on the scaled inputs; GMP
+/// dyadics alone on the original ones where the scaling is not exact.
+Decision faceStage(const Query& q, const ScaledInputs& s, bool top) {
+  auto pred = [&](auto tag, bool*) {
+    using K = typename decltype(tag)::type;
+    const auto l = s.ok ? detail::makeLocal<K>(s.cyl, s.pose, s.tri, q.max_unitless)
+                        : detail::makeLocal<K>(q.cyl, q.pose, q.tri, q.max_unitless);
+    return faceFeet<K>(torusInput<K>(l, s.ok ? s.m : q.m, top));
+  };
+  if (!s.ok) return detail::runAdaptive(pred, false);
+  return detail::runStages(pred, 2.0, q.max_unitless);
 }
 
 /// Cylinder part with the exact sum r + m (grow_radius) or lz + 2m as the
@@ -500,33 +508,6 @@ Decision cylinderPartExact(const Query& q, bool grow_radius) {
   // taken on that, so the bounds behind the adaptive run hold for them.
   const bool gate = detail::rangeGateOk(4 * q.max_len, q.max_unitless);
   return detail::runAdaptive(pred, gate);
-}
-
-/// The zero pattern of the triangle's normal in the cylinder frame, exactly
-/// (its components are polynomials of degree 4 in the inputs, inside the
-/// budget of src/filter.h: the filter, then the adaptive kernel decide).
-NormalHint normalHint(const Query& q) {
-  auto zero = [&](bool all) {
-    return detail::runStages(
-               [&](auto tag, bool*) {
-                 using K = typename decltype(tag)::type;
-                 using N = typename K::Num;
-                 const auto l = detail::makeLocal<K>(q.cyl, q.pose, q.tri,
-                                                     q.max_unitless);
-                 const N ux = l.x[1] - l.x[0], uy = l.y[1] - l.y[0],
-                         uz = l.Z[1] - l.Z[0];
-                 const N wx = l.x[2] - l.x[0], wy = l.y[2] - l.y[0],
-                         wz = l.Z[2] - l.Z[0];
-                 Tri t = kAnd(detail::isZero(K::sign(uy * wz - uz * wy)),
-                              detail::isZero(K::sign(uz * wx - ux * wz)));
-                 if (all) t = kAnd(t, detail::isZero(K::sign(ux * wy - uy * wx)));
-                 return t;
-               },
-               q.max_len, q.max_unitless)
-               .answer == Answer::kIntersect;
-  };
-  if (!zero(false)) return NormalHint::kTilted;
-  return zero(true) ? NormalHint::kZero : NormalHint::kHorizontal;
 }
 
 bool intersects(double r, double lz, const Query& q) {
@@ -586,29 +567,32 @@ Decision decide(const Query& q) {
   Stage stage = Stage::kFastPath;
   if (cylinderPart(q, true, &stage)) return yes(stage);
   if (cylinderPart(q, false, &stage)) return yes(stage);
-  // The tori. The triangle misses C here, hence the rim circles.
-  Tri t[2] = {Tri::kUnknown, Tri::kUnknown};
-  TorusInput<Rk> ft[2];
-  if (torusFilterInputs(q, &ft[0], &ft[1])) {
-    bool have_hint = false;
-    NormalHint hint = NormalHint::kNone;
-    auto get_hint = [&] {
-      if (!have_hint) hint = normalHint(q);
-      have_hint = true;
-      return hint;
-    };
-    for (int i = 0; i < 2; ++i) {
-      t[i] = torusFilter(ft[i], get_hint);
-      if (t[i] == Tri::kTrue) return yes(stage);
-    }
-    if (t[0] == Tri::kFalse && t[1] == Tri::kFalse) return no(stage);
+  // The tori. The triangle misses C here, hence the rim circles. Edges
+  // first (the face part is complete only when they miss): the filter on
+  // both tori, then GMP for the edges it left open, then the faces.
+  const ScaledInputs s = scaleInputs(q);
+  bool open[2][3] = {{true, true, true}, {true, true, true}};
+  if (s.ok) {
+    const auto l = detail::makeLocal<Rk>(s.cyl, s.pose, s.tri, q.max_unitless);
+    for (int i = 0; i < 2; ++i)
+      if (edgesFilter(torusInput<Rk>(l, s.m, i == 0), open[i]) == Tri::kTrue)
+        return yes(stage);
+  }
+  static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+  for (int i = 0; i < 2; ++i) {
+    if (!(open[i][0] || open[i][1] || open[i][2])) continue;
+    const TorusInput<QKernel> t = torusExactInput(q, i == 0 ? 1 : -1);
+    stage = Stage::kExactGmp;
+    for (int e = 0; e < 3; ++e)
+      if (open[i][e] && edgeExact(t, kEdge[e][0], kEdge[e][1]))
+        return yes(stage);
   }
   for (int i = 0; i < 2; ++i) {
-    if (t[i] != Tri::kUnknown) continue;
-    if (torusExact(torusExactInput(q, i == 0 ? 1 : -1)))
-      return yes(Stage::kExactGmp);
+    const Decision d = faceStage(q, s, i == 0);
+    stage = stronger(stage, d.stage);
+    if (d.answer == Answer::kIntersect) return yes(stage);
   }
-  return no(Stage::kExactGmp);
+  return no(stage);
 }
 
 Decision validateAndDecide(const Cylinder<double>& cyl,
