@@ -385,13 +385,24 @@ Tri edgesFilter(const TorusInput<Rk>& t, bool* open) {
 // ---------------------------------------------------------------------------
 // The query.
 
+/// A query whose sizes are valid (finite, >= 0, +0 for zero). The pose and
+/// the triangle are validated by the first call of the triangle kernel (or
+/// by scan() where no call is made first); the largest lengths for the range
+/// gate are computed by scan() on the slow paths only.
 struct Query {
   Cylinder<double> cyl;
   const Pose<double>& pose;
   const Triangle<double>& tri;
   double m;
-  double max_len;
-  double max_unitless;
+  double max_len = 0;
+  double max_unitless = 0;
+  /// False if some input is NaN or infinite.
+  bool scan() {
+    const Triangle<double>& t = tri;
+    return detail::scanFinite({cyl.radius, cyl.lz, m, t.a.x, t.a.y, t.a.z,
+                               t.b.x, t.b.y, t.b.z, t.c.x, t.c.y, t.c.z},
+                              pose, &max_len, &max_unitless);
+  }
 };
 
 /// The doubled local coordinates and sizes of the torus at height sgn * h,
@@ -548,28 +559,37 @@ bool cylinderPart(const Query& q, bool grow_radius, Stage* stage) {
         !intersects(r_up, lz_up, q))
       return false;  // a superset: exact no
   }
-  const Decision d = cylinderPartExact(q, grow_radius);
+  Query qs = q;
+  qs.scan();
+  const Decision d = cylinderPartExact(qs, grow_radius);
   *stage = stronger(*stage, d.stage);
   return d.answer == Answer::kIntersect;
 }
 
-Decision decide(const Query& q) {
+Decision decide(Query& q) {
   if (q.m == 0) return decideIntersect(q.cyl, q.pose, q.tri);
-  // A superset of C + B_m: Cyl(r + m, h + m), sizes rounded up.
+  // A superset of C + B_m: Cyl(r + m, h + m), sizes rounded up. This first
+  // call of the kernel also validates the pose and the triangle.
   const TwoSum rs = twoSum(q.cyl.radius, q.m);
   const TwoSum ls = twoSum(q.cyl.lz, 2 * q.m);
+  bool validated = false;
   if (rs.finite && ls.finite && std::isfinite(2 * q.m)) {
     const double r_up = rs.up(), lz_up = ls.up();
-    if (std::isfinite(r_up) && std::isfinite(lz_up) &&
-        !intersects(r_up, lz_up, q))
-      return no(Stage::kEarlyOut);
+    if (std::isfinite(r_up) && std::isfinite(lz_up)) {
+      const Answer a = tryIntersect(Cylinder<double>{r_up, lz_up}, q.pose, q.tri);
+      if (a == Answer::kInvalidInput) return {a, Stage::kInvalid};
+      if (a == Answer::kDisjoint) return no(Stage::kEarlyOut);
+      validated = true;
+    }
   }
+  if (!validated && !q.scan()) return {Answer::kInvalidInput, Stage::kInvalid};
   Stage stage = Stage::kFastPath;
   if (cylinderPart(q, true, &stage)) return yes(stage);
   if (cylinderPart(q, false, &stage)) return yes(stage);
   // The tori. The triangle misses C here, hence the rim circles. Edges
   // first (the face part is complete only when they miss): the filter on
   // both tori, then GMP for the edges it left open, then the faces.
+  q.scan();
   const ScaledInputs s = scaleInputs(q);
   bool open[2][3] = {{true, true, true}, {true, true, true}};
   if (s.ok) {
@@ -595,21 +615,23 @@ Decision decide(const Query& q) {
   return no(stage);
 }
 
+/// A size is valid iff finite and >= 0 (-0 included), read from its bits:
+/// no floating-point operation touches a NaN.
+bool validSize(double v) {
+  std::uint64_t b;
+  std::memcpy(&b, &v, sizeof b);
+  const std::uint64_t abs = b & ~(std::uint64_t(1) << 63);
+  return abs < 0x7ff0000000000000ULL && (abs == b || abs == 0);
+}
+
 Decision validateAndDecide(const Cylinder<double>& cyl,
                            const Pose<double>& pose,
                            const Triangle<double>& tri, double m) {
-  Query q{cyl, pose, tri, m, 0, 0};
-  if (!detail::scanFinite({cyl.radius, cyl.lz, m, tri.a.x, tri.a.y, tri.a.z,
-                           tri.b.x, tri.b.y, tri.b.z, tri.c.x, tri.c.y,
-                           tri.c.z},
-                          pose, &q.max_len, &q.max_unitless) ||
-      !(cyl.radius >= 0 && cyl.lz >= 0 && m >= 0))
+  if (!validSize(cyl.radius) || !validSize(cyl.lz) || !validSize(m))
     return {Answer::kInvalidInput, Stage::kInvalid};
   // -0 is 0 for every size (the bits of -0 would break nothing, but the
   // exact sums are clearer on +0).
-  q.cyl.radius = cyl.radius + 0.0;
-  q.cyl.lz = cyl.lz + 0.0;
-  q.m = m + 0.0;
+  Query q{{cyl.radius + 0.0, cyl.lz + 0.0}, pose, tri, m + 0.0};
   return decide(q);
 }
 
