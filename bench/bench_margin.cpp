@@ -96,7 +96,8 @@ void percentiles() {
   using Clock = std::chrono::steady_clock;
   std::printf(
       "| family | withinDistance mean ns | median | p99 | intersect mean ns "
-      "| median | p99 | mean ratio |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
+      "| median | p99 | mean ratio "
+      "|\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
   for (Family f : tricyl::scenes::kAllFamilies) {
     const auto cs = cases(f);
     tricyl::bench::Walk walk(cs.size());
@@ -105,8 +106,8 @@ void percentiles() {
     for (int rep = 0; rep < 1000; ++rep) {  // the clock's own cost
       const auto t0 = Clock::now();
       const auto t1 = Clock::now();
-      empty = std::min(empty, std::chrono::duration<double, std::nano>(t1 - t0)
-                                  .count());
+      empty = std::min(
+          empty, std::chrono::duration<double, std::nano>(t1 - t0).count());
     }
     long sink = 0;
     for (int pass = 0; pass < 8 * kCases; ++pass) {
@@ -128,8 +129,8 @@ void percentiles() {
     };
     const double mw = mean(tw), mi = mean(ti);
     std::printf("| %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f |%s\n",
-                tricyl::scenes::familyName(f), mw, pct(tw, 50), pct(tw, 99),
-                mi, pct(ti, 50), pct(ti, 99), mw / mi, sink < 0 ? " " : "");
+                tricyl::scenes::familyName(f), mw, pct(tw, 50), pct(tw, 99), mi,
+                pct(ti, 50), pct(ti, 99), mw / mi, sink < 0 ? " " : "");
   }
 }
 

@@ -128,8 +128,8 @@ void run(const MarginCase<S>& mc) {
       perm[i] = tricyl::tryWithinDistance(c.cyl, c.pose, orders[i], m);
     tricyl::Pose<S> p = c.pose;
     p.t = neg(p.t);
-    reflected = tricyl::tryWithinDistance(
-        c.cyl, p, {neg(t.a), neg(t.b), neg(t.c)}, m);
+    reflected =
+        tricyl::tryWithinDistance(c.cyl, p, {neg(t.a), neg(t.b), neg(t.c)}, m);
   }
   check(!threw, "withinDistance threw on valid input", mc);
   check(a != Answer::kInvalidInput, "kInvalidInput on valid input", mc);

@@ -92,9 +92,9 @@ double nextDown(double x) {
 /// the neighbouring doubles below and above the exact sum (e < 0 implies
 /// s > 0; e > 0 with s the largest double gives +inf, checked by callers).
 struct TwoSum {
-  double s;       // fl(a + b), finite
-  double e;       // a + b - s exactly
-  bool finite;    // false: the rounded sum overflowed (e is then 0)
+  double s;     // fl(a + b), finite
+  double e;     // a + b - s exactly
+  bool finite;  // false: the rounded sum overflowed (e is then 0)
   double down() const { return e < 0 ? nextDown(s) : s; }
   double up() const { return e > 0 ? nextUp(s) : s; }
 };
@@ -197,8 +197,7 @@ Tri faceFeet(const TorusInput<K>& t) {
         ok = kAnd(ok, detail::isNonNeg(K::sign(s)));
       }
       if (ok == Tri::kFalse) continue;
-      const N dn = n[0] * (gx - t.X[0]) - n[1] * t.Y[0] +
-                   n[2] * (t.C - t.Z[0]);
+      const N dn = n[0] * (gx - t.X[0]) - n[1] * t.Y[0] + n[2] * (t.C - t.Z[0]);
       ok = kAnd(ok, detail::isNonPos(K::sign(dn * dn - M2 * n2)));
     } else {
       for (int i = 0; i < 3 && ok != Tri::kFalse; ++i) {
@@ -494,8 +493,9 @@ TorusInput<K> torusInput(const detail::TriCylLocal<K>& l, double m, bool top) {
 Decision faceStage(const Query& q, const ScaledInputs& s, bool top) {
   auto pred = [&](auto tag, bool*) {
     using K = typename decltype(tag)::type;
-    const auto l = s.ok ? detail::makeLocal<K>(s.cyl, s.pose, s.tri, q.max_unitless)
-                        : detail::makeLocal<K>(q.cyl, q.pose, q.tri, q.max_unitless);
+    const auto l =
+        s.ok ? detail::makeLocal<K>(s.cyl, s.pose, s.tri, q.max_unitless)
+             : detail::makeLocal<K>(q.cyl, q.pose, q.tri, q.max_unitless);
     return faceFeet<K>(torusInput<K>(l, s.ok ? s.m : q.m, top));
   };
   if (!s.ok) return detail::runAdaptive(pred, false);
@@ -529,12 +529,18 @@ bool intersects(double r, double lz, const Query& q) {
 Stage stronger(Stage a, Stage b) {
   auto rank = [](Stage s) {
     switch (s) {
-      case Stage::kEarlyOut: return 0;
-      case Stage::kFastPath: return 1;
-      case Stage::kExtended: return 2;
-      case Stage::kExact: return 3;
-      case Stage::kExactGmp: return 4;
-      default: return 5;
+      case Stage::kEarlyOut:
+        return 0;
+      case Stage::kFastPath:
+        return 1;
+      case Stage::kExtended:
+        return 2;
+      case Stage::kExact:
+        return 3;
+      case Stage::kExactGmp:
+        return 4;
+      default:
+        return 5;
     }
   };
   return rank(a) >= rank(b) ? a : b;
@@ -546,8 +552,8 @@ Decision no(Stage s) { return {Answer::kDisjoint, s}; }
 /// A sized part (grow_radius: Cyl(r + m, h), else Cyl(r, h + m)).
 /// `stage` accumulates the strongest stage used.
 bool cylinderPart(const Query& q, bool grow_radius, Stage* stage) {
-  const TwoSum s = grow_radius ? twoSum(q.cyl.radius, q.m)
-                               : twoSum(q.cyl.lz, 2 * q.m);
+  const TwoSum s =
+      grow_radius ? twoSum(q.cyl.radius, q.m) : twoSum(q.cyl.lz, 2 * q.m);
   if (s.finite && std::isfinite(2 * q.m)) {
     const double r = grow_radius ? s.down() : q.cyl.radius;
     const double lz = grow_radius ? q.cyl.lz : s.down();
@@ -576,7 +582,8 @@ Decision decide(Query& q) {
   if (rs.finite && ls.finite && std::isfinite(2 * q.m)) {
     const double r_up = rs.up(), lz_up = ls.up();
     if (std::isfinite(r_up) && std::isfinite(lz_up)) {
-      const Answer a = tryIntersect(Cylinder<double>{r_up, lz_up}, q.pose, q.tri);
+      const Answer a =
+          tryIntersect(Cylinder<double>{r_up, lz_up}, q.pose, q.tri);
       if (a == Answer::kInvalidInput) return {a, Stage::kInvalid};
       if (a == Answer::kDisjoint) return no(Stage::kEarlyOut);
       validated = true;

@@ -5,6 +5,8 @@
 // size, margin 0 against intersect, and the decomposition itself against an
 // independent numerical distance. Every answer is judged by the exact GMP
 // oracle compare/margin_oracle.h.
+#include "tricyl/triangle_cylinder_margin.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,7 +20,6 @@
 #include "scenes.h"
 #include "test_support.h"
 #include "tricyl/triangle_cylinder.h"
-#include "tricyl/triangle_cylinder_margin.h"
 
 namespace tricyl {
 namespace {
@@ -86,18 +87,34 @@ TEST(Margin, HandBuilt) {
       {{-9, -9, 1.25}, {9, -9, 1.25}, {0, 9, 1.25}, 0.125, false, "face"},
       // A face in the plane x = z, nearest on its edge x = 1.5, sqrt(1/2)
       // from the rim point (1, 0, 1).
-      {{1.5, -20, 1.5}, {1.5, 20, 1.5}, {40, 0, 40}, 0.70703125, false,
+      {{1.5, -20, 1.5},
+       {1.5, 20, 1.5},
+       {40, 0, 40},
+       0.70703125,
+       false,
        "slanted face, just below"},
-      {{1.5, -20, 1.5}, {1.5, 20, 1.5}, {40, 0, 40}, 0.7071075439453125, true,
+      {{1.5, -20, 1.5},
+       {1.5, 20, 1.5},
+       {40, 0, 40},
+       0.7071075439453125,
+       true,
        "slanted face, just above"},
       // A face whose interior alone comes near the rim: the plane
       // (p - (1, 0, 1)) . (3, 0, 4) / 5 = 0.3125 (distance 0.3125 from the
       // whole cylinder, whose support in that direction is the rim point),
       // with its foot (1.1875, 0, 1.25) inside the triangle.
-      {{9.1875, 0, -4.75}, {-6.8125, 10, 7.25}, {-6.8125, -10, 7.25}, 0.3125,
-       true, "face interior over rim, at d"},
-      {{9.1875, 0, -4.75}, {-6.8125, 10, 7.25}, {-6.8125, -10, 7.25},
-       0.31249999999999994, false, "face interior over rim, 1 ulp below"},
+      {{9.1875, 0, -4.75},
+       {-6.8125, 10, 7.25},
+       {-6.8125, -10, 7.25},
+       0.3125,
+       true,
+       "face interior over rim, at d"},
+      {{9.1875, 0, -4.75},
+       {-6.8125, 10, 7.25},
+       {-6.8125, -10, 7.25},
+       0.31249999999999994,
+       false,
+       "face interior over rim, 1 ulp below"},
       // The torus around the bottom rim (mirror of the corner case).
       {{1.5, 0, -1.5}, {3, 0, -3}, {3, 1, -3}, 0.75, true, "bottom corner"},
       {{1.5, 0, -1.5}, {3, 0, -3}, {3, 1, -3}, 0.5, false, "bottom corner"},
@@ -163,10 +180,9 @@ TEST(Margin, InvalidInput) {
   // Huge sizes: r + m and lz + 2m overflow double; still exact.
   const double big = 0x1.fffffffffffffp1023;
   EXPECT_TRUE(withinDistance(Cylinder<double>{big, big}, pose, tri, big));
-  EXPECT_EQ(withinDistance(Cylinder<double>{1, 2}, pose,
-                           Triangle<double>{{big, 0, 0}, {big, 1, 0},
-                                            {big, 0, 1}},
-                           big),
+  EXPECT_EQ(withinDistance(
+                Cylinder<double>{1, 2}, pose,
+                Triangle<double>{{big, 0, 0}, {big, 1, 0}, {big, 0, 1}}, big),
             true);
 }
 
@@ -334,9 +350,9 @@ TEST(Margin, UlpsAroundTrueDistance) {
         for (double m : {ulpsFrom(at(lo), -u), ulpsFrom(at(hi), u)}) {
           SCOPED_TRACE(std::string(scenes::familyName(fam)) + " case " +
                        std::to_string(i) + " " + describe(k, m));
-          ASSERT_EQ(tryWithinDistance(k.cyl, k.pose, k.tri, m),
-                    oracleWithin(k, m) ? Answer::kIntersect
-                                       : Answer::kDisjoint);
+          ASSERT_EQ(
+              tryWithinDistance(k.cyl, k.pose, k.tri, m),
+              oracleWithin(k, m) ? Answer::kIntersect : Answer::kDisjoint);
           ++checked;
         }
       }
@@ -425,14 +441,14 @@ TEST_P(MarginFamily, AgreesWithOracle) {
     if ((tryWithinDistance(f.cyl, f.pose, f.tri, f.m) == Answer::kIntersect) !=
         want_f) {
       ++wrong;
-      ADD_FAILURE() << "float kernel " << (want_f ? "false" : "true")
-                    << " on " << describe(f.widened, double(f.m));
+      ADD_FAILURE() << "float kernel " << (want_f ? "false" : "true") << " on "
+                    << describe(f.widened, double(f.m));
     }
   }
-  std::printf("[ stats ] %s: %ld cases (double and float), %ld within, %ld "
-              "wrong; double: %s\n",
-              scenes::familyName(fam), n, yes, wrong,
-              stages.summary(n).c_str());
+  std::printf(
+      "[ stats ] %s: %ld cases (double and float), %ld within, %ld "
+      "wrong; double: %s\n",
+      scenes::familyName(fam), n, yes, wrong, stages.summary(n).c_str());
   EXPECT_EQ(wrong, 0);
 }
 
@@ -451,9 +467,11 @@ INSTANTIATE_TEST_SUITE_P(Families, MarginFamily,
 // kept between the distance and the margin).
 
 long double pointDist(const V& p, double r, double h) {
-  const long double rho = std::sqrt((long double)p.x * p.x + (long double)p.y * p.y);
+  const long double rho =
+      std::sqrt((long double)p.x * p.x + (long double)p.y * p.y);
   const long double dr = std::max<long double>(rho - r, 0);
-  const long double dz = std::max<long double>(std::fabs((long double)p.z) - h, 0);
+  const long double dz =
+      std::max<long double>(std::fabs((long double)p.z) - h, 0);
   return std::sqrt(dr * dr + dz * dz);
 }
 
@@ -508,8 +526,8 @@ TEST(Margin, DecompositionAgainstNumericDistance) {
       const double m = double(d) * g.uniform(0.5, 1.5);
       if (std::fabs((long double)m - d) <= 1e-6L * (1 + d)) continue;
       const bool want = (long double)m >= d;
-      SCOPED_TRACE("case " + std::to_string(i) + " d=" +
-                   std::to_string(double(d)) + " " + describe(k, m));
+      SCOPED_TRACE("case " + std::to_string(i) +
+                   " d=" + std::to_string(double(d)) + " " + describe(k, m));
       ASSERT_EQ(oracleWithin(k, m), want) << "oracle";
       ASSERT_EQ(withinDistance(k.cyl, k.tri, m), want) << "kernel";
       const bool cyl_parts =
@@ -519,9 +537,10 @@ TEST(Margin, DecompositionAgainstNumericDistance) {
       ++compared;
     }
   }
-  std::printf("[ stats ] numeric cross-check: %ld margins, %ld decided by a "
-              "torus\n",
-              compared, torus_cases);
+  std::printf(
+      "[ stats ] numeric cross-check: %ld margins, %ld decided by a "
+      "torus\n",
+      compared, torus_cases);
   EXPECT_GT(torus_cases, 0);
 }
 
