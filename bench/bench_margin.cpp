@@ -48,39 +48,30 @@ std::vector<MarginCase> cases(Family f) {
   return v;
 }
 
-void BM_Within(benchmark::State& state, Family f) {
+/// One row: withinDistance (margin) or intersect on the same cases.
+void BM_Query(benchmark::State& state, Family f, bool margin) {
   const auto cs = cases(f);
   tricyl::bench::Walk walk(cs.size());
   long yes = 0;
   for (auto _ : state) {
     const MarginCase& c = cs[walk.next()];
-    const auto a = tricyl::tryWithinDistance(c.k.cyl, c.k.pose, c.k.tri, c.m);
+    const auto a =
+        margin ? tricyl::tryWithinDistance(c.k.cyl, c.k.pose, c.k.tri, c.m)
+               : tricyl::tryIntersect(c.k.cyl, c.k.pose, c.k.tri);
     yes += a == tricyl::Answer::kIntersect;
     benchmark::DoNotOptimize(a);
   }
-  state.counters["within"] = double(yes) / double(state.iterations());
-}
-
-void BM_Intersect(benchmark::State& state, Family f) {
-  const auto cs = cases(f);
-  tricyl::bench::Walk walk(cs.size());
-  long yes = 0;
-  for (auto _ : state) {
-    const MarginCase& c = cs[walk.next()];
-    const auto a = tricyl::tryIntersect(c.k.cyl, c.k.pose, c.k.tri);
-    yes += a == tricyl::Answer::kIntersect;
-    benchmark::DoNotOptimize(a);
-  }
-  state.counters["hit"] = double(yes) / double(state.iterations());
+  state.counters[margin ? "within" : "hit"] =
+      double(yes) / double(state.iterations());
 }
 
 void registerAll() {
   for (Family f : tricyl::scenes::kAllFamilies) {
     const std::string name = tricyl::scenes::familyName(f);
     benchmark::RegisterBenchmark(("margin/" + name + "/withinDistance").c_str(),
-                                 BM_Within, f);
+                                 BM_Query, f, true);
     benchmark::RegisterBenchmark(("margin/" + name + "/intersect").c_str(),
-                                 BM_Intersect, f);
+                                 BM_Query, f, false);
   }
 }
 

@@ -50,15 +50,7 @@ MarginCase<S> decodeMargin(const std::uint8_t* data, std::size_t size) {
   ByteReader in(data, size);
   ScalarDecoder<S> dec(&in);
   MarginCase<S> m;
-  Case<S>& c = m.c;
-  const std::uint8_t flags = in.byte();
-  c.cyl.radius = dec.next();
-  c.cyl.lz = dec.next();
-  c.pose = readPose(&in, &dec, flags, &c.identity_pose);
-  Vec3<S>* verts[3] = {&c.tri.a, &c.tri.b, &c.tri.c};
-  for (Vec3<S>* v : verts) *v = {dec.next(), dec.next(), dec.next()};
-  if ((flags & 4) && !c.identity_pose)
-    for (Vec3<S>* v : verts) *v = toWorld(c.pose, *v);
+  m.c = decodeCase(&in, &dec);
   m.margin = dec.next();
   return m;
 }
@@ -119,11 +111,7 @@ void run(const MarginCase<S>& mc) {
     if (can_grow)
       grown_a = tricyl::tryWithinDistance(c.cyl, c.pose, c.tri, grown);
     const auto& t = c.tri;
-    const tricyl::Triangle<S> orders[5] = {{t.a, t.c, t.b},
-                                           {t.b, t.a, t.c},
-                                           {t.b, t.c, t.a},
-                                           {t.c, t.a, t.b},
-                                           {t.c, t.b, t.a}};
+    const auto orders = tricyl::fuzz::otherVertexOrders(t);
     for (int i = 0; i < 5; ++i)
       perm[i] = tricyl::tryWithinDistance(c.cyl, c.pose, orders[i], m);
     tricyl::Pose<S> p = c.pose;

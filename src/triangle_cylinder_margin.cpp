@@ -575,19 +575,19 @@ bool cylinderPart(const Query& q, bool grow_radius, Stage* stage) {
 Decision decide(Query& q) {
   if (q.m == 0) return decideIntersect(q.cyl, q.pose, q.tri);
   // A superset of C + B_m: Cyl(r + m, h + m), sizes rounded up. This first
-  // call of the kernel also validates the pose and the triangle.
-  const TwoSum rs = twoSum(q.cyl.radius, q.m);
-  const TwoSum ls = twoSum(q.cyl.lz, 2 * q.m);
+  // call of the kernel also validates the pose and the triangle. For
+  // x = fl(a + b) >= 0 normal, fl(x + fl(x 2^-51)) >= x (1 + 2^-52) >= a + b;
+  // in the subnormal range the sum is exact and the bound still >= it.
   bool validated = false;
-  if (rs.finite && ls.finite && std::isfinite(2 * q.m)) {
-    const double r_up = rs.up(), lz_up = ls.up();
-    if (std::isfinite(r_up) && std::isfinite(lz_up)) {
-      const Answer a =
-          tryIntersect(Cylinder<double>{r_up, lz_up}, q.pose, q.tri);
-      if (a == Answer::kInvalidInput) return {a, Stage::kInvalid};
-      if (a == Answer::kDisjoint) return no(Stage::kEarlyOut);
-      validated = true;
-    }
+  const double two_m = 2 * q.m;
+  const double r_sum = q.cyl.radius + q.m, l_sum = q.cyl.lz + two_m;
+  const double r_up = r_sum + r_sum * 0x1p-51;
+  const double lz_up = l_sum + l_sum * 0x1p-51;
+  if (std::isfinite(r_up) && std::isfinite(lz_up)) {
+    const Answer a = tryIntersect(Cylinder<double>{r_up, lz_up}, q.pose, q.tri);
+    if (a == Answer::kInvalidInput) return {a, Stage::kInvalid};
+    if (a == Answer::kDisjoint) return no(Stage::kEarlyOut);
+    validated = true;
   }
   if (!validated && !q.scan()) return {Answer::kInvalidInput, Stage::kInvalid};
   Stage stage = Stage::kFastPath;
