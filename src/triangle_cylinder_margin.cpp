@@ -33,14 +33,17 @@
 // Q(sqrt(n_x^2 + n_y^2)): sign(a + b sqrt(D)) from the signs of a, b and
 // a^2 - b^2 D.
 //
-// Stages of the tori: a double filter with running error bounds (the rules
-// of RunningDoubleKernel, src/filter.h) on inputs scaled by a power of two to
-// unit size, in which the edge polynomials are decided by their Bernstein
-// coefficients on [0, 1] with de Casteljau subdivision to a fixed depth (all
-// coefficients > 0: no point of the edge is inside; an end value < 0: a
-// point is); then, for what it leaves open, GMP rationals, where the quartic
-// is decided by its Sturm sequence on (0, 1) (its ends are tested first) and
-// the quadratic by its vertex. Every stage does a fixed amount of work.
+// Stages of the tori. Edges: a double filter with running error bounds (the
+// rules of RunningDoubleKernel, src/filter.h) on the inputs scaled by a
+// power of two to unit size, in which L and Q are decided by their Bernstein
+// coefficients on [0, 1] with de Casteljau subdivision (all coefficients
+// > 0: no point of the edge is inside; an end value < 0: a point is), to a
+// fixed depth and a fixed number of intervals; the edges it leaves open in
+// GMP rationals, the quartic by its ends and its Sturm sequence on (0, 1),
+// the quadratic by its ends and vertex. The face: the stage driver of
+// src/stages.h (FilterKernel, then the adaptive kernel) on the scaled
+// inputs. Every stage does a bounded amount of work; docs/margin.md has the
+// derivations and the exactness argument.
 #include "tricyl/triangle_cylinder_margin.h"
 
 #include <gmpxx.h>
