@@ -286,7 +286,7 @@ TEST(Margin, ExactTies) {
   const std::uint64_t seed = test::baseSeed();
   SCOPED_TRACE(test::seedTrace(seed));
   scenes::Rng g(seed ^ 0x7a11);
-  const long n = test::scaled(600);
+  const long n = test::scaled(350);
   long checked = 0;
   for (long i = 0; i < n; ++i) {
     const Tie t = makeTie(g, int(i % 7));
@@ -321,9 +321,10 @@ TEST(Margin, ExactTies) {
 
 // ---------------------------------------------------------------------------
 // Margins 1, 4 and 2^20 ulps either side of a true distance of random
-// scenes: the oracle brackets the distance between two adjacent doubles
-// (bisection over the doubles' bit patterns), and the kernel must agree with
-// the oracle at each margin around it.
+// scenes: the true distance is bracketed between two adjacent doubles lo <
+// hi (bisection over the doubles' bit patterns, steered by the kernel for
+// speed, the bracket itself then confirmed by the oracle: false at lo, true
+// at hi), and the kernel must agree with the oracle at each margin around.
 
 TEST(Margin, UlpsAroundTrueDistance) {
   const std::uint64_t seed = test::baseSeed();
@@ -334,18 +335,24 @@ TEST(Margin, UlpsAroundTrueDistance) {
     for (long i = 0; i < n; ++i) {
       const TriCase k = scenes::generate(fam, seed ^ 0xd157, std::uint64_t(i));
       if (oracleWithin(k, 0)) continue;  // distance 0: nothing to bracket
-      // Largest double with a false answer: bisection on bit patterns.
-      std::int64_t lo = 0, hi = 0x7fefffffffffffff;  // answer(lo) false
       auto at = [](std::int64_t b) {
         double x;
         std::memcpy(&x, &b, sizeof x);
         return x;
       };
-      if (!oracleWithin(k, at(hi))) continue;  // farther than DBL_MAX
+      auto kernel = [&](double m) {
+        return tryWithinDistance(k.cyl, k.pose, k.tri, m) == Answer::kIntersect;
+      };
+      std::int64_t lo = 0, hi = 0x7fefffffffffffff;  // kernel(lo) false
+      if (!kernel(at(hi))) continue;                 // farther than DBL_MAX
       while (hi - lo > 1) {
         const std::int64_t mid = lo + (hi - lo) / 2;
-        (oracleWithin(k, at(mid)) ? hi : lo) = mid;
+        (kernel(at(mid)) ? hi : lo) = mid;
       }
+      SCOPED_TRACE(std::string(scenes::familyName(fam)) + " case " +
+                   std::to_string(i) + " " + describe(k, at(lo)));
+      ASSERT_FALSE(oracleWithin(k, at(lo))) << "bracket, low end";
+      ASSERT_TRUE(oracleWithin(k, at(hi))) << "bracket, high end";
       for (std::int64_t u : {0, 1, 4, 1 << 20}) {
         for (double m : {ulpsFrom(at(lo), -u), ulpsFrom(at(hi), u)}) {
           SCOPED_TRACE(std::string(scenes::familyName(fam)) + " case " +
