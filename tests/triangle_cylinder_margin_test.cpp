@@ -470,30 +470,28 @@ INSTANTIATE_TEST_SUITE_P(Families, MarginFamily,
 // The decomposition itself, against a numerical distance that shares
 // nothing with it: dist(T, C) = min over the triangle of the distance to C,
 // a convex function of the barycentric coordinates, minimised by nested
-// ternary search in long double (converged far below the 1e-6 relative gap
+// ternary search in double (converged far below the 1e-6 relative gap
 // kept between the distance and the margin).
 
-long double pointDist(const V& p, double r, double h) {
-  const long double rho =
-      std::sqrt((long double)p.x * p.x + (long double)p.y * p.y);
-  const long double dr = std::max<long double>(rho - r, 0);
-  const long double dz =
-      std::max<long double>(std::fabs((long double)p.z) - h, 0);
+double pointDist(const V& p, double r, double h) {
+  const double rho = std::sqrt(p.x * p.x + p.y * p.y);
+  const double dr = std::max(rho - r, 0.0);
+  const double dz = std::max(std::fabs(p.z) - h, 0.0);
   return std::sqrt(dr * dr + dz * dz);
 }
 
-long double numericDistance(const Triangle<double>& t, double r, double h) {
-  auto at = [&](long double u, long double v) {
-    const long double w = 1 - u - v;
+double numericDistance(const Triangle<double>& t, double r, double h) {
+  auto at = [&](double u, double v) {
+    const double w = 1 - u - v;
     const V p{double(w * t.a.x + u * t.b.x + v * t.c.x),
               double(w * t.a.y + u * t.b.y + v * t.c.y),
               double(w * t.a.z + u * t.b.z + v * t.c.z)};
     return pointDist(p, r, h);
   };
-  auto inner = [&](long double u) {  // min over v in [0, 1 - u]
-    long double lo = 0, hi = 1 - u;
-    for (int it = 0; it < 100; ++it) {
-      const long double a = lo + (hi - lo) / 3, b = hi - (hi - lo) / 3;
+  auto inner = [&](double u) {  // min over v in [0, 1 - u]
+    double lo = 0, hi = 1 - u;
+    for (int it = 0; it < 70; ++it) {
+      const double a = lo + (hi - lo) / 3, b = hi - (hi - lo) / 3;
       if (at(u, a) <= at(u, b))
         hi = b;
       else
@@ -501,9 +499,9 @@ long double numericDistance(const Triangle<double>& t, double r, double h) {
     }
     return at(u, (lo + hi) / 2);
   };
-  long double lo = 0, hi = 1;
-  for (int it = 0; it < 100; ++it) {
-    const long double a = lo + (hi - lo) / 3, b = hi - (hi - lo) / 3;
+  double lo = 0, hi = 1;
+  for (int it = 0; it < 70; ++it) {
+    const double a = lo + (hi - lo) / 3, b = hi - (hi - lo) / 3;
     if (inner(a) <= inner(b))
       hi = b;
     else
@@ -528,11 +526,11 @@ TEST(Margin, DecompositionAgainstNumericDistance) {
                (g.coin() ? 1 : -1) * (h + g.uniform(-0.5, 1.5))};
     };
     const TriCase k = local(r, 2 * h, pt(), pt(), pt());
-    const long double d = numericDistance(k.tri, r, h);
+    const double d = numericDistance(k.tri, r, h);
     for (int j = 0; j < 4; ++j) {
       const double m = double(d) * g.uniform(0.5, 1.5);
-      if (std::fabs((long double)m - d) <= 1e-6L * (1 + d)) continue;
-      const bool want = (long double)m >= d;
+      if (std::fabs(m - d) <= 1e-6 * (1 + d)) continue;
+      const bool want = m >= d;
       SCOPED_TRACE("case " + std::to_string(i) +
                    " d=" + std::to_string(double(d)) + " " + describe(k, m));
       ASSERT_EQ(oracleWithin(k, m), want) << "oracle";
