@@ -112,17 +112,15 @@ TwoSum twoSum(double a, double b) {
 
 // ---------------------------------------------------------------------------
 // Kernels for the torus parts: the running-bound double filter of
-// src/filter.h, and GMP rationals (exact; the Sturm sequence divides).
+// src/filter.h, and GMP integers (exact).
 
 using Rk = detail::RunningDoubleKernel;
 
-struct QKernel {
-  using Num = mpq_class;
-  static Num lift(double x) { return Num(x); }
-  static Sign sign(const Num& a) {
-    const int s = sgn(a);
-    return s < 0 ? Sign::kNeg : (s > 0 ? Sign::kPos : Sign::kZero);
-  }
+/// GMP integers: the exact stage of the torus edges, on the local
+/// coordinates scaled by a power of two to integers (the torus test is
+/// invariant under a common scaling).
+struct ZKernel {
+  using Num = mpz_class;
 };
 
 /// One torus in doubled local coordinates (X = 2x, Y = 2y, Z = 2z: the
@@ -298,36 +296,47 @@ Tri edgeFilter(const TorusInput<Rk>& t, int a, int b) {
   return kOr(tq, bernsteinAnyNonPos(lb, 2, kBernsteinDepth, &budget));
 }
 
-// ---- The exact stage: GMP rationals, Sturm sequence ------------------------
+// ---- The exact stage: GMP integers, Sturm sequence ------------------------
 
-using Poly = std::vector<mpq_class>;  // coefficients, lowest degree first
+using Poly = std::vector<mpz_class>;  // coefficients, lowest degree first
 
 void trim(Poly& p) {
   while (!p.empty() && sgn(p.back()) == 0) p.pop_back();
 }
 
-mpq_class evalAt(const Poly& p, const mpq_class& x) {
-  mpq_class v = 0;
-  for (auto it = p.rbegin(); it != p.rend(); ++it) v = v * x + *it;
-  return v;
-}
-
-/// The remainder of a by b (b non-zero, trimmed).
-Poly remainder(Poly a, const Poly& b) {
+/// A positive multiple of the remainder of a by b (b trimmed, non-empty),
+/// without division: the pseudo-remainder lc^k a mod b, lc = b's leading
+/// coefficient and k the number of elimination steps, times sign(lc)^k so
+/// that the multiple is positive (Sturm's sequence needs the signs of the
+/// remainders, not their sizes). The content is divided out.
+Poly positiveRemainder(Poly a, const Poly& b) {
   trim(a);
   const size_t nb = b.size();
+  const mpz_class& lc = b.back();
+  int k = 0;
   while (a.size() >= nb) {
-    const mpq_class f = a.back() / b.back();
+    const mpz_class f = a.back();
     const size_t shift = a.size() - nb;
+    for (auto& c : a) c *= lc;
     for (size_t i = 0; i < nb; ++i) a[shift + i] -= f * b[i];
+    ++k;
     a.pop_back();  // its leading coefficient is now exactly 0
     trim(a);
   }
+  if (sgn(lc) < 0 && k % 2 == 1)
+    for (auto& c : a) c = -c;
+  mpz_class g = 0;
+  for (const auto& c : a) mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), c.get_mpz_t());
+  if (sgn(g) > 0 && g != 1)
+    for (auto& c : a) mpz_divexact(c.get_mpz_t(), c.get_mpz_t(), g.get_mpz_t());
   return a;
 }
 
 /// Number of distinct real roots of p in (0, 1), for p(0) != 0, p(1) != 0
-/// (Sturm's theorem: variations at 0 minus variations at 1).
+/// (Sturm's theorem: sign variations of the sequence at 0 minus at 1; the
+/// value of a polynomial at 0 is its constant term, at 1 the sum of its
+/// coefficients). The sequence p, p', -rem(p, p'), ... is taken up to
+/// positive factors, which leave every variation count unchanged.
 int sturmRootsInUnit(Poly p) {
   trim(p);
   if (p.size() <= 1) return 0;
@@ -338,36 +347,44 @@ int sturmRootsInUnit(Poly p) {
   trim(d);
   while (!d.empty()) {
     chain.push_back(d);
-    Poly r = remainder(chain[chain.size() - 2], d);
+    Poly r = positiveRemainder(chain[chain.size() - 2], d);
     for (auto& c : r) c = -c;
     d = std::move(r);
   }
-  auto variations = [&](const mpq_class& x) {
+  auto variations = [&](bool at_one) {
     int v = 0, last = 0;
     for (const Poly& q : chain) {
-      const int s = sgn(evalAt(q, x));
+      mpz_class val = q[0];
+      if (at_one)
+        for (size_t i = 1; i < q.size(); ++i) val += q[i];
+      const int s = sgn(val);
       if (s == 0) continue;
       if (last != 0 && s != last) ++v;
       last = s;
     }
     return v;
   };
-  return variations(0) - variations(1);
+  return variations(false) - variations(true);
 }
 
-bool edgeExact(const TorusInput<QKernel>& t, int a, int b) {
-  mpq_class l[3], q[5];
-  edgePolys<QKernel>(t, a, b, l, q);
+bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
+  mpz_class l[3], q[5];
+  edgePolys<ZKernel>(t, a, b, l, q);
   // L <= 0 somewhere on [0, 1]: at an end, or at the interior vertex of the
   // parabola (l2 > 0, -l1 / (2 l2) in (0, 1), 4 l0 l2 - l1^2 <= 0).
-  const mpq_class l_end = l[0] + l[1] + l[2];
+  const mpz_class l_end = l[0] + l[1] + l[2];
   if (sgn(l[0]) <= 0 || sgn(l_end) <= 0) return true;
   if (sgn(l[2]) > 0 && sgn(l[1]) < 0 && l[1] + 2 * l[2] > 0 &&
       4 * l[0] * l[2] - l[1] * l[1] <= 0)
     return true;
   // Q <= 0 somewhere: at an end, or (both ends > 0) at a root in (0, 1).
-  const mpq_class q_end = q[0] + q[1] + q[2] + q[3] + q[4];
+  const mpz_class q_end = q[0] + q[1] + q[2] + q[3] + q[4];
   if (sgn(q[0]) <= 0 || sgn(q_end) <= 0) return true;
+  // Bernstein coefficients (times 12) all > 0: Q > 0 on [0, 1], no roots.
+  const mpz_class q0 = 12 * q[0];
+  if (sgn(q0 + 3 * q[1]) > 0 && sgn(q0 + 6 * q[1] + 2 * q[2]) > 0 &&
+      sgn(q0 + 9 * q[1] + 6 * q[2] + 3 * q[3]) > 0)
+    return false;
   return sturmRootsInUnit(Poly(q, q + 5)) > 0;
 }
 
@@ -409,26 +426,42 @@ struct Query {
 
 /// The doubled local coordinates and sizes of the torus at height sgn * h,
 /// exactly, mirrored in z for the bottom one (sgn = -1) so that its rim is
-/// at +lz.
-TorusInput<QKernel> torusExactInput(const Query& q, int sgn) {
-  TorusInput<QKernel> t;
+/// at +lz, all multiplied by one power of two that makes them integers
+/// (every value here is a dyadic rational).
+TorusInput<ZKernel> torusExactInput(const Query& q, int sgn) {
   const Vec3<double>* v[3] = {&q.tri.a, &q.tri.b, &q.tri.c};
+  mpq_class vals[12];  // X, Y, Z of the three vertices, then R, M, C
   for (int i = 0; i < 3; ++i) {
     const mpq_class d[3] = {mpq_class(v[i]->x) - q.pose.t.x,
                             mpq_class(v[i]->y) - q.pose.t.y,
                             mpq_class(v[i]->z) - q.pose.t.z};
-    mpq_class o[3];
     for (int k = 0; k < 3; ++k)
-      o[k] = 2 * (mpq_class(q.pose.R[0][k]) * d[0] +
-                  mpq_class(q.pose.R[1][k]) * d[1] +
-                  mpq_class(q.pose.R[2][k]) * d[2]);
-    t.X[i] = o[0];
-    t.Y[i] = o[1];
-    t.Z[i] = sgn > 0 ? o[2] : mpq_class(-o[2]);
+      vals[3 * i + k] = 2 * (mpq_class(q.pose.R[0][k]) * d[0] +
+                             mpq_class(q.pose.R[1][k]) * d[1] +
+                             mpq_class(q.pose.R[2][k]) * d[2]);
+    if (sgn < 0) vals[3 * i + 2] = -vals[3 * i + 2];
   }
-  t.R = 2 * mpq_class(q.cyl.radius);
-  t.M = 2 * mpq_class(q.m);
-  t.C = mpq_class(q.cyl.lz);
+  vals[9] = 2 * mpq_class(q.cyl.radius);
+  vals[10] = 2 * mpq_class(q.m);
+  vals[11] = mpq_class(q.cyl.lz);
+  // The largest denominator (a power of two) is a common one.
+  mpz_class den = 1;
+  for (const auto& x : vals)
+    if (x.get_den() > den) den = x.get_den();
+  mpz_class ints[12];
+  for (int i = 0; i < 12; ++i)
+    mpz_divexact(ints[i].get_mpz_t(),
+                 mpz_class(vals[i].get_num() * den).get_mpz_t(),
+                 vals[i].get_den_mpz_t());
+  TorusInput<ZKernel> t;
+  for (int i = 0; i < 3; ++i) {
+    t.X[i] = ints[3 * i];
+    t.Y[i] = ints[3 * i + 1];
+    t.Z[i] = ints[3 * i + 2];
+  }
+  t.R = ints[9];
+  t.M = ints[10];
+  t.C = ints[11];
   return t;
 }
 
@@ -611,7 +644,7 @@ Decision decide(Query& q) {
   static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
   for (int i = 0; i < 2; ++i) {
     if (!(open[i][0] || open[i][1] || open[i][2])) continue;
-    const TorusInput<QKernel> t = torusExactInput(q, i == 0 ? 1 : -1);
+    const TorusInput<ZKernel> t = torusExactInput(q, i == 0 ? 1 : -1);
     stage = Stage::kExactGmp;
     for (int e = 0; e < 3; ++e)
       if (open[i][e] && edgeExact(t, kEdge[e][0], kEdge[e][1]))
