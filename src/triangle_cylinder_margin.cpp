@@ -42,8 +42,8 @@
 // GMP integers, the quartic by its ends, its Bernstein coefficients and its
 // Sturm sequence on (0, 1), the quadratic by its ends and vertex. The face:
 // the stage driver of src/stages.h (FilterKernel, then the adaptive kernel)
-// on the scaled inputs. Every stage does a bounded amount of work; docs/margin.md has the
-// derivations and the exactness argument.
+// on the scaled inputs. Every stage does a bounded amount of work;
+// docs/margin.md has the derivations and the exactness argument.
 #include "tricyl/triangle_cylinder_margin.h"
 
 #include <gmpxx.h>
