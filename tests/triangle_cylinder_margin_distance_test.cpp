@@ -12,6 +12,7 @@
 #include <string>
 
 #include "distance_oracle.h"
+#include "margin_test_support.h"
 #include "scenes.h"
 #include "test_support.h"
 #include "tricyl/triangle_cylinder_margin.h"
@@ -19,16 +20,7 @@
 namespace tricyl {
 namespace {
 
-/// The double k ulps above (k > 0) or below (k < 0) x >= 0, clamped at 0.
-double ulpsFrom(double x, std::int64_t k) {
-  std::int64_t b;
-  std::memcpy(&b, &x, sizeof b);
-  b += k;
-  if (b < 0) b = 0;
-  double y;
-  std::memcpy(&y, &b, sizeof y);
-  return y;
-}
+using test::ulpsFrom;
 
 class MarginVsDistanceOracle : public ::testing::TestWithParam<scenes::Family> {
 };

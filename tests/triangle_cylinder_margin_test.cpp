@@ -17,6 +17,7 @@
 #include <string>
 
 #include "margin_oracle.h"
+#include "margin_test_support.h"
 #include "scenes.h"
 #include "test_support.h"
 #include "tricyl/triangle_cylinder.h"
@@ -31,16 +32,7 @@ bool oracleWithin(const TriCase& k, double m) {
   return margin_oracle::withinDistance(k.cyl, k.pose, k.tri, m);
 }
 
-/// The double k ulps above (k > 0) or below (k < 0) x >= 0, clamped at 0.
-double ulpsFrom(double x, std::int64_t k) {
-  std::int64_t b;
-  std::memcpy(&b, &x, sizeof b);
-  b += k;
-  if (b < 0) b = 0;
-  double y;
-  std::memcpy(&y, &b, sizeof y);
-  return y;
-}
+using test::ulpsFrom;
 
 std::string describe(const TriCase& k, double m) {
   char buf[512];
