@@ -120,7 +120,7 @@ TEST(MarginSturm, AgreesWithRationalSturmOnRandomPolynomials) {
   const std::uint64_t seed = test::baseSeed();
   SCOPED_TRACE(test::seedTrace(seed));
   scenes::Rng g(seed ^ 0x57u);
-  const long n = test::scaled(20000);
+  const long n = test::scaled(8000);
   long compared = 0, with_roots = 0;
   for (long i = 0; i < n; ++i) {
     const int deg = 1 + g.integer(4);
