@@ -13,4 +13,5 @@
 #include "tricyl/sphere_cylinder.h"
 #include "tricyl/triangle_cylinder.h"
 #include "tricyl/triangle_cylinder_distance.h"
+#include "tricyl/triangle_cylinder_margin.h"
 #include "tricyl/types.h"
