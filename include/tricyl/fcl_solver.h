@@ -114,6 +114,7 @@
 #include <fcl/narrowphase/detail/gjk_solver_libccd.h>
 #include <fcl/narrowphase/distance.h>
 
+#include <cmath>
 #include <cstddef>
 #include <type_traits>
 #include <vector>
@@ -143,7 +144,10 @@ class Solver : public fcl::detail::GJKSolver_libccd<S> {
   /// Cylinder pairs in this solver type's collision table (once).
   Solver();
 
+  using Base::shapeDistance;
   using Base::shapeIntersect;
+  using Base::shapeSignedDistance;
+  using Base::shapeTriangleDistance;
   using Base::shapeTriangleIntersect;
 
   /// Cylinder `s` at `tf` vs the world-frame triangle (P1, P2, P3): the
@@ -189,6 +193,61 @@ class Solver : public fcl::detail::GJKSolver_libccd<S> {
       const fcl::Cylinder<S>& s1, const fcl::Transform3<S>& tf1,
       const fcl::Sphere<S>& s2, const fcl::Transform3<S>& tf2,
       std::vector<fcl::ContactPoint<S>>* contacts = nullptr) const;
+
+  /// Cylinder `s` at `tf` vs the world-frame triangle (P1, P2, P3): the form
+  /// FCL's AABB (and generic) mesh distance traversal calls (DISTANCE).
+  /// [out] dist: tricyl::distance's certified distance when disjoint (then
+  /// returns true); minus tricyl::estimateContact's depth (< 0) when they
+  /// meet (then returns false, libccd's convention). p1: nearest point on
+  /// the cylinder, p2: on the triangle, world frame (both the contact point
+  /// when they meet).
+  bool shapeTriangleDistance(const fcl::Cylinder<S>& s,
+                             const fcl::Transform3<S>& tf,
+                             const fcl::Vector3<S>& P1,
+                             const fcl::Vector3<S>& P2,
+                             const fcl::Vector3<S>& P3, S* dist = nullptr,
+                             fcl::Vector3<S>* p1 = nullptr,
+                             fcl::Vector3<S>* p2 = nullptr) const;
+
+  /// The same for a triangle in the mesh frame `tf2` (FCL's RSS, kIOS and
+  /// OBBRSS distance traversals): moved to the world frame as tf2 * P, the
+  /// points are world-frame.
+  bool shapeTriangleDistance(const fcl::Cylinder<S>& s,
+                             const fcl::Transform3<S>& tf1,
+                             const fcl::Vector3<S>& P1,
+                             const fcl::Vector3<S>& P2,
+                             const fcl::Vector3<S>& P3,
+                             const fcl::Transform3<S>& tf2, S* dist = nullptr,
+                             fcl::Vector3<S>* p1 = nullptr,
+                             fcl::Vector3<S>* p2 = nullptr) const;
+
+  /// TriangleP vs Cylinder distance (and the reverse, below), registered in
+  /// this solver's distance table: as shapeTriangleDistance, p1 on the first
+  /// shape, p2 on the second, world frame.
+  bool shapeDistance(const fcl::TriangleP<S>& s1, const fcl::Transform3<S>& tf1,
+                     const fcl::Cylinder<S>& s2, const fcl::Transform3<S>& tf2,
+                     S* dist = nullptr, fcl::Vector3<S>* p1 = nullptr,
+                     fcl::Vector3<S>* p2 = nullptr) const;
+  /// Cylinder vs TriangleP distance.
+  bool shapeDistance(const fcl::Cylinder<S>& s1, const fcl::Transform3<S>& tf1,
+                     const fcl::TriangleP<S>& s2, const fcl::Transform3<S>& tf2,
+                     S* dist = nullptr, fcl::Vector3<S>* p1 = nullptr,
+                     fcl::Vector3<S>* p2 = nullptr) const;
+  /// Signed forms (request.enable_signed_distance): the same values (minus
+  /// the contact depth when they meet).
+  bool shapeSignedDistance(const fcl::TriangleP<S>& s1,
+                           const fcl::Transform3<S>& tf1,
+                           const fcl::Cylinder<S>& s2,
+                           const fcl::Transform3<S>& tf2, S* dist = nullptr,
+                           fcl::Vector3<S>* p1 = nullptr,
+                           fcl::Vector3<S>* p2 = nullptr) const;
+  /// Cylinder vs TriangleP, signed.
+  bool shapeSignedDistance(const fcl::Cylinder<S>& s1,
+                           const fcl::Transform3<S>& tf1,
+                           const fcl::TriangleP<S>& s2,
+                           const fcl::Transform3<S>& tf2, S* dist = nullptr,
+                           fcl::Vector3<S>* p1 = nullptr,
+                           fcl::Vector3<S>* p2 = nullptr) const;
 
   /// The same pairs in the pointer form (deprecated in FCL, kept so that no
   /// route reaches libccd for them). Normal from the first shape to the
@@ -275,6 +334,109 @@ std::size_t collide(const fcl::CollisionObject<S>* o1,
   Solver<S> solver;
   solver.collision_tolerance = request.gjk_tolerance;
   return fcl::collide(o1, o2, &solver, request, result);
+}
+
+namespace detail {
+
+/// True when tricyl answers a distance query itself (DISTANCE): a cylinder
+/// against a BVHModel or a TriangleP, either order.
+template <class S>
+bool answersDistancePair(const fcl::CollisionGeometry<S>* g1,
+                         const fcl::CollisionGeometry<S>* g2) {
+  const auto meshOrTriangle = [](const fcl::CollisionGeometry<S>* g) {
+    return g->getObjectType() == fcl::OT_BVH ||
+           g->getNodeType() == fcl::GEOM_TRIANGLE;
+  };
+  const fcl::NODE_TYPE t1 = g1->getNodeType(), t2 = g2->getNodeType();
+  return (t1 == fcl::GEOM_CYLINDER && meshOrTriangle(g2)) ||
+         (t2 == fcl::GEOM_CYLINDER && meshOrTriangle(g1));
+}
+
+/// The rest of tricyl::distance (below), compiled once per S in
+/// src/fcl/fcl_solver*.cpp.
+template <class S>
+S distanceImpl(const fcl::CollisionGeometry<S>* g1,
+               const fcl::Transform3<S>& tf1,
+               const fcl::CollisionGeometry<S>* g2,
+               const fcl::Transform3<S>& tf2,
+               const fcl::DistanceRequest<S>& request,
+               fcl::DistanceResult<S>& result);
+
+/// The margin collide (MARGIN COLLIDE), compiled once per S.
+template <class S>
+std::size_t collideWithinImpl(const fcl::CollisionGeometry<S>* g1,
+                              const fcl::Transform3<S>& tf1,
+                              const fcl::CollisionGeometry<S>* g2,
+                              const fcl::Transform3<S>& tf2,
+                              const fcl::CollisionRequest<S>& request,
+                              fcl::CollisionResult<S>& result, S margin);
+
+}  // namespace detail
+
+/// fcl::distance(g1, tf1, g2, tf2, request, result) with tricyl's distance
+/// (DISTANCE in this file's description): a cylinder against a BVHModel
+/// (double: tricyl's own traversal, fcl_mesh_cylinder.h, distanceMeshCylinder;
+/// float, or models it does not handle: FCL's traversal with Solver<S>) or a
+/// TriangleP, either order, is measured by tricyl::distance per triangle;
+/// every other pair is run as fcl::distance runs it for
+/// request.gjk_solver_type. Returns result.min_distance (after the signed
+/// distance step, unlike fcl::distance, which returns the value before it).
+template <class S>
+S distance(const fcl::CollisionGeometry<S>* g1, const fcl::Transform3<S>& tf1,
+           const fcl::CollisionGeometry<S>* g2, const fcl::Transform3<S>& tf2,
+           const fcl::DistanceRequest<S>& request,
+           fcl::DistanceResult<S>& result) {
+  return detail::distanceImpl(g1, tf1, g2, tf2, request, result);
+}
+
+/// fcl::distance(o1, o2, request, result) with tricyl's distance: the
+/// geometry form on the objects' geometries and transforms.
+template <class S>
+S distance(const fcl::CollisionObject<S>* o1, const fcl::CollisionObject<S>* o2,
+           const fcl::DistanceRequest<S>& request,
+           fcl::DistanceResult<S>& result) {
+  return detail::distanceImpl(o1->collisionGeometry().get(), o1->getTransform(),
+                              o2->collisionGeometry().get(), o2->getTransform(),
+                              request, result);
+}
+
+/// What tricyl::collide takes beyond FCL 0.7's CollisionRequest (which has
+/// no margin field): see MARGIN COLLIDE in this file's description.
+template <class S>
+struct CollideOptions {
+  /// Safety margin, >= 0 and finite: a pair collides when the closed
+  /// margin-neighbourhood of one meets the other (distance <= margin).
+  /// 0 is the plain collide.
+  S margin = S(0);
+};
+
+/// tricyl::collide with options (MARGIN COLLIDE). Throws tricyl::InvalidInput
+/// for a negative, NaN or infinite margin. Returns the number of contacts.
+template <class S>
+std::size_t collide(const fcl::CollisionGeometry<S>* g1,
+                    const fcl::Transform3<S>& tf1,
+                    const fcl::CollisionGeometry<S>* g2,
+                    const fcl::Transform3<S>& tf2,
+                    const fcl::CollisionRequest<S>& request,
+                    fcl::CollisionResult<S>& result,
+                    const CollideOptions<S>& options) {
+  if (!(options.margin >= 0 && std::isfinite(options.margin)))
+    throw InvalidInput("tricyl::collide: the margin must be finite and >= 0");
+  if (options.margin == 0) return collide(g1, tf1, g2, tf2, request, result);
+  return detail::collideWithinImpl(g1, tf1, g2, tf2, request, result,
+                                   options.margin);
+}
+
+/// tricyl::collide with options, on collision objects.
+template <class S>
+std::size_t collide(const fcl::CollisionObject<S>* o1,
+                    const fcl::CollisionObject<S>* o2,
+                    const fcl::CollisionRequest<S>& request,
+                    fcl::CollisionResult<S>& result,
+                    const CollideOptions<S>& options) {
+  return collide(o1->collisionGeometry().get(), o1->getTransform(),
+                 o2->collisionGeometry().get(), o2->getTransform(), request,
+                 result, options);
 }
 
 /// The broadphase callback data: FCL's own struct (request, result, done).

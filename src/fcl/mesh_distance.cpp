@@ -1,0 +1,196 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// tricyl's BVHModel/Cylinder distance traversal (fcl_mesh_cylinder.h,
+// distanceMeshCylinder): nearest-first over the model's own tree, each node
+// pruned by a certified lower bound of its distance to the cylinder
+// (mesh_traversal.h, lowerBound), tricyl::tryDistance on the leaves.
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/narrowphase/distance_request.h>
+#include <fcl/narrowphase/distance_result.h>
+
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include "mesh_traversal.h"
+#include "tricyl/fcl_adapters.h"
+#include "tricyl/fcl_contact.h"
+#include "tricyl/fcl_mesh_cylinder.h"
+#include "tricyl/triangle_cylinder_distance.h"
+
+namespace tricyl {
+namespace {
+
+using namespace traversal;  // NOLINT: this file's own internal helpers
+
+// PRUNING. A node whose certified lower bound lb (lowerBoundLocal) exceeds
+// best (1 + 2^-40), best the smallest distance found so far, is skipped. A
+// triangle below it has true distance >= lb, and tricyl::distance returns it
+// within error_bound, a few ulps of the distance (<= 8 ulps, 2^-50
+// relative, docs/distance.md), so its computed distance is >= lb (1 -
+// 2^-49) > best: it could not have replaced best (DistanceResult::update
+// keeps the first of equal distances). The traversal therefore returns the
+// smallest computed distance over ALL the triangles, the brute-force
+// minimum, not an approximation of it. Distances in the subnormal range,
+// where error_bound is absolute and larger than 2^-40 of the distance
+// (triangle_cylinder_distance.h), are the exception: the node bound's own
+// absolute term (2^-500 and up) dwarfs them and nothing is pruned that near.
+// DistanceRequest::rel_err and abs_err, when set, loosen the test exactly as
+// FCL's traversal does (canStop: lb >= best - abs_err and lb (1 + rel_err) >=
+// best): the answer is then within those tolerances of the minimum.
+constexpr double kLeafRel = 0x1p-40;
+
+struct Entry {
+  int node;
+  double lb;
+};
+
+/// The explicit stack of nodes still to visit, with their lower bounds.
+class EntryStack {
+ public:
+  void push(int n, double lb) { items_.push_back({n, lb}); }
+  bool empty() const { return items_.empty(); }
+  Entry pop() {
+    const Entry e = items_.back();
+    items_.pop_back();
+    return e;
+  }
+  EntryStack() { items_.reserve(128); }
+
+ private:
+  std::vector<Entry> items_;
+};
+
+class Pruner {
+ public:
+  explicit Pruner(const fcl::DistanceRequest<double>& request)
+      : rel_err_(request.rel_err),
+        abs_err_(request.abs_err),
+        loose_(request.rel_err > 0 || request.abs_err > 0) {}
+  /// True when a node of lower bound lb cannot improve on best.
+  bool prune(double lb, double best) const {
+    if (gt(lb, best + best * kLeafRel)) return true;
+    return loose_ && std::isgreaterequal(lb, best - abs_err_) &&
+           std::isgreaterequal(lb * (1 + rel_err_), best);
+  }
+
+ private:
+  double rel_err_, abs_err_;
+  bool loose_;
+};
+
+template <class BV>
+bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
+              const fcl::CollisionGeometry<double>* cyl_geom_base,
+              const Tf& tf_cyl, const fcl::DistanceRequest<double>& request,
+              fcl::DistanceResult<double>& result, TraversalStats* stats) {
+  using Boxer = BoxOf<BV>;
+  const auto& model = static_cast<const fcl::BVHModel<BV>&>(*geom);
+  const auto& cyl_geom = static_cast<const fcl::Cylinderd&>(*cyl_geom_base);
+  Setup setup;
+  if (!prepare<BV, Boxer>(model, tf_mesh, cyl_geom, tf_cyl, 0.0, &setup))
+    return false;
+  const Local& k = setup.k;
+  const Cylinder<double> cyl{cyl_geom.radius, cyl_geom.lz};
+  const Pose<double> pose = toPose(tf_cyl);
+  const Pruner pruner(request);
+
+  const auto bound = [&](int n) {
+    Box box;
+    Boxer::get(model.getBV(n).bv, &box);
+    return lowerBoundLocal(lowerBound<Boxer::kAligned>(box, k), k);
+  };
+
+  std::size_t tested = 1, skipped = 0, leaves = 0, hits = 0;
+  double best = result.min_distance;
+  EntryStack stack;
+  stack.push(0, bound(0));
+  while (!stack.empty()) {
+    const Entry e = stack.pop();
+    if (pruner.prune(e.lb, best)) {
+      ++skipped;
+      continue;
+    }
+    const fcl::BVNode<BV>& node = model.getBV(e.node);
+    if (!isLeaf(node)) {
+      const int left = leftChild(node), right = rightChild(node);
+      const double lb_left = bound(left), lb_right = bound(right);
+      tested += 2;
+      // Nearer child on top, so it is visited first (a small best early
+      // prunes the most).
+      if (std::isless(lb_left, lb_right)) {
+        stack.push(right, lb_right);
+        stack.push(left, lb_left);
+      } else {
+        stack.push(left, lb_left);
+        stack.push(right, lb_right);
+      }
+      continue;
+    }
+    const int id = primitiveId(node);
+    V3 p[3];
+    worldTriangle(model.vertices, model.tri_indices[id], tf_mesh, setup.raw, p);
+    const Triangle<double> tri{toVec3(p[0]), toVec3(p[1]), toVec3(p[2])};
+    ++leaves;
+    DistanceResult<double> d;
+    if (tryDistance(cyl, pose, tri, &d) == Answer::kDisjoint) {
+      if (d.distance < best) {
+        ++hits;
+        best = d.distance;
+        result.update(d.distance, geom, cyl_geom_base, id,
+                      fcl::DistanceResult<double>::NONE,
+                      V3(d.point_on_triangle.x, d.point_on_triangle.y,
+                         d.point_on_triangle.z),
+                      V3(d.point_on_cylinder.x, d.point_on_cylinder.y,
+                         d.point_on_cylinder.z));
+      }
+      continue;
+    }
+    // In collision (or a non-finite world vertex, reported "in collision"
+    // as the Solver answers it): minus the contact depth, and both nearest
+    // points at the contact point, as Solver::shapeTriangleDistance gives
+    // them; the request is then satisfied (FCL stops at min_distance <= 0).
+    ContactEstimate<double> est;
+    estimateContact(cyl, pose, tri, &est);
+    ++hits;
+    const V3 pos(est.point.x, est.point.y, est.point.z);
+    result.update(-est.depth, geom, cyl_geom_base, id,
+                  fcl::DistanceResult<double>::NONE, pos, pos);
+    break;
+  }
+  if (stats != nullptr) {
+    stats->nodes_tested += tested;
+    stats->nodes_skipped += skipped;
+    stats->leaves += leaves;
+    stats->hits += hits;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool distanceMeshCylinder(const fcl::CollisionGeometry<double>* g1,
+                          const fcl::Transform3<double>& tf1,
+                          const fcl::CollisionGeometry<double>* g2,
+                          const fcl::Transform3<double>& tf2,
+                          const fcl::DistanceRequest<double>& request,
+                          fcl::DistanceResult<double>& result,
+                          TraversalStats* stats) {
+  if (g1 == nullptr || g2 == nullptr) return false;
+  // FCL runs the mesh as o1 whatever the argument order (fcl::distance
+  // swaps a shape/BVH pair): so does this.
+  if (g2->getObjectType() == fcl::OT_BVH &&
+      g1->getNodeType() == fcl::GEOM_CYLINDER)
+    return distanceMeshCylinder(g2, tf2, g1, tf1, request, result, stats);
+  if (g1->getObjectType() != fcl::OT_BVH ||
+      g2->getNodeType() != fcl::GEOM_CYLINDER)
+    return false;
+  if (request.isSatisfied(result)) return true;  // as FCL's distancers
+  return dispatchBv(g1->getNodeType(), [&](auto tag) {
+    using BV = typename decltype(tag)::type;
+    return traverse<BV>(g1, tf1, g2, tf2, request, result, stats);
+  });
+}
+
+}  // namespace tricyl
