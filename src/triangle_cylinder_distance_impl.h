@@ -129,22 +129,14 @@ inline T pointDist(const P3<T>& p, const T& r, const T& h) {
   return norm(p - project(p, r, h));
 }
 
-/// The minimiser of phi on [0, 1]: an end where phi' does not change sign,
-/// else Newton's iteration kept inside a shrinking bracket [lo, hi] with
-/// phi'(lo) < 0 < phi'(hi) (a bisection whenever the Newton point leaves
-/// the bracket or the bracket did not halve in two steps). At most
-/// `max_iter` evaluations: with `tol` the absolute parameter tolerance.
+/// The root of phi' in a bracket [lo, hi] with phi'(lo) < 0 < phi'(hi),
+/// starting at s inside it: Newton's iteration kept inside the shrinking
+/// bracket (a bisection whenever the Newton point leaves it, and whenever
+/// the bracket did not halve in two steps). At most `max_iter` evaluations;
+/// `tol` is the absolute parameter tolerance.
 template <class T>
-inline T edgeSolve(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
-                   int max_iter, const T& tol) {
-  const Dphi<T> e0 = edgeDphi(a, d, T(0), r, h);
-  if (!(e0.g < T(0))) return T(0);
-  const Dphi<T> e1 = edgeDphi(a, d, T(1), r, h);
-  if (!(e1.g > T(0))) return T(1);
-  T lo(0), hi(1);
-  // Start from the regula falsi point (exact for a quadratic phi).
-  T s = e0.g / (e0.g - e1.g);
-  if (!(s > lo && s < hi)) s = T(0.5);
+inline T edgeSolveIn(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
+                     T lo, T hi, T s, int max_iter, const T& tol) {
   T width_before = hi - lo;
   for (int it = 0; it < max_iter; ++it) {
     const Dphi<T> e = edgeDphi(a, d, s, r, h);
@@ -164,7 +156,6 @@ inline T edgeSolve(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
         if (!(absT(step) > tol)) return next;
       }
     }
-    // Every second iteration the bracket must have halved, else bisect.
     if ((it & 1) != 0) {
       if (hi - lo > T(0.5) * width_before) next = T(0.5) * (lo + hi);
       width_before = hi - lo;
@@ -172,6 +163,21 @@ inline T edgeSolve(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
     s = next;
   }
   return s;
+}
+
+/// The minimiser of phi on [0, 1]: an end where phi' does not change sign
+/// there, else the root of phi' (edgeSolveIn from the regula falsi point,
+/// which is exact for a quadratic phi).
+template <class T>
+inline T edgeSolve(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
+                   int max_iter, const T& tol) {
+  const Dphi<T> e0 = edgeDphi(a, d, T(0), r, h);
+  if (!(e0.g < T(0))) return T(0);
+  const Dphi<T> e1 = edgeDphi(a, d, T(1), r, h);
+  if (!(e1.g > T(0))) return T(1);
+  T s = e0.g / (e0.g - e1.g);
+  if (!(s > T(0) && s < T(1))) s = T(0.5);
+  return edgeSolveIn(a, d, r, h, T(0), T(1), s, max_iter, tol);
 }
 
 /// Newton steps from s0 in a stronger arithmetic (the start is already
