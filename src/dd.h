@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A double-word number type with the arithmetic operators, on the building
+// blocks of src/eft.h, so that a template written for double runs unchanged
+// at about 106 bits (the distance kernel, src/triangle_cylinder_distance*).
+//
+// Error model (Joldes, Muller, Popescu, ACM TOMS 44(2), 2017; src/eft.h):
+//   x + y, x - y : |err| <= 2^-104 (|x| + |y|)        (sloppy addition)
+//   x * y        : |err| <= 2^-103 |x y|               (DWTimesDW1)
+//   x / y        : |err| <= 2^-101 |x / y|             (two correction steps
+//                  of a long division, each exact to the dwMul bound)
+//   sqrt(x)      : |err| <= 2^-102 sqrt(x)             (one Newton step from
+//                  the double root, whose residual is computed with an exact
+//                  TwoProduct: the step doubles the 53 correct bits)
+// plus, near the underflow threshold, kDwTiny absolute per operation.
+// Comparisons are exact (on the normalised pair). No operation allocates,
+// throws, loops or raises an FP exception on finite operands (sqrt of a
+// non-positive value returns 0).
+#pragma once
+
+#include <cmath>
+
+#include "eft.h"
+
+namespace tricyl::detail {
+
+struct DD {
+  double hi = 0;
+  double lo = 0;
+  DD() = default;
+  constexpr DD(double h) : hi(h), lo(0) {}  // NOLINT: implicit, as a number
+  constexpr DD(double h, double l) : hi(h), lo(l) {}
+  explicit operator double() const { return hi + lo; }
+};
+
+inline DD operator+(DD x, DD y) {
+  const DW z = dwAdd({x.hi, x.lo}, {y.hi, y.lo});
+  return {z.hi, z.lo};
+}
+inline DD operator-(DD x) { return {-x.hi, -x.lo}; }
+inline DD operator-(DD x, DD y) { return x + (-y); }
+inline DD operator*(DD x, DD y) {
+  const DW z = dwMul({x.hi, x.lo}, {y.hi, y.lo});
+  return {z.hi, z.lo};
+}
+/// Long division: q1 = x/y in double, then two corrections from the
+/// residuals x - y q1 (each a double-word multiply and subtract).
+inline DD operator/(DD x, DD y) {
+  const double q1 = x.hi / y.hi;
+  const DD r1 = x - y * DD(q1);
+  const double q2 = r1.hi / y.hi;
+  const DD r2 = r1 - y * DD(q2);
+  const double q3 = r2.hi / y.hi;
+  double s, e;
+  twoSum(q1, q2, s, e);
+  return DD(s, e) + DD(q3);
+}
+inline DD& operator+=(DD& x, DD y) { return x = x + y; }
+inline DD& operator-=(DD& x, DD y) { return x = x - y; }
+inline DD& operator*=(DD& x, DD y) { return x = x * y; }
+
+inline bool operator<(DD x, DD y) {
+  return x.hi < y.hi || (x.hi == y.hi && x.lo < y.lo);
+}
+inline bool operator>(DD x, DD y) { return y < x; }
+inline bool operator<=(DD x, DD y) { return !(y < x); }
+inline bool operator>=(DD x, DD y) { return !(x < y); }
+inline bool operator==(DD x, DD y) { return x.hi == y.hi && x.lo == y.lo; }
+inline bool operator!=(DD x, DD y) { return !(x == y); }
+
+inline DD abs(DD x) { return x.hi < 0 || (x.hi == 0 && x.lo < 0) ? -x : x; }
+
+/// sqrt(x) = s + (x - s^2) / (2 s), s = fl(sqrt(x.hi)); s^2 by TwoProduct.
+inline DD sqrt(DD x) {
+  if (!(x.hi > 0)) return DD(0);
+  const double s = std::sqrt(x.hi);
+  double p, e;
+  twoProd(s, s, p, e);
+  const double r = ((x.hi - p) - e + x.lo) / (2 * s);
+  double h, l;
+  twoSum(s, r, h, l);
+  return {h, l};
+}
+
+}  // namespace tricyl::detail

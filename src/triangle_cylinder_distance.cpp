@@ -1,0 +1,362 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// tricyl::distance: the exact Boolean for the zero test, a double pass that
+// finds the nearest pair and certifies it when the double result is already
+// within a few ulps, and a double-word refinement of the nearest candidates
+// otherwise. Method and error bound: docs/distance.md;
+// the generic algorithm: src/triangle_cylinder_distance_impl.h.
+#include "tricyl/triangle_cylinder_distance.h"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <type_traits>
+
+#include "dd.h"
+#include "eft.h"
+#include "triangle_cylinder_distance_impl.h"
+#include "tricyl/triangle_cylinder.h"
+
+namespace tricyl {
+namespace {
+
+using detail::DD;
+using detail::dist::Candidate;
+using detail::dist::P3;
+using detail::dist::Problem;
+
+// Unit roundoffs of the two passes, as used by the error bound: double
+// (u = 2^-53) and double-word, where every operation of src/dd.h is within
+// 2^-101 of its operands' magnitudes (dd.h's error model, rounded up).
+constexpr double kU = 0x1p-53;
+constexpr double kUdd = 0x1p-101;
+// The algorithm's rounding, in units of u_T times the problem's magnitude
+// Mx = max |v_i| coordinate * sqrt 3 + r + h: docs/distance.md, section 4.
+constexpr double kAlg = 32;
+// The double pass is accepted when its certified error is at most this
+// fraction of the distance (4 ulps at worst).
+constexpr double kAcceptRel = 0x1p-50;
+constexpr int kSolveIter = 100;
+constexpr int kPolishSteps = 4;
+
+inline double absd(double x) { return x < 0 ? -x : x; }
+inline double maxd(double a, double b) { return a > b ? a : b; }
+
+// Largest magnitude of the lengths (vertices, translation, r, lz).
+double maxLength(const Cylinder<double>& c, const Pose<double>& p,
+                 const Triangle<double>& t) {
+  double m = maxd(absd(c.radius), absd(c.lz));
+  const Vec3<double>* v[4] = {&t.a, &t.b, &t.c, &p.t};
+  for (const auto* x : v)
+    m = maxd(m, maxd(absd(x->x), maxd(absd(x->y), absd(x->z))));
+  return m;
+}
+
+Vec3<double> scaled(const Vec3<double>& v, double s) {
+  return {v.x * s, v.y * s, v.z * s};
+}
+
+struct Pass {
+  Candidate<double> cand[4];  // edges 0..2, face 3
+  bool face_cut = false;
+  int best = -1;
+};
+
+// Lower bound of the distance from the segment [a, b] to C's bounding box.
+double boxLowerBound(const P3<double>& a, const P3<double>& b, double r,
+                     double h) {
+  auto gap = [](double p, double q, double c) {
+    const double lo = p < q ? p : q, hi = p < q ? q : p;
+    return lo > c ? lo - c : (hi < -c ? -c - hi : 0.0);
+  };
+  const double gx = gap(a.x, b.x, r), gy = gap(a.y, b.y, r),
+               gz = gap(a.z, b.z, h);
+  return std::sqrt(gx * gx + gy * gy + gz * gz);
+}
+
+Pass doublePass(const Problem<double>& P, double prune_slack) {
+  Pass out;
+  bool cut = false;
+  out.cand[3] = detail::dist::faceCandidate(P, &cut);
+  out.face_cut = cut;
+  double best = std::numeric_limits<double>::infinity();
+  if (out.cand[3].valid) {
+    best = out.cand[3].f;
+    out.best = 3;
+  }
+  for (int k = 0; k < 3; ++k) {
+    const P3<double>& a = P.v[k];
+    const P3<double>& b = P.v[(k + 1) % 3];
+    if (boxLowerBound(a, b, P.r, P.h) > best * (1 + 0x1p-40) + prune_slack)
+      continue;
+    const double s = detail::dist::edgeSolve(a, b - a, P.r, P.h, kSolveIter,
+                                             0x1p-54);
+    out.cand[k] = detail::dist::edgeCandidate(P, k, s);
+    if (out.cand[k].f < best) {
+      best = out.cand[k].f;
+      out.best = k;
+    }
+  }
+  return out;
+}
+
+template <class T>
+Vec3<double> toWorld(const Pose<double>& pose, const P3<T>& y) {
+  // x = R y + t, in T, rounded once to double.
+  const T c[3] = {y.x, y.y, y.z};
+  double out[3];
+  const double t[3] = {pose.t.x, pose.t.y, pose.t.z};
+  for (int i = 0; i < 3; ++i) {
+    T s = T(t[i]);
+    for (int k = 0; k < 3; ++k) s = s + T(pose.R[i][k]) * c[k];
+    out[i] = double(s);
+  }
+  return {out[0], out[1], out[2]};
+}
+
+// The distance for valid double inputs of moderate magnitude (no
+// overflow of squares: every length below 2^400 in magnitude).
+Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
+             const Triangle<double>& tri, Answer boolean,
+             DistanceResult<double>* out) {
+  const Vec3<double>* X[3] = {&tri.a, &tri.b, &tri.c};
+  const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
+  // The double pulled-back triangle, and S = max sum_k |R_ki| |x_k - t_k|.
+  Problem<double> P;
+  P.r = cyl.radius;
+  P.h = cyl.lz * 0.5;
+  double S = 0, M = 0;
+  for (int v = 0; v < 3; ++v) {
+    const double x[3] = {X[v]->x, X[v]->y, X[v]->z};
+    const double dx[3] = {x[0] - tt[0], x[1] - tt[1], x[2] - tt[2]};
+    double y[3];
+    for (int i = 0; i < 3; ++i) {
+      y[i] = pose.R[0][i] * dx[0] + pose.R[1][i] * dx[1] +
+             pose.R[2][i] * dx[2];
+      S = maxd(S, absd(pose.R[0][i]) * absd(dx[0]) +
+                      absd(pose.R[1][i]) * absd(dx[1]) +
+                      absd(pose.R[2][i]) * absd(dx[2]));
+      M = maxd(M, absd(y[i]));
+    }
+    P.v[v] = {y[0], y[1], y[2]};
+  }
+  // Mx bounds every point's norm and the cylinder's extent (section 4).
+  const double Mx = (M * 1.75 + P.r + P.h) * (1 + 0x1p-50);
+  // The double pass: y computed with <= 5 roundings relative to S.
+  const double eps_y_d = 6 * kU * S;
+  const double slack_d = 2 * eps_y_d + kAlg * kU * Mx;
+  const Pass pass = doublePass(P, slack_d);
+
+  if (boolean == Answer::kIntersect) {
+    if (out) {
+      const Candidate<double>& c = pass.cand[pass.best >= 0 ? pass.best : 0];
+      out->distance = 0;
+      out->error_bound = 0;
+      out->point_on_triangle = toWorld(pose, c.p);
+      out->point_on_cylinder = toWorld(pose, c.q);
+    }
+    return Answer::kIntersect;
+  }
+
+  double U = std::numeric_limits<double>::infinity(), L = 0;
+  for (int k = 0; k < 4; ++k) {
+    const Candidate<double>& c = pass.cand[k];
+    if (k == 3 ? !pass.face_cut : c.valid)
+      L = maxd(L, detail::dist::certify(P, c.w));
+    if (c.valid && c.f < U) U = c.f;
+  }
+  const double err_d = (U - L) + slack_d + kU * U;
+  if (U > 0 && err_d <= kAcceptRel * U) {
+    if (out) {
+      const Candidate<double>& c = pass.cand[pass.best];
+      out->distance = U;
+      out->error_bound = err_d * (1 + 0x1p-50);
+      out->point_on_triangle = toWorld(pose, c.p);
+      out->point_on_cylinder = toWorld(pose, c.q);
+    }
+    return Answer::kDisjoint;
+  }
+
+  // Double-word refinement. x - t is exact as a pair (TwoSum); the sum
+  // of three double-word products is within 2^-101 S (dd.h).
+  Problem<DD> Q;
+  Q.r = DD(P.r);
+  Q.h = DD(P.h);
+  for (int v = 0; v < 3; ++v) {
+    const double x[3] = {X[v]->x, X[v]->y, X[v]->z};
+    DD dx[3];
+    for (int k = 0; k < 3; ++k) {
+      double s, e;
+      detail::twoSum(x[k], -tt[k], s, e);
+      dx[k] = DD(s, e);
+    }
+    DD y[3];
+    for (int i = 0; i < 3; ++i)
+      y[i] = DD(pose.R[0][i]) * dx[0] + DD(pose.R[1][i]) * dx[1] +
+             DD(pose.R[2][i]) * dx[2];
+    Q.v[v] = {y[0], y[1], y[2]};
+  }
+  const double slack_dd = 2 * kUdd * S + kAlg * kUdd * Mx;
+  const double tie = 2 * err_d;
+  DD Ubest(std::numeric_limits<double>::infinity());
+  DD Lbest(0);
+  Candidate<DD> best;
+  bool face_cut = false;
+  const Candidate<DD> face = detail::dist::faceCandidate(Q, &face_cut);
+  if (!face_cut) Lbest = detail::dist::certify(Q, face.w);
+  if (face.valid) {
+    Ubest = face.f;
+    best = face;
+  }
+  for (int k = 0; k < 3; ++k) {
+    const Candidate<double>& c = pass.cand[k];
+    if (!c.valid || !(c.f <= U + tie)) continue;
+    const P3<DD> d = Q.v[(k + 1) % 3] - Q.v[k];
+    const DD s =
+        detail::dist::edgePolish(Q.v[k], d, Q.r, Q.h, DD(c.s), kPolishSteps);
+    const Candidate<DD> e = detail::dist::edgeCandidate(Q, k, s);
+    const DD l = detail::dist::certify(Q, e.w);
+    if (l > Lbest) Lbest = l;
+    if (e.f < Ubest) {
+      Ubest = e.f;
+      best = e;
+    }
+  }
+  if (!best.valid) {  // cannot happen: the double best is refined
+    best = detail::dist::edgeCandidate(Q, 0, DD(0));
+    Ubest = best.f;
+  }
+  double dist = double(Ubest);
+  const double gap = double(Ubest - Lbest);
+  double err = (gap > 0 ? gap : 0) + slack_dd + kU * dist;
+  if (!(dist > 0)) {  // below double-word resolution: still positive
+    err += std::numeric_limits<double>::denorm_min();
+    dist = std::numeric_limits<double>::denorm_min();
+  }
+  if (out) {
+    out->distance = dist;
+    out->error_bound = err * (1 + 0x1p-50);
+    out->point_on_triangle = toWorld(pose, best.p);
+    out->point_on_cylinder = toWorld(pose, best.q);
+  }
+  return Answer::kDisjoint;
+}
+
+Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
+                      const Triangle<double>& tri,
+                      DistanceResult<double>* out) {
+  const Answer boolean = tryIntersect(cyl, pose, tri);
+  if (boolean == Answer::kInvalidInput) return boolean;
+  // Power-of-two scaling keeps squares and products of lengths finite and
+  // normal: exact, except that, scaling down, parts below the scaled
+  // underflow threshold are lost (docs/distance.md, section 6).
+  const double m = maxLength(cyl, pose, tri);
+  int e = 0;
+  if (m > 0x1p400 || (m > 0 && m < 0x1p-400)) (void)std::frexp(m, &e);
+  if (e == 0) return solve(cyl, pose, tri, boolean, out);
+  const double s = std::ldexp(1.0, -e), inv = std::ldexp(1.0, e);
+  const Cylinder<double> c2{cyl.radius * s, cyl.lz * s};
+  Pose<double> p2 = pose;
+  p2.t = scaled(pose.t, s);
+  const Triangle<double> t2{scaled(tri.a, s), scaled(tri.b, s),
+                            scaled(tri.c, s)};
+  DistanceResult<double> r2{};
+  const Answer a = solve(c2, p2, t2, boolean, &r2);
+  if (out) {
+    out->distance = r2.distance * inv;
+    out->error_bound = r2.error_bound * inv;
+    out->point_on_cylinder = scaled(r2.point_on_cylinder, inv);
+    out->point_on_triangle = scaled(r2.point_on_triangle, inv);
+    if (a == Answer::kDisjoint && !(out->distance > 0))
+      out->distance = std::numeric_limits<double>::denorm_min();
+  }
+  return a;
+}
+
+Vec3<double> widen(const Vec3<float>& v) {
+  return {double(v.x), double(v.y), double(v.z)};
+}
+Vec3<float> narrow(const Vec3<double>& v) {
+  return {float(v.x), float(v.y), float(v.z)};
+}
+
+template <class S>
+Answer dispatch(const Cylinder<S>& cyl, const Pose<S>& pose,
+                const Triangle<S>& tri, DistanceResult<S>* out) {
+  if constexpr (std::is_same_v<S, double>) {
+    return distanceDouble(cyl, pose, tri, out);
+  } else {
+    // float -> double is exact: the double result for the same inputs,
+    // rounded once more (its error added to the bound).
+    const Cylinder<double> c{double(cyl.radius), double(cyl.lz)};
+    Pose<double> p;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) p.R[i][j] = double(pose.R[i][j]);
+    p.t = widen(pose.t);
+    const Triangle<double> t{widen(tri.a), widen(tri.b), widen(tri.c)};
+    DistanceResult<double> r{};
+    const Answer a = distanceDouble(c, p, t, &r);
+    if (a != Answer::kInvalidInput && out) {
+      float d = float(r.distance);
+      if (a == Answer::kDisjoint && !(d > 0))
+        d = std::numeric_limits<float>::denorm_min();
+      const double err = r.error_bound + absd(double(d) - r.distance);
+      float ef = float(err);
+      if (double(ef) < err)
+        ef = std::nextafter(ef, std::numeric_limits<float>::infinity());
+      out->distance = d;
+      out->error_bound = ef;
+      out->point_on_cylinder = narrow(r.point_on_cylinder);
+      out->point_on_triangle = narrow(r.point_on_triangle);
+    }
+    return a;
+  }
+}
+
+[[noreturn]] void throwInvalid() {
+  throw InvalidInput(
+      "tricyl::distance(cylinder, triangle): NaN or infinite input, or a "
+      "negative radius or length");
+}
+
+}  // namespace
+
+template <class S>
+Answer tryDistance(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                   const Triangle<S>& triangle,
+                   DistanceResult<S>* out) noexcept {
+  return dispatch(cylinder, pose, triangle, out);
+}
+
+template <class S>
+DistanceResult<S> distance(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                           const Triangle<S>& triangle) {
+  DistanceResult<S> r{};
+  if (dispatch(cylinder, pose, triangle, &r) == Answer::kInvalidInput)
+    throwInvalid();
+  return r;
+}
+
+template <class S>
+DistanceResult<S> distance(const Cylinder<S>& cylinder,
+                           const Triangle<S>& triangle) {
+  return distance(cylinder, identityPose<S>(), triangle);
+}
+
+template DistanceResult<float> distance(const Cylinder<float>&,
+                                        const Pose<float>&,
+                                        const Triangle<float>&);
+template DistanceResult<double> distance(const Cylinder<double>&,
+                                         const Pose<double>&,
+                                         const Triangle<double>&);
+template DistanceResult<float> distance(const Cylinder<float>&,
+                                        const Triangle<float>&);
+template DistanceResult<double> distance(const Cylinder<double>&,
+                                         const Triangle<double>&);
+template Answer tryDistance(const Cylinder<float>&, const Pose<float>&,
+                            const Triangle<float>&,
+                            DistanceResult<float>*) noexcept;
+template Answer tryDistance(const Cylinder<double>&, const Pose<double>&,
+                            const Triangle<double>&,
+                            DistanceResult<double>*) noexcept;
+
+}  // namespace tricyl

@@ -1,0 +1,317 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The triangle-cylinder distance, written once for any number type T with
+// + - * / sqrt abs and exact comparisons: double (the first pass), the
+// double-word DD of src/dd.h (the refinement) and a 256+-bit MPFR float
+// (support/distance_oracle.cpp). Everything is in the cylinder's frame:
+// C = { y : y0^2 + y1^2 <= r^2, |y2| <= h }, h = lz / 2, and the triangle
+// (v0, v1, v2) is the pulled-back one. Derivations: docs/distance.md.
+//
+// 1. phi(p) = dist(p, C)^2 / 2 is convex and C^1 with gradient p - P(p),
+//    P the projection onto C, and that gradient is 1-Lipschitz (projections
+//    onto convex sets are firmly non-expansive). So along an edge
+//    p(s) = a + s d the function phi(s) is convex with the continuous,
+//    non-decreasing derivative phi'(s) = (p - P(p)) . d, Lipschitz with
+//    constant |d|^2: its minimiser on [0, 1] is an end or the root of
+//    phi', found by Newton's method safeguarded by bisection of a bracket
+//    (edgeSolve), with a fixed cap on the iterations.
+// 2. The minimum over the triangle is on an edge unless it is in the
+//    relative interior, where the gradient p - P(p) is normal to the
+//    plane H of the triangle: p is then a point of H nearest to C, the
+//    projection onto H of a support point of C in the direction of H
+//    (faceCandidate). If H meets C there is no such interior point with a
+//    positive distance.
+// 3. Certificate (certify): for any direction w != 0,
+//      d(T, C) >= ( min_i w . v_i - h_C(w) ) / |w|,
+//    h_C(w) = r |w_xy| + h |w_z| the support function of C (separating
+//    planes; weak duality). With w = p - P(p) at the computed nearest pair,
+//    made exactly orthogonal to the edge for an edge point (or w = the
+//    face normal for a face point), this lower bound meets the upper bound
+//    |p - P(p)| to second order in the error of p.
+#pragma once
+
+namespace tricyl::detail::dist {
+
+template <class T>
+struct P3 {
+  T x, y, z;
+};
+
+template <class T>
+inline P3<T> operator+(const P3<T>& a, const P3<T>& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class T>
+inline P3<T> operator-(const P3<T>& a, const P3<T>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class T>
+inline P3<T> operator*(const P3<T>& a, const T& s) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+template <class T>
+inline T dot(const P3<T>& a, const P3<T>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class T>
+inline P3<T> cross(const P3<T>& a, const P3<T>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z,
+          a.x * b.y - a.y * b.x};
+}
+template <class T>
+inline T absT(const T& x) {
+  return x < T(0) ? -x : x;
+}
+
+/// The pulled-back triangle and the cylinder (h = lz / 2).
+template <class T>
+struct Problem {
+  P3<T> v[3];
+  T r, h;
+};
+
+/// P(p): the point of C nearest to p.
+template <class T>
+inline P3<T> project(const P3<T>& p, const T& r, const T& h) {
+  using std::sqrt;
+  P3<T> q = p;
+  const T rho2 = p.x * p.x + p.y * p.y;
+  if (rho2 > r * r) {
+    const T k = r / sqrt(rho2);
+    q.x = p.x * k;
+    q.y = p.y * k;
+  }
+  if (q.z > h) q.z = h;
+  if (q.z < -h) q.z = -h;
+  return q;
+}
+
+template <class T>
+inline T norm(const P3<T>& a) {
+  using std::sqrt;
+  return sqrt(dot(a, a));
+}
+
+/// phi'(s) and phi''(s) (where it exists; the one-sided value at the
+/// boundaries of the regions) of phi(s) = dist(a + s d, C)^2 / 2.
+///   outside the slab:  + (z - clamp(z)) d_z,        + d_z^2
+///   outside the barrel: + (1 - r/rho) (p_xy . d_xy),
+///                       + r (p_xy . d_xy)^2 / rho^3 + (1 - r/rho) |d_xy|^2
+template <class T>
+struct Dphi {
+  T g, g2;
+};
+template <class T>
+inline Dphi<T> edgeDphi(const P3<T>& a, const P3<T>& d, const T& s,
+                        const T& r, const T& h) {
+  using std::sqrt;
+  const P3<T> p = a + d * s;
+  Dphi<T> out{T(0), T(0)};
+  if (p.z > h) {
+    out.g = (p.z - h) * d.z;
+    out.g2 = d.z * d.z;
+  } else if (p.z < -h) {
+    out.g = (p.z + h) * d.z;
+    out.g2 = d.z * d.z;
+  }
+  const T rho2 = p.x * p.x + p.y * p.y;
+  if (rho2 > r * r) {
+    const T rho = sqrt(rho2);
+    const T k = T(1) - r / rho;
+    const T pd = p.x * d.x + p.y * d.y;
+    out.g = out.g + k * pd;
+    out.g2 = out.g2 + r * pd * pd / (rho * rho2) + k * (d.x * d.x + d.y * d.y);
+  }
+  return out;
+}
+
+template <class T>
+inline T pointDist(const P3<T>& p, const T& r, const T& h) {
+  return norm(p - project(p, r, h));
+}
+
+/// The root of phi' in a bracket [lo, hi] with phi'(lo) < 0 < phi'(hi),
+/// starting at s inside it: Newton's iteration kept inside the shrinking
+/// bracket (a bisection whenever the Newton point leaves it, and whenever
+/// the bracket did not halve in two steps). At most `max_iter` evaluations;
+/// `tol` is the absolute parameter tolerance.
+template <class T>
+inline T edgeSolveIn(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
+                     T lo, T hi, T s, int max_iter, const T& tol) {
+  T width_before = hi - lo;
+  for (int it = 0; it < max_iter; ++it) {
+    const Dphi<T> e = edgeDphi(a, d, s, r, h);
+    if (e.g == T(0)) return s;
+    if (e.g < T(0)) {
+      lo = s;
+    } else {
+      hi = s;
+    }
+    if (!(hi - lo > tol)) return (lo + hi) * T(0.5);
+    T next = T(0.5) * (lo + hi);
+    if (e.g2 > T(0)) {
+      const T step = e.g / e.g2;
+      const T newton = s - step;
+      if (newton > lo && newton < hi) {
+        next = newton;
+        if (!(absT(step) > tol)) return next;
+      }
+    }
+    if ((it & 1) != 0) {
+      if (hi - lo > T(0.5) * width_before) next = T(0.5) * (lo + hi);
+      width_before = hi - lo;
+    }
+    s = next;
+  }
+  return s;
+}
+
+/// The minimiser of phi on [0, 1]: an end where phi' does not change sign
+/// there, else the root of phi' (edgeSolveIn from the regula falsi point,
+/// which is exact for a quadratic phi).
+template <class T>
+inline T edgeSolve(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
+                   int max_iter, const T& tol) {
+  const Dphi<T> e0 = edgeDphi(a, d, T(0), r, h);
+  if (!(e0.g < T(0))) return T(0);
+  const Dphi<T> e1 = edgeDphi(a, d, T(1), r, h);
+  if (!(e1.g > T(0))) return T(1);
+  T s = e0.g / (e0.g - e1.g);
+  if (!(s > T(0) && s < T(1))) s = T(0.5);
+  return edgeSolveIn(a, d, r, h, T(0), T(1), s, max_iter, tol);
+}
+
+/// Newton steps from s0 in a stronger arithmetic (the start is already
+/// the minimiser to the precision of the weaker one): at most `steps`,
+/// clamped to [0, 1], each kept only if phi does not grow.
+template <class T>
+inline T edgePolish(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
+                    T s, int steps) {
+  T best = pointDist(a + d * s, r, h);
+  for (int i = 0; i < steps; ++i) {
+    const Dphi<T> e = edgeDphi(a, d, s, r, h);
+    if (!(e.g2 > T(0))) {
+      // Flat (phi'' = 0): an end is optimal if phi' has a sign there.
+      if (e.g == T(0)) break;
+      const T end = e.g < T(0) ? T(1) : T(0);
+      const T f = pointDist(a + d * end, r, h);
+      if (f <= best) s = end;
+      break;
+    }
+    T next = s - e.g / e.g2;
+    if (next < T(0)) next = T(0);
+    if (next > T(1)) next = T(1);
+    if (next == s) break;
+    const T f = pointDist(a + d * next, r, h);
+    if (!(f <= best)) break;
+    best = f;
+    s = next;
+  }
+  return s;
+}
+
+/// A nearest pair candidate: p on the triangle, q = P(p), f = |p - q|,
+/// and the direction w whose separating plane certifies it.
+template <class T>
+struct Candidate {
+  bool valid = false;
+  int kind = -1;  // 0, 1, 2: edge from v[kind] to v[kind + 1]; 3: face
+  T s{};          // edge parameter
+  P3<T> p{}, q{}, w{};
+  T f{};
+};
+
+/// The candidate of edge k at parameter s; w made orthogonal to the edge
+/// when s is inside (0, 1).
+template <class T>
+inline Candidate<T> edgeCandidate(const Problem<T>& P, int k, const T& s) {
+  const P3<T>& a = P.v[k];
+  const P3<T> d = P.v[(k + 1) % 3] - a;
+  Candidate<T> c;
+  c.valid = true;
+  c.kind = k;
+  c.s = s;
+  c.p = a + d * s;
+  c.q = project(c.p, P.r, P.h);
+  c.w = c.p - c.q;
+  c.f = norm(c.w);
+  const T dd = dot(d, d);
+  if (s > T(0) && s < T(1) && dd > T(0)) c.w = c.w - d * (dot(c.w, d) / dd);
+  return c;
+}
+
+/// The face's candidate (see 2. above). `cut` reports that the plane meets
+/// C; then, for the zero case, p is the plane's point on the segment
+/// between C's two support points in the directions -n and +n (a point of
+/// the plane in C), valid when it lies in the triangle.
+template <class T>
+inline Candidate<T> faceCandidate(const Problem<T>& P, bool* cut) {
+  using std::sqrt;
+  Candidate<T> c;
+  c.kind = 3;
+  *cut = false;
+  const P3<T> e1 = P.v[1] - P.v[0], e2 = P.v[2] - P.v[0];
+  const P3<T> n = cross(e1, e2);
+  const T nxy2 = n.x * n.x + n.y * n.y;
+  const T nn = nxy2 + n.z * n.z;
+  if (!(nn > T(0))) return c;
+  const T nxy = sqrt(nxy2);
+  const T c0 = dot(n, P.v[0]);
+  const T ext = P.r * nxy + P.h * absT(n.z);
+  auto support = [&](int sg) {
+    P3<T> q{T(0), T(0), T(0)};
+    if (nxy > T(0)) {
+      const T k = P.r / nxy;
+      q.x = n.x * k;
+      q.y = n.y * k;
+    }
+    if (n.z > T(0)) q.z = P.h;
+    if (n.z < T(0)) q.z = -P.h;
+    if (sg < 0) q = q * T(-1);
+    return q;
+  };
+  auto inside = [&](const P3<T>& p) {
+    for (int k = 0; k < 3; ++k) {
+      const P3<T>& a = P.v[k];
+      const P3<T> b = P.v[(k + 1) % 3];
+      if (dot(cross(b - a, p - a), n) < T(0)) return false;
+    }
+    return true;
+  };
+  if (c0 > ext || c0 < -ext) {
+    const int sg = c0 > ext ? 1 : -1;
+    c.q = support(sg);
+    c.p = c.q + n * ((c0 - dot(n, c.q)) / nn);
+    c.w = sg > 0 ? n : n * T(-1);
+    c.f = (absT(c0) - ext) / sqrt(nn);
+    c.valid = inside(c.p);
+    return c;
+  }
+  *cut = true;
+  const P3<T> qp = support(1), qm = support(-1);
+  const T den = dot(n, qp - qm);
+  if (den > T(0)) {
+    c.p = qm + (qp - qm) * ((c0 - dot(n, qm)) / den);
+    c.q = project(c.p, P.r, P.h);
+    c.f = norm(c.p - c.q);
+    c.valid = inside(c.p);
+  }
+  return c;
+}
+
+/// The separating-plane lower bound of d(T, C) for the direction w (see 3.
+/// above); -1 (no bound) for w = 0.
+template <class T>
+inline T certify(const Problem<T>& P, const P3<T>& w) {
+  using std::sqrt;
+  const T ww = dot(w, w);
+  if (!(ww > T(0))) return T(-1);
+  T m = dot(w, P.v[0]);
+  for (int k = 1; k < 3; ++k) {
+    const T x = dot(w, P.v[k]);
+    if (x < m) m = x;
+  }
+  const T hc = P.r * sqrt(w.x * w.x + w.y * w.y) + P.h * absT(w.z);
+  return (m - hc) / sqrt(ww);
+}
+
+}  // namespace tricyl::detail::dist
