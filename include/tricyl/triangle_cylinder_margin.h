@@ -59,6 +59,14 @@ template <class S>
 Answer tryWithinDistance(const Cylinder<S>& cylinder, const Pose<S>& pose,
                          const Triangle<S>& triangle, S margin) noexcept;
 
+/// As tryWithinDistance, and also reports which stage decided (statistics):
+/// kEarlyOut (outside the grown cylinder Cyl(r + m, lz/2 + m)), kFastPath
+/// (the exact triangle kernel on the parts and the double torus filter),
+/// kExactGmp (some part needed GMP), or what the adaptive kernel reports.
+template <class S>
+Decision decideWithinDistance(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                              const Triangle<S>& triangle, S margin) noexcept;
+
 extern template bool withinDistance(const Cylinder<float>&, const Pose<float>&,
                                     const Triangle<float>&, float);
 extern template bool withinDistance(const Cylinder<double>&,
@@ -76,5 +84,13 @@ extern template Answer tryWithinDistance(const Cylinder<double>&,
                                          const Pose<double>&,
                                          const Triangle<double>&,
                                          double) noexcept;
+extern template Decision decideWithinDistance(const Cylinder<float>&,
+                                              const Pose<float>&,
+                                              const Triangle<float>&,
+                                              float) noexcept;
+extern template Decision decideWithinDistance(const Cylinder<double>&,
+                                              const Pose<double>&,
+                                              const Triangle<double>&,
+                                              double) noexcept;
 
 }  // namespace tricyl
