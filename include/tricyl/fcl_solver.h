@@ -420,9 +420,10 @@ std::size_t collide(const fcl::CollisionGeometry<S>* g1,
                     const fcl::CollisionRequest<S>& request,
                     fcl::CollisionResult<S>& result,
                     const CollideOptions<S>& options) {
-  if (!(options.margin >= 0 && std::isfinite(options.margin)))
+  if (!(std::isfinite(options.margin) && options.margin >= 0))
     throw InvalidInput("tricyl::collide: the margin must be finite and >= 0");
-  if (options.margin == 0) return collide(g1, tf1, g2, tf2, request, result);
+  if (options.margin == 0)
+    return tricyl::collide(g1, tf1, g2, tf2, request, result);
   return detail::collideWithinImpl(g1, tf1, g2, tf2, request, result,
                                    options.margin);
 }
@@ -434,9 +435,9 @@ std::size_t collide(const fcl::CollisionObject<S>* o1,
                     const fcl::CollisionRequest<S>& request,
                     fcl::CollisionResult<S>& result,
                     const CollideOptions<S>& options) {
-  return collide(o1->collisionGeometry().get(), o1->getTransform(),
-                 o2->collisionGeometry().get(), o2->getTransform(), request,
-                 result, options);
+  return tricyl::collide(o1->collisionGeometry().get(), o1->getTransform(),
+                         o2->collisionGeometry().get(), o2->getTransform(),
+                         request, result, options);
 }
 
 /// The broadphase callback data: FCL's own struct (request, result, done).
