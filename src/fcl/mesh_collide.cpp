@@ -105,9 +105,22 @@ class LeafBlock {
       // world coordinate, reported "in collision" (as the Solver answers).
       // A margin collide asks the exact margin test instead (margin 0 is
       // never routed here: it is the plain collide).
-      const Answer a = margin_ > 0
-                           ? tryWithinDistance(cyl_, pose_, tri_[i], margin_)
-                           : tryIntersect(cyl_, pose_, tri_[i]);
+      Answer a;
+      if (margin_ > 0) {
+        // A triangle proved farther than the margin by its cheap bound
+        // (mesh_traversal.h, triangleLowerBound) is not within it.
+        const Triangle<double>& w = tri_[i];
+        const double x[3][3] = {{w.a.x, w.a.y, w.a.z},
+                                {w.b.x, w.b.y, w.b.z},
+                                {w.c.x, w.c.y, w.c.z}};
+        const double tc[3] = {pose_.t.x, pose_.t.y, pose_.t.z};
+        if (gt(triangleLowerBound(x, pose_.R, tc, cyl_.radius, 0.5 * cyl_.lz),
+               margin_))
+          continue;
+        a = tryWithinDistance(cyl_, pose_, tri_[i], margin_);
+      } else {
+        a = tryIntersect(cyl_, pose_, tri_[i]);
+      }
       if (a == Answer::kDisjoint) continue;
       if (stats_ != nullptr) ++stats_->hits;
       record(i);

@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // tricyl's BVHModel/Cylinder distance traversal (fcl_mesh_cylinder.h,
-// distanceMeshCylinder): nearest-first over the model's own tree, each node
-// pruned by a certified lower bound of its distance to the cylinder
-// (mesh_traversal.h, lowerBound), tricyl::tryDistance on the leaves.
+// distanceMeshCylinder): best-first over the model's own tree, each node
+// and each triangle pruned by a certified lower bound of its distance to the
+// cylinder (mesh_traversal.h, lowerBound and triangleLowerBound),
+// tricyl::tryDistance on the triangles that survive.
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/narrowphase/distance_request.h>
 #include <fcl/narrowphase/distance_result.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -41,24 +43,35 @@ using namespace traversal;  // NOLINT: this file's own internal helpers
 // best): the answer is then within those tolerances of the minimum.
 constexpr double kLeafRel = 0x1p-40;
 
+/// A node still to visit, or (leaf) a triangle still to measure, with a
+/// lower bound of its distance. NaN bounds order as -Inf (visited first,
+/// never pruned).
 struct Entry {
-  int node;
   double lb;
+  int node;
+  bool leaf;
 };
 
-/// The explicit stack of nodes still to visit, with their lower bounds.
-class EntryStack {
+/// The open entries, smallest bound first (best-first: a triangle is
+/// measured only if no open entry could hold a nearer one).
+class EntryQueue {
  public:
-  void push(int n, double lb) { items_.push_back({n, lb}); }
+  EntryQueue() { items_.reserve(256); }
+  void push(double lb, int node, bool leaf) {
+    items_.push_back({std::isnan(lb) ? -kInf : lb, node, leaf});
+    std::push_heap(items_.begin(), items_.end(), later);
+  }
   bool empty() const { return items_.empty(); }
   Entry pop() {
+    std::pop_heap(items_.begin(), items_.end(), later);
     const Entry e = items_.back();
     items_.pop_back();
     return e;
   }
-  EntryStack() { items_.reserve(128); }
 
  private:
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
+  static bool later(const Entry& a, const Entry& b) { return a.lb > b.lb; }
   std::vector<Entry> items_;
 };
 
@@ -101,36 +114,64 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
     Boxer::get(model.getBV(n).bv, &box);
     return lowerBoundLocal(lowerBound<Boxer::kAligned>(box, k), k);
   };
-
-  std::size_t tested = 1, skipped = 0, leaves = 0, hits = 0;
+  const double t_cyl[3] = {pose.t.x, pose.t.y, pose.t.z};
+  // A leaf's triangle, in the world frame the Solver sees.
+  const auto triangleOf = [&](const fcl::BVNode<BV>& node, V3 p[3]) {
+    worldTriangle(model.vertices, model.tri_indices[primitiveId(node)], tf_mesh,
+                  setup.raw, p);
+  };
+  // A node's entry: an inner node with its box bound; a leaf with the
+  // larger of its box bound and its triangle's own cheap bound
+  // (mesh_traversal.h, triangleLowerBound).
+  std::size_t tested = 0, skipped = 0, leaves = 0, hits = 0;
   double best = result.min_distance;
-  EntryStack stack;
-  stack.push(0, bound(0));
-  while (!stack.empty()) {
-    const Entry e = stack.pop();
+  EntryQueue queue;
+  const auto push = [&](int n) {
+    ++tested;
+    const double lb = bound(n);
+    const fcl::BVNode<BV>& node = model.getBV(n);
+    if (!isLeaf(node)) {
+      if (pruner.prune(lb, best)) {
+        ++skipped;
+        return;
+      }
+      queue.push(lb, n, false);
+      return;
+    }
+    V3 p[3];
+    triangleOf(node, p);
+    const double x[3][3] = {{p[0][0], p[0][1], p[0][2]},
+                            {p[1][0], p[1][1], p[1][2]},
+                            {p[2][0], p[2][1], p[2][2]}};
+    const double lt = triangleLowerBound(x, pose.R, t_cyl, cyl.radius, k.h);
+    const double l = gt(lt, lb) ? lt : lb;
+    if (pruner.prune(l, best)) {
+      ++skipped;
+      return;
+    }
+    queue.push(l, n, true);
+  };
+
+  push(0);
+  while (!queue.empty()) {
+    const Entry e = queue.pop();
+    // Every open entry is at least e.lb: once that cannot improve on best,
+    // nothing can.
     if (pruner.prune(e.lb, best)) {
       ++skipped;
-      continue;
+      break;
     }
     const fcl::BVNode<BV>& node = model.getBV(e.node);
-    if (!isLeaf(node)) {
-      const int left = leftChild(node), right = rightChild(node);
-      const double lb_left = bound(left), lb_right = bound(right);
-      tested += 2;
-      // Nearer child on top, so it is visited first (a small best early
-      // prunes the most).
-      if (std::isless(lb_left, lb_right)) {
-        stack.push(right, lb_right);
-        stack.push(left, lb_left);
-      } else {
-        stack.push(left, lb_left);
-        stack.push(right, lb_right);
-      }
+    if (!e.leaf) {
+      prefetchNode(model.getBV(leftChild(node)));
+      prefetchNode(model.getBV(rightChild(node)));
+      push(leftChild(node));
+      push(rightChild(node));
       continue;
     }
     const int id = primitiveId(node);
     V3 p[3];
-    worldTriangle(model.vertices, model.tri_indices[id], tf_mesh, setup.raw, p);
+    triangleOf(node, p);
     const Triangle<double> tri{toVec3(p[0]), toVec3(p[1]), toVec3(p[2])};
     ++leaves;
     DistanceResult<double> d;

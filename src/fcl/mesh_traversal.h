@@ -537,6 +537,121 @@ inline void worldTriangle(const V3* vertices, const fcl::Triangle& t,
     out[j] = raw ? vertices[v[j]] : V3(tf_mesh * vertices[v[j]]);
 }
 
+/// The 2D distance from the origin to the triangle (p0, p1, p2) of the
+/// plane (0 when the triangle, or the segment or point it degenerates to,
+/// holds the origin). 1-Lipschitz in the vertices.
+inline double originToTriangle2d(const double p[3][2]) {
+  // Inside: the origin on the same side of the three edges (or on one).
+  double s[3];
+  for (int i = 0; i < 3; ++i) {
+    const double* a = p[i];
+    const double* b = p[(i + 1) % 3];
+    s[i] = a[0] * b[1] - a[1] * b[0];  // (a - o) x (b - o)
+  }
+  // (Quiet comparisons throughout: a NaN raises no FP exception and proves
+  // nothing.)
+  const bool nonneg = std::isgreaterequal(s[0], 0) &&
+                      std::isgreaterequal(s[1], 0) &&
+                      std::isgreaterequal(s[2], 0);
+  const bool nonpos = std::islessequal(s[0], 0) && std::islessequal(s[1], 0) &&
+                      std::islessequal(s[2], 0);
+  if (nonneg || nonpos) {
+    // A proper triangle holds the origin. (A degenerate one, all s = 0,
+    // is a segment through the origin's line: fall through to the edges,
+    // which measure it correctly.)
+    if (s[0] != 0 || s[1] != 0 || s[2] != 0) return 0;
+  }
+  double best2 = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 3; ++i) {
+    const double* a = p[i];
+    const double* b = p[(i + 1) % 3];
+    const double e0 = b[0] - a[0], e1 = b[1] - a[1];
+    const double ee = e0 * e0 + e1 * e1;
+    double t = 0;
+    if (gt(ee, 0)) {
+      t = -(a[0] * e0 + a[1] * e1) / ee;
+      t = std::isless(t, 0) ? 0 : (gt(t, 1) ? 1 : t);
+    }
+    const double q0 = a[0] + t * e0, q1 = a[1] + t * e1;
+    const double d2 = q0 * q0 + q1 * q1;
+    if (std::isless(d2, best2)) best2 = d2;
+  }
+  return sqrtNonNegative(best2);
+}
+
+/// A certified lower bound of the distance the contract of
+/// tricyl::distance measures (the pulled-back triangle y = R^T (x - t), R
+/// and t as given, to the solid cylinder of radius r and half length h), or
+/// a value <= 0 (or NaN) when none is proved; cheap (about 60 flops) next to
+/// the distance itself. The largest of three gaps, each at most the
+/// distance: along the axis (projection on z), in the plane of the caps
+/// (projection on xy: the 2D distance from the axis to the projected
+/// triangle, less r), and across the triangle's plane (the distance from
+/// the centre to the plane, less the cylinder's support h |n_z| + r |n_xy|
+/// along its unit normal n). Rounding: the computed y are within
+/// E = 2^-44 L (L = the largest |x| + |t| + r + h; the true error is a few
+/// ulps of L, 2^-50 L at most) of the exact ones; the first two gaps are
+/// 1-Lipschitz in y, and their own rounding is a few ulps of L: 4 E covers
+/// both. The plane gap is not Lipschitz for slivers: the unit normal is off
+/// by at most eps_n = 4 (E (|e1| + |e2|) + 2^-50 |e1| |e2|) / |n|; it is used
+/// only when eps_n < 2^-20, with (|y0| + r + h) eps_n + 4 E taken off.
+inline double triangleLowerBound(const double x[3][3], const double R[3][3],
+                                 const double t[3], double r, double h) {
+  double L = 0;
+  double y[3][3];
+  for (int k = 0; k < 3; ++k) {
+    const double d[3] = {x[k][0] - t[0], x[k][1] - t[1], x[k][2] - t[2]};
+    for (int i = 0; i < 3; ++i) {
+      y[k][i] = R[0][i] * d[0] + R[1][i] * d[1] + R[2][i] * d[2];
+      const double a = std::fabs(x[k][i]);
+      if (gt(a, L)) L = a;
+    }
+  }
+  L += std::fabs(t[0]) + std::fabs(t[1]) + std::fabs(t[2]) + r + h;
+  const double E = 0x1p-44 * L;
+  // Along the axis.
+  double zmin = y[0][2], zmax = y[0][2];
+  for (int k = 1; k < 3; ++k) {
+    zmin = std::fmin(zmin, y[k][2]);
+    zmax = std::fmax(zmax, y[k][2]);
+  }
+  double g = zmin - h;
+  if (gt(-h - zmax, g)) g = -h - zmax;
+  // In the caps' plane.
+  const double p[3][2] = {
+      {y[0][0], y[0][1]}, {y[1][0], y[1][1]}, {y[2][0], y[2][1]}};
+  const double radial = originToTriangle2d(p) - r;
+  if (gt(radial, g)) g = radial;
+  g -= 4 * E;
+  // Across the triangle's plane.
+  const double e1[3] = {y[1][0] - y[0][0], y[1][1] - y[0][1],
+                        y[1][2] - y[0][2]};
+  const double e2[3] = {y[2][0] - y[0][0], y[2][1] - y[0][1],
+                        y[2][2] - y[0][2]};
+  const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1],
+                       e1[2] * e2[0] - e1[0] * e2[2],
+                       e1[0] * e2[1] - e1[1] * e2[0]};
+  const double nn = sqrtNonNegative(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  const double l1 =
+      sqrtNonNegative(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+  const double l2 =
+      sqrtNonNegative(e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]);
+  const double eps_n = 4 * (E * (l1 + l2) + 0x1p-50 * l1 * l2);
+  if (gt(nn, 0) && std::isless(eps_n, 0x1p-20 * nn)) {
+    const double en = eps_n / nn;
+    const double s =
+        std::fabs(n[0] * y[0][0] + n[1] * y[0][1] + n[2] * y[0][2]) / nn;
+    const double support =
+        (h * std::fabs(n[2]) + r * sqrtNonNegative(n[0] * n[0] + n[1] * n[1])) /
+        nn;
+    const double y0 =
+        std::fabs(y[0][0]) + std::fabs(y[0][1]) + std::fabs(y[0][2]);
+    const double face = s - support - (y0 + r + h) * en - 4 * E;
+    if (gt(face, g)) g = face;
+  }
+  return g;
+}
+
 /// Calls f(BvTag<BV>{}) for the BV type of a BVHModel<BV> of node type `t`
 /// (the eight BV types of FCL 0.7) and returns its result; false for any
 /// other node type.
