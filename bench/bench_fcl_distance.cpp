@@ -37,7 +37,7 @@
 #include <string>
 #include <vector>
 
-#include "obj_mesh.h"
+#include "fcl_obj_model.h"
 #include "tricyl/fcl_solver.h"
 #include "walk.h"
 
@@ -58,30 +58,12 @@ struct Scene {
 
 Scene load(const std::string& file, std::uint64_t seed) {
   Scene d;
-  tricyl::obj::Mesh f;
-  try {
-    f = tricyl::obj::read(std::string(TRICYL_MESH_DIR) + "/" + file);
-  } catch (const std::exception&) {
-    return d;
-  }
-  std::vector<V3> v;
-  std::vector<fcl::Triangle> t;
-  for (std::size_t i = 0; i < f.numVertices(); ++i)
-    v.emplace_back(f.vertices[3 * i], f.vertices[3 * i + 1],
-                   f.vertices[3 * i + 2]);
-  for (std::size_t k = 0; k < f.numTriangles(); ++k)
-    t.emplace_back(f.indices[3 * k], f.indices[3 * k + 1],
-                   f.indices[3 * k + 2]);
-  d.model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
-  d.model->beginModel(int(t.size()), int(v.size()));
-  d.model->addSubModel(v, t);
-  d.model->endModel();
-  V3 lo = v[0], hi = v[0];
-  for (const V3& p : v) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  d.diag = (hi - lo).norm();
+  tricyl::bench::FclObjModel fm;
+  if (!tricyl::bench::loadFclObj(file, &fm)) return d;
+  d.model = fm.model;
+  d.diag = fm.diag;
+  const std::vector<V3>& v = fm.v;
+  const std::vector<fcl::Triangle>& t = fm.t;
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
   std::normal_distribution<double> g;
@@ -216,8 +198,7 @@ void BM_TricylDistance(benchmark::State& state, std::string file) {
   }
   using C = benchmark::Counter;
   state.counters["nodes"] = C(double(stats.nodes_tested), C::kAvgIterations);
-  state.counters["pruned"] =
-      C(double(stats.nodes_skipped), C::kAvgIterations);
+  state.counters["pruned"] = C(double(stats.nodes_skipped), C::kAvgIterations);
   state.counters["leaves"] = C(double(stats.leaves), C::kAvgIterations);
 }
 

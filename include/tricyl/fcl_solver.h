@@ -40,10 +40,48 @@
 ///   Cylinder pair itself for `double` (fcl_mesh_cylinder.h): same contacts,
 ///   cheaper traversal; requests it does not handle, and `float` models, run
 ///   FCL's traversal with Solver.
+/// - Distance (DISTANCE below): Cylinder vs a BVHModel triangle (every BV
+///   type) and TriangleP vs Cylinder, either order: tricyl::distance's
+///   certified distance, or minus the contact depth when they meet.
 /// - Every other pair (Box, Capsule, Cone, Convex, ... vs meshes and shapes,
-///   Sphere vs meshes, and distance queries) runs GJKSolver_libccd<S>'s own
-///   code, inherited unchanged; through tricyl::collide, the solver the
-///   request names (see The request).
+///   Sphere vs meshes, and their distance queries) runs GJKSolver_libccd<S>'s
+///   own code, inherited unchanged; through tricyl::collide and
+///   tricyl::distance, the solver the request names (see The request).
+///
+/// ## DISTANCE (docs/fcl_solver.md, Distance and margins through FCL)
+/// - shapeTriangleDistance (both of FCL's overloads, the same world
+///   triangles as the Boolean): disjoint -> tricyl::distance's distance and
+///   nearest points (world frame), returns true; meeting (the exact
+///   Boolean; invalid input counts as meeting) -> minus estimateContact's
+///   depth (< 0), both points at its contact point, returns false (libccd's
+///   convention). FCL then stores nearest_points[0] on the mesh and [1] on
+///   the cylinder in either argument order, world frame.
+/// - FCL 0.7 registers mesh/cylinder distance for RSS, kIOS and OBBRSS only;
+///   Solver's own distance table adds AABB, OBB and KDOP16/18/24 (double:
+///   tricyl's own traversal; float: every triangle) and TriangleP/Cylinder
+///   (both orders).
+/// - enable_signed_distance: FCL's own signed step (collide with contacts,
+///   minus the deepest contact's depth) runs with this solver's contacts.
+/// - tricyl::distance(o1, o2, request, result): fcl::distance's
+///   replacement; a mesh/cylinder pair in double is walked by tricyl's own
+///   traversal (fcl_mesh_cylinder.h, distanceMeshCylinder): certified lower
+///   bounds per node and per triangle, best-first, the exact brute-force
+///   minimum of the per-triangle distances.
+///
+/// ## MARGIN COLLIDE (docs/fcl_solver.md)
+/// tricyl::collide(o1, o2, request, result, CollideOptions<S>{margin}):
+/// FCL 0.7's CollisionRequest has no margin field. A triangle collides when
+/// the closed margin-neighbourhood of the cylinder (Minkowski sum with a
+/// ball of radius margin) meets it: tricyl::withinDistance, exact. Mesh
+/// (every BV type, either order) and TriangleP against a cylinder; the mesh
+/// traversal prunes with the node test run for the neighbourhood
+/// (certified). Contacts as tricyl::collide's; with enable_contact, a
+/// triangle within the margin that does not meet the cylinder gets the
+/// midpoint of the nearest points, the unit normal from o1 toward o2 and
+/// penetration_depth = -distance. margin = 0 is tricyl::collide; a
+/// negative, NaN or infinite margin throws InvalidInput. Every other pair:
+/// tricyl::collide, then fcl::distance with Solver (libccd's GJK, not
+/// exact) <= margin.
 ///
 /// ## The request (tricyl::collide)
 /// - The pairs tricyl answers itself (cylinder vs mesh or TriangleP in

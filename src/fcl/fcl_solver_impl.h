@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "margin_contact.h"
+#include "mesh_traversal.h"
 #include "tricyl/fcl_adapters.h"
 #include "tricyl/fcl_contact.h"
 #include "tricyl/fcl_mesh_cylinder.h"
@@ -298,37 +299,6 @@ fcl::Contact<S> marginContactFor(const fcl::CollisionGeometry<S>* o1,
                          c.depth);
 }
 
-template <class BV>
-struct BvTag {
-  using type = BV;
-};
-
-/// Calls f(BvTag<BV>{}) for the BVHModel<BV> of node type t (FCL 0.7's eight
-/// BV types for S); nothing for any other node type.
-template <class S, class F>
-void forEachBv(fcl::NODE_TYPE t, F&& f) {
-  switch (t) {
-    case fcl::BV_AABB:
-      return f(BvTag<fcl::AABB<S>>{});
-    case fcl::BV_OBB:
-      return f(BvTag<fcl::OBB<S>>{});
-    case fcl::BV_RSS:
-      return f(BvTag<fcl::RSS<S>>{});
-    case fcl::BV_kIOS:
-      return f(BvTag<fcl::kIOS<S>>{});
-    case fcl::BV_OBBRSS:
-      return f(BvTag<fcl::OBBRSS<S>>{});
-    case fcl::BV_KDOP16:
-      return f(BvTag<fcl::KDOP<S, 16>>{});
-    case fcl::BV_KDOP18:
-      return f(BvTag<fcl::KDOP<S, 18>>{});
-    case fcl::BV_KDOP24:
-      return f(BvTag<fcl::KDOP<S, 24>>{});
-    default:
-      return;
-  }
-}
-
 /// Margin collide of a BVHModel<BV> (g1) and a Cylinder (g2) triangle by
 /// triangle (float models, and double models the traversal does not
 /// handle): exact per triangle, no pruning.
@@ -415,12 +385,12 @@ std::size_t collideWithinImpl(const fcl::CollisionGeometry<S>* g1,
     const auto* cyl = mesh_first ? g2 : g1;
     const auto& tf_mesh = mesh_first ? tf1 : tf2;
     const auto& tf_cyl = mesh_first ? tf2 : tf1;
-    const auto run = [&](auto tag) {
+    traversal::dispatchBv<S>(mesh->getNodeType(), [&](auto tag) {
       using BV = typename decltype(tag)::type;
       solver_detail::collideWithinEveryTriangle<BV>(mesh, tf_mesh, cyl, tf_cyl,
                                                     request, result, margin);
-    };
-    solver_detail::forEachBv<S>(mesh->getNodeType(), run);
+      return true;
+    });
     return result.numContacts();
   }
   // TriangleP/cylinder, either order.

@@ -134,25 +134,47 @@ inline double sqrtNonNegative(double x) {
 #endif
 }
 
+/// The terms every test of a node reads: d = b - c, the margin m of THE NODE
+/// TEST AND ITS MARGIN for this box, u.d, and |u.a_i| for the box axes.
+struct NodeTerms {
+  double d[3];
+  double m;
+  double ud;
+  double ua[3];
+};
+
+template <bool kAligned>
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((always_inline))
+#endif
+inline NodeTerms
+nodeTerms(const Box& x, const Local& k) {
+  NodeTerms n;
+  for (int i = 0; i < 3; ++i) n.d[i] = x.b[i] - k.c[i];
+  n.m = k.global + k.rel * (std::fabs(x.b[0]) + std::fabs(x.b[1]) +
+                            std::fabs(x.b[2]) + x.e[0] + x.e[1] + x.e[2]);
+  n.ud = k.u[0] * n.d[0] + k.u[1] * n.d[1] + k.u[2] * n.d[2];
+  if constexpr (kAligned) {
+    for (int i = 0; i < 3; ++i) n.ua[i] = k.au[i];
+  } else {
+    for (int i = 0; i < 3; ++i)
+      n.ua[i] = std::fabs(k.u[0] * x.a[i][0] + k.u[1] * x.a[i][1] +
+                          k.u[2] * x.a[i][2]);
+  }
+  return n;
+}
+
 template <bool kAligned>
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((always_inline))
 #endif
 inline bool
 overlaps(const Box& x, const Local& k) {
-  const double d[3] = {x.b[0] - k.c[0], x.b[1] - k.c[1], x.b[2] - k.c[2]};
-  const double m =
-      k.global + k.rel * (std::fabs(x.b[0]) + std::fabs(x.b[1]) +
-                          std::fabs(x.b[2]) + x.e[0] + x.e[1] + x.e[2]);
-  const double ud = k.u[0] * d[0] + k.u[1] * d[1] + k.u[2] * d[2];
-  double ua[3];
-  if constexpr (kAligned) {
-    for (int i = 0; i < 3; ++i) ua[i] = k.au[i];
-  } else {
-    for (int i = 0; i < 3; ++i)
-      ua[i] = std::fabs(k.u[0] * x.a[i][0] + k.u[1] * x.a[i][1] +
-                        k.u[2] * x.a[i][2]);
-  }
+  const NodeTerms n = nodeTerms<kAligned>(x, k);
+  const double* d = n.d;
+  const double m = n.m;
+  const double ud = n.ud;
+  const double* ua = n.ua;
   // (A): the cylinder's axis.
   if (gt(std::fabs(ud),
          k.h + x.e[0] * ua[0] + x.e[1] * ua[1] + x.e[2] * ua[2] + m))
@@ -378,19 +400,11 @@ __attribute__((always_inline))
 #endif
 inline double
 lowerBound(const Box& x, const Local& k) {
-  const double d[3] = {x.b[0] - k.c[0], x.b[1] - k.c[1], x.b[2] - k.c[2]};
-  const double m =
-      k.global + k.rel * (std::fabs(x.b[0]) + std::fabs(x.b[1]) +
-                          std::fabs(x.b[2]) + x.e[0] + x.e[1] + x.e[2]);
-  const double ud = k.u[0] * d[0] + k.u[1] * d[1] + k.u[2] * d[2];
-  double ua[3];
-  if constexpr (kAligned) {
-    for (int i = 0; i < 3; ++i) ua[i] = k.au[i];
-  } else {
-    for (int i = 0; i < 3; ++i)
-      ua[i] = std::fabs(k.u[0] * x.a[i][0] + k.u[1] * x.a[i][1] +
-                        k.u[2] * x.a[i][2]);
-  }
+  const NodeTerms n = nodeTerms<kAligned>(x, k);
+  const double* d = n.d;
+  const double m = n.m;
+  const double ud = n.ud;
+  const double* ua = n.ua;
   // (A)
   double g =
       std::fabs(ud) - (k.h + x.e[0] * ua[0] + x.e[1] * ua[1] + x.e[2] * ua[2]);
@@ -653,32 +667,32 @@ inline double triangleLowerBound(const double x[3][3], const double R[3][3],
 }
 
 /// Calls f(BvTag<BV>{}) for the BV type of a BVHModel<BV> of node type `t`
-/// (the eight BV types of FCL 0.7) and returns its result; false for any
-/// other node type.
+/// (FCL 0.7's eight BV types, for scalar S) and returns its result; false
+/// for any other node type. Shared by the traversals and the Solver.
 template <class BV>
 struct BvTag {
   using type = BV;
 };
 
-template <class F>
+template <class S = double, class F>
 bool dispatchBv(fcl::NODE_TYPE t, F&& f) {
   switch (t) {
     case fcl::BV_AABB:
-      return f(BvTag<fcl::AABB<double>>{});
+      return f(BvTag<fcl::AABB<S>>{});
     case fcl::BV_OBB:
-      return f(BvTag<fcl::OBB<double>>{});
+      return f(BvTag<fcl::OBB<S>>{});
     case fcl::BV_RSS:
-      return f(BvTag<fcl::RSS<double>>{});
+      return f(BvTag<fcl::RSS<S>>{});
     case fcl::BV_kIOS:
-      return f(BvTag<fcl::kIOS<double>>{});
+      return f(BvTag<fcl::kIOS<S>>{});
     case fcl::BV_OBBRSS:
-      return f(BvTag<fcl::OBBRSS<double>>{});
+      return f(BvTag<fcl::OBBRSS<S>>{});
     case fcl::BV_KDOP16:
-      return f(BvTag<fcl::KDOP<double, 16>>{});
+      return f(BvTag<fcl::KDOP<S, 16>>{});
     case fcl::BV_KDOP18:
-      return f(BvTag<fcl::KDOP<double, 18>>{});
+      return f(BvTag<fcl::KDOP<S, 18>>{});
     case fcl::BV_KDOP24:
-      return f(BvTag<fcl::KDOP<double, 24>>{});
+      return f(BvTag<fcl::KDOP<S, 24>>{});
     default:
       return false;
   }
