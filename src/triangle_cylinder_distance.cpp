@@ -36,7 +36,7 @@ constexpr double kAlg = 32;
 // fraction of the distance (4 ulps at worst).
 constexpr double kAcceptRel = 0x1p-50;
 constexpr int kSolveIter = 100;
-constexpr int kPolishSteps = 4;
+constexpr int kRefineIter = 240;
 
 inline double absd(double x) { return x < 0 ? -x : x; }
 inline double maxd(double a, double b) { return a > b ? a : b; }
@@ -211,8 +211,9 @@ Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
     const Candidate<double>& c = pass.cand[k];
     if (!c.valid || !(c.f <= U + tie)) continue;
     const P3<DD> d = Q.v[(k + 1) % 3] - Q.v[k];
-    const DD s =
-        detail::dist::edgePolish(Q.v[k], d, Q.r, Q.h, DD(c.s), kPolishSteps);
+    const DD s = detail::dist::edgeRefine(Q.v[k], d, Q.r, Q.h, DD(c.s),
+                                          DD(0x1p-24), kRefineIter,
+                                          DD(0x1p-104));
     const Candidate<DD> e = detail::dist::edgeCandidate(Q, k, s);
     const DD l = detail::dist::certify(Q, e.w);
     if (l > Lbest) Lbest = l;

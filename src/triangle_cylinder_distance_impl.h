@@ -180,33 +180,27 @@ inline T edgeSolve(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
   return edgeSolveIn(a, d, r, h, T(0), T(1), s, max_iter, tol);
 }
 
-/// Newton steps from s0 in a stronger arithmetic (the start is already
-/// the minimiser to the precision of the weaker one): at most `steps`,
-/// clamped to [0, 1], each kept only if phi does not grow.
+/// The minimiser of phi on [0, 1] in a stronger arithmetic T, from s0, the
+/// minimiser found in a weaker one: the ends are re-checked; then the root
+/// of phi' is solved in the bracket [s0 - delta, s0 + delta] when phi'
+/// changes sign there (Newton converges from s0 in a few steps), else in
+/// [0, 1]. Bounded by `max_iter` evaluations.
 template <class T>
-inline T edgePolish(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
-                    T s, int steps) {
-  T best = pointDist(a + d * s, r, h);
-  for (int i = 0; i < steps; ++i) {
-    const Dphi<T> e = edgeDphi(a, d, s, r, h);
-    if (!(e.g2 > T(0))) {
-      // Flat (phi'' = 0): an end is optimal if phi' has a sign there.
-      if (e.g == T(0)) break;
-      const T end = e.g < T(0) ? T(1) : T(0);
-      const T f = pointDist(a + d * end, r, h);
-      if (f <= best) s = end;
-      break;
-    }
-    T next = s - e.g / e.g2;
-    if (next < T(0)) next = T(0);
-    if (next > T(1)) next = T(1);
-    if (next == s) break;
-    const T f = pointDist(a + d * next, r, h);
-    if (!(f <= best)) break;
-    best = f;
-    s = next;
+inline T edgeRefine(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
+                    const T& s0, const T& delta, int max_iter, const T& tol) {
+  if (!(edgeDphi(a, d, T(0), r, h).g < T(0))) return T(0);
+  if (!(edgeDphi(a, d, T(1), r, h).g > T(0))) return T(1);
+  T lo = s0 - delta, hi = s0 + delta;
+  if (lo < T(0)) lo = T(0);
+  if (hi > T(1)) hi = T(1);
+  if (!(lo == T(0) || edgeDphi(a, d, lo, r, h).g < T(0)) ||
+      !(hi == T(1) || edgeDphi(a, d, hi, r, h).g > T(0))) {
+    lo = T(0);
+    hi = T(1);
   }
-  return s;
+  T s = s0;
+  if (!(s > lo && s < hi)) s = (lo + hi) * T(0.5);
+  return edgeSolveIn(a, d, r, h, lo, hi, s, max_iter, tol);
 }
 
 /// A nearest pair candidate: p on the triangle, q = P(p), f = |p - q|,
