@@ -61,35 +61,68 @@ struct Pass {
   int best = -1;
 };
 
-// Lower bound of the distance from the segment [a, b] to C's bounding box.
-double boxLowerBound(const P3<double>& a, const P3<double>& b, double r,
-                     double h) {
-  auto gap = [](double p, double q, double c) {
-    const double lo = p < q ? p : q, hi = p < q ? q : p;
-    return lo > c ? lo - c : (hi < -c ? -c - hi : 0.0);
-  };
-  const double gx = gap(a.x, b.x, r), gy = gap(a.y, b.y, r),
-               gz = gap(a.z, b.z, h);
-  return std::sqrt(gx * gx + gy * gy + gz * gz);
-}
-
+// The double pass. Vertices first: g_i = v_i - P(v_i), f_i = |g_i|. An
+// edge's phi'(0) and phi'(1) are g_a . d and g_b . d, so an edge whose
+// minimum is at an end costs nothing more. For the others, the tangents of
+// the convex f at both ends bound f from below (f >= f_a + s f'(0) and
+// f >= f_b - (1 - s) f'(1), f' = phi' / f); where the two lines meet is a
+// lower bound of the edge's minimum (the edge is skipped when it cannot
+// beat the best so far) and the start of the Newton iteration.
 Pass doublePass(const Problem<double>& P, double prune_slack) {
   Pass out;
+  P3<double> g[3];
+  double f[3];
+  for (int i = 0; i < 3; ++i) {
+    g[i] = P.v[i] - detail::dist::project(P.v[i], P.r, P.h);
+    f[i] = detail::dist::norm(g[i]);
+  }
+  auto vertex = [&](int k, int i) {  // vertex i as edge k's candidate
+    Candidate<double> c;
+    c.valid = true;
+    c.kind = k;
+    c.s = i == k ? 0.0 : 1.0;
+    c.p = P.v[i];
+    c.q = P.v[i] - g[i];
+    c.w = g[i];
+    c.f = f[i];
+    return c;
+  };
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    const int i = k, j = (k + 1) % 3;
+    out.cand[k] = vertex(k, f[i] <= f[j] ? i : j);
+    if (out.cand[k].f < best) {
+      best = out.cand[k].f;
+      out.best = k;
+    }
+  }
   bool cut = false;
   out.cand[3] = detail::dist::faceCandidate(P, &cut);
   out.face_cut = cut;
-  double best = std::numeric_limits<double>::infinity();
-  if (out.cand[3].valid) {
+  if (out.cand[3].valid && out.cand[3].f < best) {
     best = out.cand[3].f;
     out.best = 3;
   }
   for (int k = 0; k < 3; ++k) {
-    const P3<double>& a = P.v[k];
-    const P3<double>& b = P.v[(k + 1) % 3];
-    if (boxLowerBound(a, b, P.r, P.h) > best * (1 + 0x1p-40) + prune_slack)
+    const int i = k, j = (k + 1) % 3;
+    const P3<double> d = P.v[j] - P.v[i];
+    const double ga = detail::dist::dot(g[i], d), gb = detail::dist::dot(g[j], d);
+    if (!(ga < 0) || !(gb > 0)) {  // the minimum is at an end
+      out.cand[k] = vertex(k, ga < 0 ? j : i);
       continue;
-    const double s = detail::dist::edgeSolve(a, b - a, P.r, P.h, kSolveIter,
-                                             0x1p-54);
+    }
+    double s0 = 0.5;
+    // (Only where both ends are well clear of the double pass's error:
+    // near 0 the slopes f' = phi' / f are not accurate.)
+    if (f[i] > 64 * prune_slack && f[j] > 64 * prune_slack) {
+      const double sa = ga / f[i], sb = gb / f[j];  // f'(0) < 0 < f'(1)
+      const double t = (f[j] - sb - f[i]) / (sa - sb);
+      const double lb = f[i] + sa * (t < 0 ? 0 : (t > 1 ? 1 : t));
+      if (lb > best * (1 + 0x1p-40) + prune_slack) continue;
+      if (t > 0 && t < 1) s0 = t;
+    }
+    const double s = detail::dist::edgeSolveIn(P.v[i], d, P.r, P.h, 0.0, 1.0,
+                                               s0, kSolveIter, 0x1p-40);
     out.cand[k] = detail::dist::edgeCandidate(P, k, s);
     if (out.cand[k].f < best) {
       best = out.cand[k].f;
@@ -99,18 +132,137 @@ Pass doublePass(const Problem<double>& P, double prune_slack) {
   return out;
 }
 
-template <class T>
-Vec3<double> toWorld(const Pose<double>& pose, const P3<T>& y) {
-  // x = R y + t, in T, rounded once to double.
-  const T c[3] = {y.x, y.y, y.z};
-  double out[3];
+// x = R y + t in double from y rounded to double: within a few ulps of
+// the world coordinates' magnitude (docs/distance.md, section 5).
+Vec3<double> toWorld(const Pose<double>& pose, const P3<double>& y) {
+  const double c[3] = {y.x, y.y, y.z};
   const double t[3] = {pose.t.x, pose.t.y, pose.t.z};
-  for (int i = 0; i < 3; ++i) {
-    T s = T(t[i]);
-    for (int k = 0; k < 3; ++k) s = s + T(pose.R[i][k]) * c[k];
-    out[i] = double(s);
-  }
+  double out[3];
+  for (int i = 0; i < 3; ++i)
+    out[i] = t[i] + (pose.R[i][0] * c[0] + pose.R[i][1] * c[1] +
+                     pose.R[i][2] * c[2]);
   return {out[0], out[1], out[2]};
+}
+Vec3<double> toWorld(const Pose<double>& pose, const P3<DD>& y) {
+  return toWorld(pose, P3<double>{double(y.x), double(y.y), double(y.z)});
+}
+
+// The vertex index of a candidate at an edge's end, else -1.
+int vertexOf(const Candidate<double>& c) {
+  if (c.kind > 2) return -1;
+  if (c.s == 0) return c.kind;
+  if (c.s == 1) return (c.kind + 1) % 3;
+  return -1;
+}
+
+DD hSupport(const P3<DD>& w, const DD& r, const DD& h) {
+  return r * sqrt(w.x * w.x + w.y * w.y) + h * abs(w.z);
+}
+
+// The usual refinement: the best candidate of the double pass alone (when
+// no other candidate is within the double pass's error of it), re-solved
+// in double-word: a vertex as it is, an edge point by two Newton steps
+// from the double parameter, a face point in closed form. Certified as in
+// the general refinement; the vertices outside the candidate enter the
+// separating-plane bound only if a double evaluation cannot show that
+// they lie beyond the candidate's points along w (|w . v_j - fl(w . v_j)|
+// <= |w|_1 (eps_y + 5 u M), with w rounded to double). Returns false when
+// the result is not within kAcceptRel: the general refinement then runs.
+template <class VertexFn>
+bool refineBest(const Pass& pass, const Problem<double>& P, VertexFn ddVertex,
+                double U, double tie, double eps_y_d, double M,
+                double slack_dd, const Pose<double>& pose,
+                DistanceResult<double>* out) {
+  const Candidate<double>& cb = pass.cand[pass.best];
+  const int vb = vertexOf(cb);
+  for (int k = 0; k < 4; ++k) {
+    const Candidate<double>& c = pass.cand[k];
+    if (k == pass.best || !c.valid || !(c.f <= U + tie)) continue;
+    if (vb >= 0 && vertexOf(c) == vb) continue;  // the same point
+    return false;
+  }
+  const DD r(P.r), h(P.h);
+  P3<DD> Y[3];
+  bool have[3] = {false, false, false};
+  auto vertex = [&](int v) -> const P3<DD>& {
+    if (!have[v]) {
+      Y[v] = ddVertex(v);
+      have[v] = true;
+    }
+    return Y[v];
+  };
+  DD Ud, Ld;
+  P3<DD> p, q;
+  if (cb.kind == 3) {
+    Problem<DD> Q;
+    Q.r = r;
+    Q.h = h;
+    for (int v = 0; v < 3; ++v) Q.v[v] = vertex(v);
+    bool cut = false;
+    const Candidate<DD> c = detail::dist::faceCandidate(Q, &cut);
+    if (cut || !c.valid) return false;
+    Ud = c.f;
+    Ld = detail::dist::certify(Q, c.w);
+    p = c.p;
+    q = c.q;
+  } else {
+    P3<DD> w;
+    DD m;
+    if (vb >= 0) {
+      p = vertex(vb);
+      q = detail::dist::project(p, r, h);
+      w = p - q;
+      m = detail::dist::dot(w, p);
+    } else {
+      const int i = cb.kind, j = (cb.kind + 1) % 3;
+      const P3<DD>& a = vertex(i);
+      const P3<DD> d = vertex(j) - a;
+      DD s(cb.s);
+      for (int it = 0; it < 2; ++it) {
+        const auto e = detail::dist::edgeDphi(a, d, s, r, h);
+        if (!(e.g2 > DD(0))) break;
+        s = s - e.g / e.g2;
+        if (s < DD(0)) s = DD(0);
+        if (s > DD(1)) s = DD(1);
+      }
+      p = a + d * s;
+      q = detail::dist::project(p, r, h);
+      w = p - q;
+      const DD dd = detail::dist::dot(d, d);
+      if (s > DD(0) && s < DD(1) && dd > DD(0))
+        w = w - d * (detail::dist::dot(w, d) / dd);
+      const DD ma = detail::dist::dot(w, a), mb = detail::dist::dot(w, vertex(j));
+      m = ma < mb ? ma : mb;
+    }
+    Ud = detail::dist::norm(p - q);
+    const P3<double> wd{double(w.x), double(w.y), double(w.z)};
+    const double w1 = absd(wd.x) + absd(wd.y) + absd(wd.z);
+    const double margin = w1 * (eps_y_d + 5 * kU * M) * (1 + 0x1p-50);
+    for (int v = 0; v < 3; ++v) {
+      if (have[v]) {
+        const DD x = detail::dist::dot(w, Y[v]);
+        if (x < m) m = x;
+      } else if (!(detail::dist::dot(wd, P.v[v]) - margin >=
+                   m.hi + 4 * kU * absd(m.hi))) {
+        const DD x = detail::dist::dot(w, vertex(v));
+        if (x < m) m = x;
+      }
+    }
+    const DD ww = detail::dist::dot(w, w);
+    if (!(ww > DD(0))) return false;
+    Ld = (m - hSupport(w, r, h)) / sqrt(ww);
+  }
+  double dist = double(Ud);
+  const double gap = double(Ud - Ld);
+  const double err = (gap > 0 ? gap : 0) + slack_dd + kU * dist;
+  if (!(dist > 0) || !(err <= kAcceptRel * dist)) return false;
+  if (out) {
+    out->distance = dist;
+    out->error_bound = err * (1 + 0x1p-50);
+    out->point_on_triangle = toWorld(pose, p);
+    out->point_on_cylinder = toWorld(pose, q);
+  }
+  return true;
 }
 
 // The distance for valid double inputs of moderate magnitude (no
@@ -178,10 +330,7 @@ Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
 
   // Double-word refinement. x - t is exact as a pair (TwoSum); the sum
   // of three double-word products is within 2^-101 S (dd.h).
-  Problem<DD> Q;
-  Q.r = DD(P.r);
-  Q.h = DD(P.h);
-  for (int v = 0; v < 3; ++v) {
+  auto ddVertex = [&](int v) {
     const double x[3] = {X[v]->x, X[v]->y, X[v]->z};
     DD dx[3];
     for (int k = 0; k < 3; ++k) {
@@ -193,10 +342,19 @@ Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
     for (int i = 0; i < 3; ++i)
       y[i] = DD(pose.R[0][i]) * dx[0] + DD(pose.R[1][i]) * dx[1] +
              DD(pose.R[2][i]) * dx[2];
-    Q.v[v] = {y[0], y[1], y[2]};
-  }
+    return P3<DD>{y[0], y[1], y[2]};
+  };
   const double slack_dd = 2 * kUdd * S + kAlg * kUdd * Mx;
   const double tie = 2 * err_d;
+  if (refineBest(pass, P, ddVertex, U, tie, eps_y_d, M, slack_dd, pose, out))
+    return Answer::kDisjoint;
+
+  // The general refinement: every candidate within the double pass's
+  // error of the best, each edge re-solved in a bracket.
+  Problem<DD> Q;
+  Q.r = DD(P.r);
+  Q.h = DD(P.h);
+  for (int v = 0; v < 3; ++v) Q.v[v] = ddVertex(v);
   DD Ubest(std::numeric_limits<double>::infinity());
   DD Lbest(0);
   Candidate<DD> best;
