@@ -122,7 +122,7 @@ Pass doublePass(const Problem<double>& P, double prune_slack) {
       if (t > 0 && t < 1) s0 = t;
     }
     const double s = detail::dist::edgeSolveIn(P.v[i], d, P.r, P.h, 0.0, 1.0,
-                                               s0, kSolveIter, 0x1p-40);
+                                               s0, kSolveIter, 0x1p-53, 0x1p-40);
     out.cand[k] = detail::dist::edgeCandidate(P, k, s);
     if (out.cand[k].f < best) {
       best = out.cand[k].f;
@@ -372,12 +372,16 @@ Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
     const DD s = detail::dist::edgeRefine(Q.v[k], d, Q.r, Q.h, DD(c.s),
                                           DD(0x1p-24), kRefineIter,
                                           DD(0x1p-104));
-    const Candidate<DD> e = detail::dist::edgeCandidate(Q, k, s);
-    const DD l = detail::dist::certify(Q, e.w);
-    if (l > Lbest) Lbest = l;
-    if (e.f < Ubest) {
-      Ubest = e.f;
-      best = e;
+    DD at[7] = {s, DD(0), DD(1)};
+    const int n = 3 + detail::dist::edgeKinks(Q.v[k], d, Q.r, Q.h, at + 3);
+    for (int i = 0; i < n; ++i) {
+      const Candidate<DD> e = detail::dist::edgeCandidate(Q, k, at[i]);
+      const DD l = detail::dist::certify(Q, e.w);
+      if (l > Lbest) Lbest = l;
+      if (e.f < Ubest) {
+        Ubest = e.f;
+        best = e;
+      }
     }
   }
   if (!best.valid) {  // cannot happen: the double best is refined

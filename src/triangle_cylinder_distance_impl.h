@@ -132,11 +132,14 @@ inline T pointDist(const P3<T>& p, const T& r, const T& h) {
 /// The root of phi' in a bracket [lo, hi] with phi'(lo) < 0 < phi'(hi),
 /// starting at s inside it: Newton's iteration kept inside the shrinking
 /// bracket (a bisection whenever the Newton point leaves it, and whenever
-/// the bracket did not halve in two steps). At most `max_iter` evaluations;
-/// `tol` is the absolute parameter tolerance.
+/// the bracket did not halve in two steps). At most `max_iter` evaluations.
+/// It stops when the bracket is narrower than `tol`, or after a Newton step
+/// shorter than `step_tol` (the iterate is then within about step_tol^2 of
+/// a smooth root; at a kink of phi' the bracket criterion decides).
 template <class T>
 inline T edgeSolveIn(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
-                     T lo, T hi, T s, int max_iter, const T& tol) {
+                     T lo, T hi, T s, int max_iter, const T& tol,
+                     const T& step_tol) {
   T width_before = hi - lo;
   for (int it = 0; it < max_iter; ++it) {
     const Dphi<T> e = edgeDphi(a, d, s, r, h);
@@ -153,7 +156,7 @@ inline T edgeSolveIn(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
       const T newton = s - step;
       if (newton > lo && newton < hi) {
         next = newton;
-        if (!(absT(step) > tol)) return next;
+        if (!(absT(step) > step_tol)) return next;
       }
     }
     if ((it & 1) != 0) {
@@ -177,7 +180,7 @@ inline T edgeSolve(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
   if (!(e1.g > T(0))) return T(1);
   T s = e0.g / (e0.g - e1.g);
   if (!(s > T(0) && s < T(1))) s = T(0.5);
-  return edgeSolveIn(a, d, r, h, T(0), T(1), s, max_iter, tol);
+  return edgeSolveIn(a, d, r, h, T(0), T(1), s, max_iter, tol, tol);
 }
 
 /// The minimiser of phi on [0, 1] in a stronger arithmetic T, from s0, the
@@ -200,7 +203,44 @@ inline T edgeRefine(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
   }
   T s = s0;
   if (!(s > lo && s < hi)) s = (lo + hi) * T(0.5);
-  return edgeSolveIn(a, d, r, h, lo, hi, s, max_iter, tol);
+  return edgeSolveIn(a, d, r, h, lo, hi, s, max_iter, tol, tol);
+}
+
+/// The parameters in [0, 1] where the edge a + s d crosses the planes
+/// z = +-h and the barrel rho = r (the kinks of phi''): up to 4, written to
+/// `out`; returns their number. Where phi' is too small to resolve in T
+/// (an edge nearly parallel to a cap, hovering at a distance near T's
+/// rounding), the minimum is at an end or at such a kink, and f is still
+/// evaluated accurately there.
+template <class T>
+inline int edgeKinks(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
+                     T out[4]) {
+  using std::sqrt;
+  int n = 0;
+  auto keep = [&](const T& s) {
+    if (s > T(0) && s < T(1)) out[n++] = s;
+  };
+  if (d.z != T(0)) {
+    keep((h - a.z) / d.z);
+    keep((-h - a.z) / d.z);
+  }
+  // |a_xy + s d_xy|^2 = r^2: A s^2 + 2 B s + C = 0.
+  const T A = d.x * d.x + d.y * d.y;
+  if (A > T(0)) {
+    const T B = a.x * d.x + a.y * d.y;
+    const T C = a.x * a.x + a.y * a.y - r * r;
+    const T disc = B * B - A * C;
+    if (disc >= T(0)) {
+      const T sq = sqrt(disc);
+      // Cancellation-free pair of roots.
+      const T q = B < T(0) ? sq - B : T(0) - B - sq;
+      if (q != T(0)) {
+        keep(q / A);
+        keep(C / q);
+      }
+    }
+  }
+  return n;
 }
 
 /// A nearest pair candidate: p on the triangle, q = P(p), f = |p - q|,
