@@ -10,6 +10,7 @@
 #include <cstring>
 #include <limits>
 #include <type_traits>
+#include <utility>
 
 #include "dd.h"
 #include "eft.h"
@@ -55,8 +56,10 @@ double maxLength(const Cylinder<double>& c, const Pose<double>& p,
   return m;
 }
 
-Vec3<double> scaled(const Vec3<double>& v, double s) {
-  return {v.x * s, v.y * s, v.z * s};
+// v 2^e (std::ldexp: no power of two is formed, so e may exceed the
+// exponent range of a double).
+Vec3<double> scaled(const Vec3<double>& v, int e) {
+  return {std::ldexp(v.x, e), std::ldexp(v.y, e), std::ldexp(v.z, e)};
 }
 
 struct Pass {
@@ -84,7 +87,7 @@ Pass doublePass(const Problem<double>& P, double prune_slack) {
     Candidate<double> c;
     c.valid = true;
     c.kind = k;
-    c.s = i == k ? 0.0 : 1.0;
+    c.s = i == detail::dist::kEdgeA[k] ? 0.0 : 1.0;
     c.p = P.v[i];
     c.q = P.v[i] - g[i];
     c.w = g[i];
@@ -93,7 +96,7 @@ Pass doublePass(const Problem<double>& P, double prune_slack) {
   };
   double best = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 3; ++k) {
-    const int i = k, j = (k + 1) % 3;
+    const int i = detail::dist::kEdgeA[k], j = detail::dist::kEdgeB[k];
     out.cand[k] = vertex(k, f[i] <= f[j] ? i : j);
     if (out.cand[k].f < best) {
       best = out.cand[k].f;
@@ -108,7 +111,7 @@ Pass doublePass(const Problem<double>& P, double prune_slack) {
     out.best = 3;
   }
   for (int k = 0; k < 3; ++k) {
-    const int i = k, j = (k + 1) % 3;
+    const int i = detail::dist::kEdgeA[k], j = detail::dist::kEdgeB[k];
     const P3<double> d = P.v[j] - P.v[i];
     const double ga = detail::dist::dot(g[i], d), gb = detail::dist::dot(g[j], d);
     if (!(ga < 0) || !(gb > 0)) {  // the minimum is at an end
@@ -120,7 +123,8 @@ Pass doublePass(const Problem<double>& P, double prune_slack) {
     // near 0 the slopes f' = phi' / f are not accurate.)
     if (f[i] > 64 * prune_slack && f[j] > 64 * prune_slack) {
       const double sa = ga / f[i], sb = gb / f[j];  // f'(0) < 0 < f'(1)
-      const double t = (f[j] - sb - f[i]) / (sa - sb);
+      const double den = sb - sa;  // > 0 unless both slopes underflow
+      const double t = den > 0 ? (f[i] + sb - f[j]) / den : 0.5;
       const double lb = f[i] + sa * (t < 0 ? 0 : (t > 1 ? 1 : t));
       if (lb > best * (1 + 0x1p-40) + prune_slack) continue;
       if (t > 0 && t < 1) s0 = t;
@@ -136,26 +140,36 @@ Pass doublePass(const Problem<double>& P, double prune_slack) {
   return out;
 }
 
+// The map back to the world, x = R y + t, in the units of the scaled
+// problem: R and y may both have been scaled (distanceDouble), so R y is
+// scaled back by 2^rexp.
+struct WorldMap {
+  const Pose<double>* pose;
+  int rexp;
+};
+
 // x = R y + t in double from y rounded to double: within a few ulps of
 // the world coordinates' magnitude (docs/distance.md, section 5).
-Vec3<double> toWorld(const Pose<double>& pose, const P3<double>& y) {
+Vec3<double> toWorld(const WorldMap& wm, const P3<double>& y) {
+  const Pose<double>& pose = *wm.pose;
   const double c[3] = {y.x, y.y, y.z};
   const double t[3] = {pose.t.x, pose.t.y, pose.t.z};
   double out[3];
   for (int i = 0; i < 3; ++i)
-    out[i] = t[i] + (pose.R[i][0] * c[0] + pose.R[i][1] * c[1] +
-                     pose.R[i][2] * c[2]);
+    out[i] = t[i] + std::ldexp(pose.R[i][0] * c[0] + pose.R[i][1] * c[1] +
+                                   pose.R[i][2] * c[2],
+                               wm.rexp);
   return {out[0], out[1], out[2]};
 }
-Vec3<double> toWorld(const Pose<double>& pose, const P3<DD>& y) {
-  return toWorld(pose, P3<double>{double(y.x), double(y.y), double(y.z)});
+Vec3<double> toWorld(const WorldMap& wm, const P3<DD>& y) {
+  return toWorld(wm, P3<double>{double(y.x), double(y.y), double(y.z)});
 }
 
 // The vertex index of a candidate at an edge's end, else -1.
 int vertexOf(const Candidate<double>& c) {
   if (c.kind > 2) return -1;
-  if (c.s == 0) return c.kind;
-  if (c.s == 1) return (c.kind + 1) % 3;
+  if (c.s == 0) return detail::dist::kEdgeA[c.kind];
+  if (c.s == 1) return detail::dist::kEdgeB[c.kind];
   return -1;
 }
 
@@ -176,7 +190,7 @@ DD hSupport(const P3<DD>& w, const DD& r, const DD& h) {
 template <class VertexFn>
 bool refineFast(const Pass& pass, const Problem<double>& P, VertexFn ddVertex,
                 double U, double tie, double eps_y_d, double M,
-                double slack_dd, const Pose<double>& pose,
+                double slack_dd, const WorldMap& wm,
                 DistanceResult<double>* out) {
   const DD r(P.r), h(P.h);
   P3<DD> Y[3];
@@ -222,14 +236,16 @@ bool refineFast(const Pass& pass, const Problem<double>& P, VertexFn ddVertex,
         w = p - q;
         m = detail::dist::dot(w, p);
       } else {
-        const int i = cb.kind, j = (cb.kind + 1) % 3;
+        const int i = detail::dist::kEdgeA[cb.kind],
+                  j = detail::dist::kEdgeB[cb.kind];
         const P3<DD>& a = vertex(i);
         const P3<DD> d = vertex(j) - a;
         DD s(cb.s);
         for (int it = 0; it < kFastNewton; ++it) {
           const auto e = detail::dist::edgeDphi(a, d, s, r, h);
-          if (!(e.g2 > DD(0))) break;
+          if (!(e.g2 > DD(detail::dist::kTinyDen))) break;
           const double step = double(e.g) / double(e.g2);
+          if (!(absd(step) < 2)) break;
           s = s - DD(step);
           if (s < DD(0)) s = DD(0);
           if (s > DD(1)) s = DD(1);
@@ -239,7 +255,7 @@ bool refineFast(const Pass& pass, const Problem<double>& P, VertexFn ddVertex,
         q = detail::dist::project(p, r, h);
         w = p - q;
         const DD dd = detail::dist::dot(d, d);
-        if (s > DD(0) && s < DD(1) && dd > DD(0))
+        if (s > DD(0) && s < DD(1) && dd > DD(detail::dist::kTinyDen))
           w = w - d * (detail::dist::dot(w, d) / dd);
         const DD ma = detail::dist::dot(w, a),
                  mb = detail::dist::dot(w, vertex(j));
@@ -260,7 +276,7 @@ bool refineFast(const Pass& pass, const Problem<double>& P, VertexFn ddVertex,
         }
       }
       const DD ww = detail::dist::dot(w, w);
-      if (!(ww > DD(0))) return false;
+      if (!(ww > DD(detail::dist::kTinyDen))) return false;
       Ld = (m - hSupport(w, r, h)) / sqrt(ww);
     }
     if (Ud < Ubest) {
@@ -283,17 +299,20 @@ bool refineFast(const Pass& pass, const Problem<double>& P, VertexFn ddVertex,
   if (out) {
     out->distance = dist;
     out->error_bound = err * (1 + 0x1p-50);
-    out->point_on_triangle = toWorld(pose, pb);
-    out->point_on_cylinder = toWorld(pose, qb);
+    out->point_on_triangle = toWorld(wm, pb);
+    out->point_on_cylinder = toWorld(wm, qb);
   }
   return true;
 }
 
 // The distance for valid double inputs of moderate magnitude (no
-// overflow of squares: every length below 2^400 in magnitude).
+// overflow of products of up to six lengths: every length below 2^100).
 Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
-             const Triangle<double>& tri, Answer boolean,
+             const Triangle<double>& tri, Answer boolean, int rexp,
              DistanceResult<double>* out) {
+  const WorldMap wm{&pose, rexp};
+  // The vertices in order of increasing magnitude of their local
+  // coordinates (kEdge: every edge then starts at its smaller end).
   const Vec3<double>* X[3] = {&tri.a, &tri.b, &tri.c};
   const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
   // The double pulled-back triangle, and S = max sum_k |R_ki| |x_k - t_k|.
@@ -315,6 +334,15 @@ Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
     }
     P.v[v] = {y[0], y[1], y[2]};
   }
+  auto mag = [&](int v) {
+    return maxd(absd(P.v[v].x), maxd(absd(P.v[v].y), absd(P.v[v].z)));
+  };
+  for (int pass = 0; pass < 2; ++pass)
+    for (int v = 0; v + 1 < 3; ++v)
+      if (mag(v + 1) < mag(v)) {
+        std::swap(P.v[v], P.v[v + 1]);
+        std::swap(X[v], X[v + 1]);
+      }
   // Mx bounds every point's norm and the cylinder's extent (section 4).
   const double Mx = (M * 1.75 + P.r + P.h) * (1 + 0x1p-50);
   // The double pass: y computed with <= 5 roundings relative to S.
@@ -327,8 +355,8 @@ Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
       const Candidate<double>& c = pass.cand[pass.best >= 0 ? pass.best : 0];
       out->distance = 0;
       out->error_bound = 0;
-      out->point_on_triangle = toWorld(pose, c.p);
-      out->point_on_cylinder = toWorld(pose, c.q);
+      out->point_on_triangle = toWorld(wm, c.p);
+      out->point_on_cylinder = toWorld(wm, c.q);
     }
     return Answer::kIntersect;
   }
@@ -346,8 +374,8 @@ Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
       const Candidate<double>& c = pass.cand[pass.best];
       out->distance = U;
       out->error_bound = err_d * (1 + 0x1p-50);
-      out->point_on_triangle = toWorld(pose, c.p);
-      out->point_on_cylinder = toWorld(pose, c.q);
+      out->point_on_triangle = toWorld(wm, c.p);
+      out->point_on_cylinder = toWorld(wm, c.q);
     }
     return Answer::kDisjoint;
   }
@@ -370,7 +398,7 @@ Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
   };
   const double slack_dd = 2 * kUdd * S + kAlg * kUdd * Mx;
   const double tie = 2 * err_d;
-  if (refineFast(pass, P, ddVertex, U, tie, eps_y_d, M, slack_dd, pose, out))
+  if (refineFast(pass, P, ddVertex, U, tie, eps_y_d, M, slack_dd, wm, out))
     return Answer::kDisjoint;
 
   // The general refinement: every candidate within the double pass's
@@ -392,12 +420,13 @@ Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
   for (int k = 0; k < 3; ++k) {
     const Candidate<double>& c = pass.cand[k];
     if (!c.valid || !(c.f <= U + tie)) continue;
-    const P3<DD> d = Q.v[(k + 1) % 3] - Q.v[k];
-    const DD s = detail::dist::edgeRefine(Q.v[k], d, Q.r, Q.h, DD(c.s),
+    const P3<DD>& a = Q.v[detail::dist::kEdgeA[k]];
+    const P3<DD> d = Q.v[detail::dist::kEdgeB[k]] - a;
+    const DD s = detail::dist::edgeRefine(a, d, Q.r, Q.h, DD(c.s),
                                           DD(0x1p-24), kRefineIter,
                                           DD(0x1p-104));
     DD at[7] = {s, DD(0), DD(1)};
-    const int n = 3 + detail::dist::edgeKinks(Q.v[k], d, Q.r, Q.h, at + 3);
+    const int n = 3 + detail::dist::edgeKinks(a, d, Q.r, Q.h, at + 3);
     for (int i = 0; i < n; ++i) {
       const Candidate<DD> e = detail::dist::edgeCandidate(Q, k, at[i]);
       const DD l = detail::dist::certify(Q, e.w);
@@ -422,8 +451,8 @@ Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
   if (out) {
     out->distance = dist;
     out->error_bound = err * (1 + 0x1p-50);
-    out->point_on_triangle = toWorld(pose, best.p);
-    out->point_on_cylinder = toWorld(pose, best.q);
+    out->point_on_triangle = toWorld(wm, best.p);
+    out->point_on_cylinder = toWorld(wm, best.q);
   }
   return Answer::kDisjoint;
 }
@@ -433,26 +462,34 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
                       DistanceResult<double>* out) {
   const Answer boolean = tryIntersect(cyl, pose, tri);
   if (boolean == Answer::kInvalidInput) return boolean;
-  // Power-of-two scaling keeps squares and products of lengths finite and
-  // normal: exact, except that, scaling down, parts below the scaled
-  // underflow threshold are lost (docs/distance.md, section 6).
-  const double m = maxLength(cyl, pose, tri);
-  int e = 0;
-  if (m > 0x1p400 || (m > 0 && m < 0x1p-400)) (void)std::frexp(m, &e);
-  if (e == 0) return solve(cyl, pose, tri, boolean, out);
-  const double s = std::ldexp(1.0, -e), inv = std::ldexp(1.0, e);
-  const Cylinder<double> c2{cyl.radius * s, cyl.lz * s};
-  Pose<double> p2 = pose;
-  p2.t = scaled(pose.t, s);
-  const Triangle<double> t2{scaled(tri.a, s), scaled(tri.b, s),
-                            scaled(tri.c, s)};
+  // Power-of-two scaling keeps the products of up to six local lengths
+  // finite and normal: R by 2^-ea, the world lengths by 2^-el, so the local
+  // frame (y, r, lz) by 2^-(ea + el). Exact, except that parts below the
+  // scaled underflow threshold are lost (docs/distance.md, section 6).
+  double mr = 0;
+  for (const auto& row : pose.R)
+    for (double x : row) mr = maxd(mr, absd(x));
+  const double ml = maxLength(cyl, pose, tri);
+  int ea = 0, el = 0;
+  if (mr > 0x1p40 || (mr > 0 && mr < 0x1p-40)) (void)std::frexp(mr, &ea);
+  if (ml > 0x1p80 || (ml > 0 && ml < 0x1p-80)) (void)std::frexp(ml, &el);
+  if (ea == 0 && el == 0) return solve(cyl, pose, tri, boolean, 0, out);
+  const int e = ea + el;
+  const Cylinder<double> c2{std::ldexp(cyl.radius, -e),
+                            std::ldexp(cyl.lz, -e)};
+  Pose<double> p2;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) p2.R[i][j] = std::ldexp(pose.R[i][j], -ea);
+  p2.t = scaled(pose.t, -el);
+  const Triangle<double> t2{scaled(tri.a, -el), scaled(tri.b, -el),
+                            scaled(tri.c, -el)};
   DistanceResult<double> r2{};
-  const Answer a = solve(c2, p2, t2, boolean, &r2);
+  const Answer a = solve(c2, p2, t2, boolean, 2 * ea, &r2);
   if (out) {
-    out->distance = r2.distance * inv;
-    out->error_bound = r2.error_bound * inv;
-    out->point_on_cylinder = scaled(r2.point_on_cylinder, inv);
-    out->point_on_triangle = scaled(r2.point_on_triangle, inv);
+    out->distance = std::ldexp(r2.distance, e);
+    out->error_bound = std::ldexp(r2.error_bound, e);
+    out->point_on_cylinder = scaled(r2.point_on_cylinder, el);
+    out->point_on_triangle = scaled(r2.point_on_triangle, el);
     if (a == Answer::kDisjoint && !(out->distance > 0))
       out->distance = std::numeric_limits<double>::denorm_min();
   }

@@ -31,6 +31,21 @@
 
 namespace tricyl::detail::dist {
 
+/// Denominators below this (squared lengths, normals) are treated as 0:
+/// a quotient by them could overflow. After the scaling of
+/// src/triangle_cylinder_distance.cpp every length of a query is within
+/// 2^-80 .. 2^82, so only exactly or nearly degenerate features (whose
+/// distance the other candidates then give) fall below it.
+inline constexpr double kTinyDen = 0x1p-900;
+
+/// The edges as (first, second) vertex: edge k runs from v[kEdgeA[k]] to
+/// v[kEdgeB[k]]. With the vertices sorted by increasing magnitude (the
+/// kernel sorts them), every edge starts at its smaller end, so the points
+/// a + s d near the small end (usually the near ones) are accurate even
+/// when the other end is far away.
+inline constexpr int kEdgeA[3] = {0, 1, 0};
+inline constexpr int kEdgeB[3] = {1, 2, 2};
+
 template <class T>
 struct P3 {
   T x, y, z;
@@ -116,10 +131,12 @@ inline Dphi<T> edgeDphi(const P3<T>& a, const P3<T>& d, const T& s,
   const T rho2 = p.x * p.x + p.y * p.y;
   if (rho2 > r * r) {
     const T rho = sqrt(rho2);
-    const T k = T(1) - r / rho;
+    const T rr = r / rho;  // in [0, 1)
+    const T k = T(1) - rr;
     const T pd = p.x * d.x + p.y * d.y;
+    const T pr = pd / rho;  // |pr| <= |d_xy|: no overflow, no 0 / 0
     out.g = out.g + k * pd;
-    out.g2 = out.g2 + r * pd * pd / (rho * rho2) + k * (d.x * d.x + d.y * d.y);
+    out.g2 = out.g2 + rr * pr * pr + k * (d.x * d.x + d.y * d.y);
   }
   return out;
 }
@@ -151,7 +168,7 @@ inline T edgeSolveIn(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
     }
     if (!(hi - lo > tol)) return (lo + hi) * T(0.5);
     T next = T(0.5) * (lo + hi);
-    if (e.g2 > T(0)) {
+    if (e.g2 > T(kTinyDen) && absT(e.g) < e.g2 * T(2)) {
       const T step = e.g / e.g2;
       const T newton = s - step;
       if (newton > lo && newton < hi) {
@@ -220,10 +237,9 @@ inline int edgeKinks(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
   auto keep = [&](const T& s) {
     if (s > T(0) && s < T(1)) out[n++] = s;
   };
-  if (d.z != T(0)) {
-    keep((h - a.z) / d.z);
-    keep((-h - a.z) / d.z);
-  }
+  // A quotient is computed only when it lies in (-1, 1): no overflow.
+  if (absT(h - a.z) < absT(d.z)) keep((h - a.z) / d.z);
+  if (absT(h + a.z) < absT(d.z)) keep((T(0) - h - a.z) / d.z);
   // |a_xy + s d_xy|^2 = r^2: A s^2 + 2 B s + C = 0.
   const T A = d.x * d.x + d.y * d.y;
   if (A > T(0)) {
@@ -234,10 +250,8 @@ inline int edgeKinks(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
       const T sq = sqrt(disc);
       // Cancellation-free pair of roots.
       const T q = B < T(0) ? sq - B : T(0) - B - sq;
-      if (q != T(0)) {
-        keep(q / A);
-        keep(C / q);
-      }
+      if (absT(q) < A) keep(q / A);
+      if (absT(C) < absT(q)) keep(C / q);
     }
   }
   return n;
@@ -248,28 +262,29 @@ inline int edgeKinks(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
 template <class T>
 struct Candidate {
   bool valid = false;
-  int kind = -1;  // 0, 1, 2: edge from v[kind] to v[kind + 1]; 3: face
+  int kind = -1;  // 0, 1, 2: edge kind (kEdgeA, kEdgeB); 3: face
   T s{};          // edge parameter
   P3<T> p{}, q{}, w{};
   T f{};
 };
 
-/// The candidate of edge k at parameter s; w made orthogonal to the edge
-/// when s is inside (0, 1).
+/// The candidate of edge k (kEdgeA, kEdgeB) at parameter s; w made
+/// orthogonal to the edge when s is inside (0, 1).
 template <class T>
 inline Candidate<T> edgeCandidate(const Problem<T>& P, int k, const T& s) {
-  const P3<T>& a = P.v[k];
-  const P3<T> d = P.v[(k + 1) % 3] - a;
+  const P3<T>& a = P.v[kEdgeA[k]];
+  const P3<T> d = P.v[kEdgeB[k]] - a;
   Candidate<T> c;
   c.valid = true;
   c.kind = k;
   c.s = s;
-  c.p = a + d * s;
+  c.p = s == T(1) ? P.v[kEdgeB[k]] : a + d * s;
   c.q = project(c.p, P.r, P.h);
   c.w = c.p - c.q;
   c.f = norm(c.w);
   const T dd = dot(d, d);
-  if (s > T(0) && s < T(1) && dd > T(0)) c.w = c.w - d * (dot(c.w, d) / dd);
+  if (s > T(0) && s < T(1) && dd > T(kTinyDen))
+    c.w = c.w - d * (dot(c.w, d) / dd);
   return c;
 }
 
@@ -283,31 +298,44 @@ inline Candidate<T> faceCandidate(const Problem<T>& P, bool* cut) {
   Candidate<T> c;
   c.kind = 3;
   *cut = false;
-  const P3<T> e1 = P.v[1] - P.v[0], e2 = P.v[2] - P.v[0];
-  const P3<T> n = cross(e1, e2);
+  // n = e_k x e_(k+1) for the cyclic edges e_k = v_(k+1) - v_k (all three
+  // products are the same vector), from the two shorter edges: with one
+  // vertex far away the two long edges are nearly parallel and their
+  // product cancels; c0 from the vertex of least magnitude (the vertices
+  // are sorted by magnitude, see kEdge).
+  const P3<T> e[3] = {P.v[1] - P.v[0], P.v[2] - P.v[1], P.v[0] - P.v[2]};
+  int longest = 0;
+  T len[3];
+  for (int k = 0; k < 3; ++k) len[k] = dot(e[k], e[k]);
+  if (len[1] > len[longest]) longest = 1;
+  if (len[2] > len[longest]) longest = 2;
+  const P3<T> n = cross(e[(longest + 1) % 3], e[(longest + 2) % 3]);
   const T nxy2 = n.x * n.x + n.y * n.y;
   const T nn = nxy2 + n.z * n.z;
-  if (!(nn > T(0))) return c;
+  if (!(nn > T(kTinyDen))) return c;
   const T nxy = sqrt(nxy2);
   const T c0 = dot(n, P.v[0]);
   const T ext = P.r * nxy + P.h * absT(n.z);
   auto support = [&](int sg) {
     P3<T> q{T(0), T(0), T(0)};
     if (nxy > T(0)) {
-      const T k = P.r / nxy;
-      q.x = n.x * k;
-      q.y = n.y * k;
+      q.x = P.r * (n.x / nxy);  // |n.x / nxy| <= 1
+      q.y = P.r * (n.y / nxy);
     }
     if (n.z > T(0)) q.z = P.h;
     if (n.z < T(0)) q.z = -P.h;
     if (sg < 0) q = q * T(-1);
     return q;
   };
+  // p on the inner side of each edge; p - (the nearer end) keeps the
+  // product small when one end is far away.
   auto inside = [&](const P3<T>& p) {
     for (int k = 0; k < 3; ++k) {
       const P3<T>& a = P.v[k];
-      const P3<T> b = P.v[(k + 1) % 3];
-      if (dot(cross(b - a, p - a), n) < T(0)) return false;
+      const P3<T>& b = P.v[(k + 1) % 3];
+      const P3<T> pa = p - a, pb = p - b;
+      const P3<T>& near = dot(pa, pa) <= dot(pb, pb) ? pa : pb;
+      if (dot(cross(e[k], near), n) < T(0)) return false;
     }
     return true;
   };
@@ -323,7 +351,7 @@ inline Candidate<T> faceCandidate(const Problem<T>& P, bool* cut) {
   *cut = true;
   const P3<T> qp = support(1), qm = support(-1);
   const T den = dot(n, qp - qm);
-  if (den > T(0)) {
+  if (den > T(kTinyDen)) {
     c.p = qm + (qp - qm) * ((c0 - dot(n, qm)) / den);
     c.q = project(c.p, P.r, P.h);
     c.f = norm(c.p - c.q);
@@ -338,7 +366,7 @@ template <class T>
 inline T certify(const Problem<T>& P, const P3<T>& w) {
   using std::sqrt;
   const T ww = dot(w, w);
-  if (!(ww > T(0))) return T(-1);
+  if (!(ww > T(kTinyDen))) return T(-1);
   T m = dot(w, P.v[0]);
   for (int k = 1; k < 3; ++k) {
     const T x = dot(w, P.v[k]);

@@ -60,8 +60,8 @@ R magnitude(const Problem<R>& P) {
 // The minimiser of phi on edge k at 333 bits: a narrow bracket around the
 // double solution when phi' brackets there, else all of [0, 1].
 R solveEdge(const Problem<R>& P, int k) {
-  const P3<R>& a = P.v[k];
-  const P3<R> d = P.v[(k + 1) % 3] - a;
+  const P3<R>& a = P.v[detail::dist::kEdgeA[k]];
+  const P3<R> d = P.v[detail::dist::kEdgeB[k]] - a;
   const P3<double> ad{double(a.x), double(a.y), double(a.z)};
   const P3<double> dd{double(d.x), double(d.y), double(d.z)};
   const double s0 = detail::dist::edgeSolve(ad, dd, double(P.r),
