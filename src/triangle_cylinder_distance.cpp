@@ -294,7 +294,8 @@ bool refineFast(const Pass& pass, const Problem<double>& P, VertexFn ddVertex,
   // allowance of double-word arithmetic is what exceeds kAcceptRel (a
   // distance below about 2^-45 of the problem's magnitude): the general
   // refinement, in the same arithmetic, could not do better.
-  if (!(dist > 0) || !(err <= kAcceptRel * dist || gap <= kTightGap * dist))
+  if (!(dist > 0) || !(gap >= -slack_dd) ||
+      !(err <= kAcceptRel * dist || gap <= kTightGap * dist))
     return false;
   if (out) {
     out->distance = dist;
@@ -368,8 +369,10 @@ Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
       L = maxd(L, detail::dist::certify(P, c.w));
     if (c.valid && c.f < U) U = c.f;
   }
-  const double err_d = (U - L) + slack_d + kU * U;
-  if (U > 0 && err_d <= kAcceptRel * U) {
+  // (L > U beyond the rounding allowance cannot happen for consistent
+  // bounds; such a pass is not accepted.)
+  const double err_d = maxd(U - L, 0.0) + slack_d + kU * U;
+  if (U > 0 && L <= U + slack_d && err_d <= kAcceptRel * U) {
     if (out) {
       const Candidate<double>& c = pass.cand[pass.best];
       out->distance = U;
@@ -463,20 +466,40 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   const Answer boolean = tryIntersect(cyl, pose, tri);
   if (boolean == Answer::kInvalidInput) return boolean;
   // Power-of-two scaling keeps the products of up to six local lengths
-  // finite and normal: R by 2^-ea, the world lengths by 2^-el, so the local
-  // frame (y, r, lz) by 2^-(ea + el). Exact, except that parts below the
-  // scaled underflow threshold are lost (docs/distance.md, section 6).
+  // finite and normal. The local problem's magnitude is at most
+  // M = max(4 max|R_ij| * (world lengths), r, lz) = 2^eM (exponents
+  // added: the product may overflow). R is scaled by 2^-ea (to about 1),
+  // the world lengths by 2^-(eM - ea), so the local frame (y, r, lz) by
+  // 2^-eM. Exact, except that parts below the scaled underflow threshold
+  // are lost (docs/distance.md, section 6).
   double mr = 0;
   for (const auto& row : pose.R)
     for (double x : row) mr = maxd(mr, absd(x));
-  const double ml = maxLength(cyl, pose, tri);
-  int ea = 0, el = 0;
-  if (mr > 0x1p40 || (mr > 0 && mr < 0x1p-40)) (void)std::frexp(mr, &ea);
-  if (ml > 0x1p80 || (ml > 0 && ml < 0x1p-80)) (void)std::frexp(ml, &el);
-  if (ea == 0 && el == 0) return solve(cyl, pose, tri, boolean, 0, out);
-  const int e = ea + el;
-  const Cylinder<double> c2{std::ldexp(cyl.radius, -e),
-                            std::ldexp(cyl.lz, -e)};
+  Cylinder<double> none{0, 0};
+  const double mw = maxLength(none, pose, tri);  // world lengths
+  int ea = 0, ew = 0, ec = 0;
+  if (mr > 0) (void)std::frexp(4 * (mr * 0.25), &ea);
+  if (mw > 0) (void)std::frexp(mw, &ew);
+  (void)std::frexp(maxd(cyl.radius, cyl.lz), &ec);
+  int eM = mr > 0 && mw > 0 ? ea + 2 + ew : -2000;
+  if (!(mr > 0)) ea = 0;
+  if (maxd(cyl.radius, cyl.lz) > 0 && ec > eM) eM = ec;
+  if (eM == -2000) eM = 0;  // everything 0: nothing to scale
+  if (eM >= -80 && eM <= 80 && ea >= -40 && ea <= 40)
+    return solve(cyl, pose, tri, boolean, 0, out);
+  // The world lengths' scale, kept so that they stay within 2^+-100 (with
+  // R = 0, or a tiny R, the world lengths hardly matter); the local
+  // frame's scale is then 2^-(ea + el) (>= 2^-eM).
+  int el = eM - ea;
+  if (mw > 0 && el < ew - 100) el = ew - 100;
+  if (mw > 0 && el > ew + 100) el = ew + 100;
+  eM = ea + el;
+  // r and lz are capped at 2^110: beyond the clamp above they can only
+  // exceed the local triangle's extent (|y| < 2^104), where C's barrel
+  // (or slab) constraint is slack for every point of the triangle and the
+  // distance does not depend on them.
+  const Cylinder<double> c2{std::fmin(std::ldexp(cyl.radius, -eM), 0x1p110),
+                            std::fmin(std::ldexp(cyl.lz, -eM), 0x1p111)};
   Pose<double> p2;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) p2.R[i][j] = std::ldexp(pose.R[i][j], -ea);
@@ -486,8 +509,8 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   DistanceResult<double> r2{};
   const Answer a = solve(c2, p2, t2, boolean, 2 * ea, &r2);
   if (out) {
-    out->distance = std::ldexp(r2.distance, e);
-    out->error_bound = std::ldexp(r2.error_bound, e);
+    out->distance = std::ldexp(r2.distance, eM);
+    out->error_bound = std::ldexp(r2.error_bound, eM);
     out->point_on_cylinder = scaled(r2.point_on_cylinder, el);
     out->point_on_triangle = scaled(r2.point_on_triangle, el);
     if (a == Answer::kDisjoint && !(out->distance > 0))
