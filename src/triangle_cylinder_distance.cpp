@@ -155,10 +155,11 @@ Vec3<double> toWorld(const WorldMap& wm, const P3<double>& y) {
   const double c[3] = {y.x, y.y, y.z};
   const double t[3] = {pose.t.x, pose.t.y, pose.t.z};
   double out[3];
-  for (int i = 0; i < 3; ++i)
-    out[i] = t[i] + std::ldexp(pose.R[i][0] * c[0] + pose.R[i][1] * c[1] +
-                                   pose.R[i][2] * c[2],
-                               wm.rexp);
+  for (int i = 0; i < 3; ++i) {
+    const double ry =
+        pose.R[i][0] * c[0] + pose.R[i][1] * c[1] + pose.R[i][2] * c[2];
+    out[i] = t[i] + (wm.rexp == 0 ? ry : std::ldexp(ry, wm.rexp));
+  }
   return {out[0], out[1], out[2]};
 }
 Vec3<double> toWorld(const WorldMap& wm, const P3<DD>& y) {
@@ -395,8 +396,9 @@ Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
     }
     DD y[3];
     for (int i = 0; i < 3; ++i)
-      y[i] = DD(pose.R[0][i]) * dx[0] + DD(pose.R[1][i]) * dx[1] +
-             DD(pose.R[2][i]) * dx[2];
+      y[i] = detail::mulD(dx[0], pose.R[0][i]) +
+             detail::mulD(dx[1], pose.R[1][i]) +
+             detail::mulD(dx[2], pose.R[2][i]);
     return P3<DD>{y[0], y[1], y[2]};
   };
   const double slack_dd = 2 * kUdd * S + kAlg * kUdd * Mx;
