@@ -106,8 +106,8 @@ void run(const Case<S>& c) {
   double mr = 0;
   for (const auto& row : c.pose.R)
     for (S x : row) mr = std::max(mr, std::fabs(double(x)));
-  double ml = std::max(std::fabs(double(c.cyl.radius)),
-                       std::fabs(double(c.cyl.lz)));
+  double ml =
+      std::max(std::fabs(double(c.cyl.radius)), std::fabs(double(c.cyl.lz)));
   for (const auto* v : {&c.tri.a, &c.tri.b, &c.tri.c, &c.pose.t})
     ml = std::max({ml, std::fabs(double(v->x)), std::fabs(double(v->y)),
                    std::fabs(double(v->z))});

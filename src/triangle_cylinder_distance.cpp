@@ -113,7 +113,8 @@ Pass doublePass(const Problem<double>& P, double prune_slack) {
   for (int k = 0; k < 3; ++k) {
     const int i = detail::dist::kEdgeA[k], j = detail::dist::kEdgeB[k];
     const P3<double> d = P.v[j] - P.v[i];
-    const double ga = detail::dist::dot(g[i], d), gb = detail::dist::dot(g[j], d);
+    const double ga = detail::dist::dot(g[i], d),
+                 gb = detail::dist::dot(g[j], d);
     if (!(ga < 0) || !(gb > 0)) {  // the minimum is at an end
       out.cand[k] = vertex(k, ga < 0 ? j : i);
       continue;
@@ -129,8 +130,8 @@ Pass doublePass(const Problem<double>& P, double prune_slack) {
       if (lb > best * (1 + 0x1p-40) + prune_slack) continue;
       if (t > 0 && t < 1) s0 = t;
     }
-    const double s = detail::dist::edgeSolveIn(P.v[i], d, P.r, P.h, 0.0, 1.0,
-                                               s0, kSolveIter, 0x1p-53, 0x1p-40);
+    const double s = detail::dist::edgeSolveIn(
+        P.v[i], d, P.r, P.h, 0.0, 1.0, s0, kSolveIter, 0x1p-53, 0x1p-40);
     out.cand[k] = detail::dist::edgeCandidate(P, k, s);
     if (out.cand[k].f < best) {
       best = out.cand[k].f;
@@ -192,9 +193,8 @@ DDx hSupport(const P3<DDx>& w, const DDx& r, const DDx& h) {
 // result is not within kAcceptRel: the general refinement then runs.
 template <class DDx, class VertexFn>
 bool refineFast(const Pass& pass, const Problem<double>& P, VertexFn ddVertex,
-                double U, double tie, double eps_y_d, double M,
-                double slack_dd, const WorldMap& wm,
-                DistanceResult<double>* out) {
+                double U, double tie, double eps_y_d, double M, double slack_dd,
+                const WorldMap& wm, DistanceResult<double>* out) {
   const DDx r(P.r), h(P.h);
   P3<DDx> Y[3];
   bool have[3] = {false, false, false};
@@ -261,7 +261,7 @@ bool refineFast(const Pass& pass, const Problem<double>& P, VertexFn ddVertex,
         if (s > DDx(0) && s < DDx(1) && dd > DDx(detail::dist::kTinyDen))
           w = w - d * (detail::dist::dot(w, d) / dd);
         const DDx ma = detail::dist::dot(w, a),
-                 mb = detail::dist::dot(w, vertex(j));
+                  mb = detail::dist::dot(w, vertex(j));
         m = ma < mb ? ma : mb;
       }
       Ud = detail::dist::norm(p - q);
@@ -330,8 +330,7 @@ Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
     const double dx[3] = {x[0] - tt[0], x[1] - tt[1], x[2] - tt[2]};
     double y[3];
     for (int i = 0; i < 3; ++i) {
-      y[i] = pose.R[0][i] * dx[0] + pose.R[1][i] * dx[1] +
-             pose.R[2][i] * dx[2];
+      y[i] = pose.R[0][i] * dx[0] + pose.R[1][i] * dx[1] + pose.R[2][i] * dx[2];
       S = maxd(S, absd(pose.R[0][i]) * absd(dx[0]) +
                       absd(pose.R[1][i]) * absd(dx[1]) +
                       absd(pose.R[2][i]) * absd(dx[2]));
@@ -430,9 +429,8 @@ Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
     if (!c.valid || !(c.f <= U + tie)) continue;
     const P3<DDx>& a = Q.v[detail::dist::kEdgeA[k]];
     const P3<DDx> d = Q.v[detail::dist::kEdgeB[k]] - a;
-    const DDx s = detail::dist::edgeRefine(a, d, Q.r, Q.h, DDx(c.s),
-                                          DDx(0x1p-24), kRefineIter,
-                                          DDx(0x1p-104));
+    const DDx s = detail::dist::edgeRefine(
+        a, d, Q.r, Q.h, DDx(c.s), DDx(0x1p-24), kRefineIter, DDx(0x1p-104));
     DDx at[7] = {s, DDx(0), DDx(1)};
     const int n = 3 + detail::dist::edgeKinks(a, d, Q.r, Q.h, at + 3);
     for (int i = 0; i < n; ++i) {
@@ -548,10 +546,10 @@ const bool kHasFma = __builtin_cpu_supports("fma") != 0;
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((flatten))
 #endif
-Answer distanceDoubleGeneric(const Cylinder<double>& cyl,
-                             const Pose<double>& pose,
-                             const Triangle<double>& tri,
-                             DistanceResult<double>* out) {
+Answer
+distanceDoubleGeneric(const Cylinder<double>& cyl, const Pose<double>& pose,
+                      const Triangle<double>& tri,
+                      DistanceResult<double>* out) {
   return distanceDouble<DD>(cyl, pose, tri, out);
 }
 

@@ -69,8 +69,7 @@ inline T dot(const P3<T>& a, const P3<T>& b) {
 }
 template <class T>
 inline P3<T> cross(const P3<T>& a, const P3<T>& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z,
-          a.x * b.y - a.y * b.x};
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 template <class T>
 inline T absT(const T& x) {
@@ -116,8 +115,8 @@ struct Dphi {
   T g, g2;
 };
 template <class T>
-inline Dphi<T> edgeDphi(const P3<T>& a, const P3<T>& d, const T& s,
-                        const T& r, const T& h) {
+inline Dphi<T> edgeDphi(const P3<T>& a, const P3<T>& d, const T& s, const T& r,
+                        const T& h) {
   using std::sqrt;
   const P3<T> p = a + d * s;
   Dphi<T> out{T(0), T(0)};

@@ -64,8 +64,8 @@ R solveEdge(const Problem<R>& P, int k) {
   const P3<R> d = P.v[detail::dist::kEdgeB[k]] - a;
   const P3<double> ad{double(a.x), double(a.y), double(a.z)};
   const P3<double> dd{double(d.x), double(d.y), double(d.z)};
-  const double s0 = detail::dist::edgeSolve(ad, dd, double(P.r),
-                                            double(P.h), 200, 0x1p-60);
+  const double s0 =
+      detail::dist::edgeSolve(ad, dd, double(P.r), double(P.h), 200, 0x1p-60);
   return detail::dist::edgeRefine(a, d, P.r, P.h, R(s0), R(0x1p-30), 4000,
                                   R(bmp::ldexp(R(1), -320)));
 }
@@ -150,8 +150,7 @@ double pointCylinderDistance(const Cylinder<double>& cylinder,
   return up(detail::dist::pointDist(y, r, h));
 }
 
-double pointTriangleDistance(const Triangle<double>& t,
-                             const Vec3<double>& x) {
+double pointTriangleDistance(const Triangle<double>& t, const Vec3<double>& x) {
   const P3<R> a = toR(t.a), b = toR(t.b), c = toR(t.c), p = toR(x);
   const P3<R> n = detail::dist::cross(b - a, c - a);
   const R nn = detail::dist::dot(n, n);

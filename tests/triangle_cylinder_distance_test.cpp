@@ -44,23 +44,35 @@ struct Known {
 const Known kKnown[] = {
     {"vertex above cap", {1, 2}, {{0, 0, 3}, {5, 5, 10}, {-5, 5, 10}}, 2},
     {"vertex beside barrel", {1, 2}, {{3, 4, 0.5}, {9, 9, 0}, {9, 4, 1}}, 4},
-    {"edge parallel to barrel", {1, 2}, {{3, 0, -0.5}, {3, 0, 0.5}, {10, 0, 0}},
+    {"edge parallel to barrel",
+     {1, 2},
+     {{3, 0, -0.5}, {3, 0, 0.5}, {10, 0, 0}},
      2},
     {"edge crossing barrel", {1, 2}, {{3, -1, 0}, {3, 1, 0}, {9, 0, 0}}, 2},
-    {"edge to rim", {1, 2}, {{2, -5, 2}, {2, 5, 2}, {10, 0, 10}},
+    {"edge to rim",
+     {1, 2},
+     {{2, -5, 2}, {2, 5, 2}, {10, 0, 10}},
      1.4142135623730951},
-    {"edge over cap", {1, 2}, {{-5, 0.25, 1.75}, {5, 0.25, 1.75}, {0, 9, 9}},
+    {"edge over cap",
+     {1, 2},
+     {{-5, 0.25, 1.75}, {5, 0.25, 1.75}, {0, 9, 9}},
      0.75},
     {"face over cap", {1, 2}, {{-5, -5, 1.5}, {5, -5, 1.5}, {0, 5, 1.5}}, 0.5},
-    {"face over rim", {1, 2}, {{0, -5, 4}, {0, 5, 4}, {6, 0, -2}},
+    {"face over rim",
+     {1, 2},
+     {{0, -5, 4}, {0, 5, 4}, {6, 0, -2}},
      1.4142135623730951},
     {"face beside barrel", {1, 2}, {{3, -5, -5}, {3, 5, -5}, {3, 0, 5}}, 2},
     {"point above rim", {1, 2}, {{4, 0, 5}, {4, 0, 5}, {4, 0, 5}}, 5},
-    {"segment below cap", {1, 2}, {{-3, 0, -1.5}, {3, 0, -1.5}, {3, 0, -1.5}},
+    {"segment below cap",
+     {1, 2},
+     {{-3, 0, -1.5}, {3, 0, -1.5}, {3, 0, -1.5}},
      0.5},
     {"axis (r = 0)", {0, 2}, {{3, 4, 0}, {3, 4, 0.5}, {3, 9, 0}}, 5},
     {"disk (lz = 0)", {1, 0}, {{0, 0, 2}, {5, 5, 9}, {-5, 5, 9}}, 2},
-    {"tiny gap above cap", {1, 2}, {{0, 0, 1 + 0x1p-50}, {5, 5, 9}, {-5, 5, 9}},
+    {"tiny gap above cap",
+     {1, 2},
+     {{0, 0, 1 + 0x1p-50}, {5, 5, 9}, {-5, 5, 9}},
      0x1p-50},
 };
 
@@ -69,8 +81,8 @@ TEST(TriangleCylinderDistance, KnownCases) {
     SCOPED_TRACE(k.name);
     const DistanceResult<double> r = distance(k.cyl, k.tri);
     EXPECT_LE(ulpsFrom(r.distance, k.distance), 8) << r.distance;
-    EXPECT_GE(r.error_bound, std::abs(r.distance - k.distance) -
-                                 ulpOf(k.distance) / 2);
+    EXPECT_GE(r.error_bound,
+              std::abs(r.distance - k.distance) - ulpOf(k.distance) / 2);
     // The points are on their sets and as far apart as the distance.
     const Pose<double> id = identityPose<double>();
     EXPECT_LE(oracle::pointCylinderDistance(k.cyl, id, r.point_on_cylinder),
@@ -92,8 +104,7 @@ TEST(TriangleCylinderDistance, KnownCases) {
         double(tf.a.z) == k.tri.a.z) {
       const DistanceResult<float> rf = distance(cf, tf);
       EXPECT_LE(std::abs(double(rf.distance) - k.distance),
-                8 * double(std::numeric_limits<float>::epsilon()) *
-                    k.distance);
+                8 * double(std::numeric_limits<float>::epsilon()) * k.distance);
     }
   }
 }
@@ -109,9 +120,8 @@ TEST(TriangleCylinderDistance, ZeroExactlyWhenIntersecting) {
   EXPECT_TRUE(intersect(c, touch));
   EXPECT_EQ(distance(c, touch).distance, 0);
   // The smallest gap a double allows above the cap is positive.
-  const Triangle<double> gap{{0, 0, std::nextafter(1.0, 2.0)},
-                             {5, 0, 5},
-                             {5, 1, 5}};
+  const Triangle<double> gap{
+      {0, 0, std::nextafter(1.0, 2.0)}, {5, 0, 5}, {5, 1, 5}};
   EXPECT_FALSE(intersect(c, gap));
   EXPECT_EQ(distance(c, gap).distance, 0x1p-52);
 }
@@ -155,8 +165,8 @@ TEST(TriangleCylinderDistance, Invariances) {
     static constexpr int kPerm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
                                         {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
     for (const auto& pm : kPerm) {
-      const DistanceResult<double> q =
-          distance(k.cyl, k.pose, Triangle<double>{v[pm[0]], v[pm[1]], v[pm[2]]});
+      const DistanceResult<double> q = distance(
+          k.cyl, k.pose, Triangle<double>{v[pm[0]], v[pm[1]], v[pm[2]]});
       EXPECT_EQ(q.distance == 0, r.distance == 0);
       EXPECT_LE(std::abs(q.distance - r.distance),
                 q.error_bound + r.error_bound);
@@ -257,7 +267,8 @@ struct Tally {
     std::printf(
         "[ stats ] %-10s %5ld cases (%ld zero): max error %.3g ulps, >8 "
         "ulps %ld, bound violated %ld, sign disagreements %ld, oracle "
-        "not tight %ld, point off its set <= %.3g ulps of the coordinates/size, "
+        "not tight %ld, point off its set <= %.3g ulps of the "
+        "coordinates/size, "
         "error_bound > 8 ulps on %ld; below 1e-15 of the size: %ld cases, max "
         "error %.3g ulps\n",
         name, n, zero, max_ulps, over8, bound_violated, wrong_zero, untight,
@@ -315,16 +326,16 @@ void judge(const scenes::TriCase& k, Tally* t) {
   };
   // Scale: the world coordinates and the problem's size (a witness point
   // of an intersecting pair is placed to a few ulps of the size).
-  const double sc = std::max(
-      {mag(r.point_on_cylinder), mag(r.point_on_triangle), mag(k.pose.t),
-       size, double(std::numeric_limits<double>::min())});
+  const double sc = std::max({mag(r.point_on_cylinder),
+                              mag(r.point_on_triangle), mag(k.pose.t), size,
+                              double(std::numeric_limits<double>::min())});
   const double pc =
       oracle::pointCylinderDistance(k.cyl, k.pose, r.point_on_cylinder);
   const double pt = oracle::pointTriangleDistance(k.tri, r.point_on_triangle);
   const double off = std::max(pc, pt) / (kUlp * sc);
   t->max_pt = std::max(t->max_pt, off);
   EXPECT_LE(off, 16) << "nearest point off its set: cylinder " << pc
-                    << " triangle " << pt;
+                     << " triangle " << pt;
 }
 
 TEST(TriangleCylinderDistance, FamiliesAgainstOracle) {
