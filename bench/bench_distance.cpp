@@ -22,6 +22,7 @@
 #include <chrono>
 #include <vector>
 
+#include "family_cases.h"
 #include "fcl_cases.h"
 #include "scenes.h"
 #include "tricyl/tricyl.h"
@@ -35,16 +36,10 @@ using tricyl::scenes::Family;
 using tricyl::scenes::TriCase;
 using Clock = std::chrono::steady_clock;
 
-constexpr int kCases = 4096;  // a power of two (Walk)
-static_assert(Walk::valid(kCases));
+constexpr int kCases = tricyl::bench::kFamilyCases;
 
 const std::vector<TriCase>& cases(Family f) {
-  static std::vector<TriCase> store[6];
-  auto& v = store[int(f)];
-  if (v.empty())
-    for (int i = 0; i < kCases; ++i)
-      v.push_back(tricyl::scenes::generate(f, 7, std::uint64_t(i)));
-  return v;
+  return tricyl::bench::familyCases(f);
 }
 
 double tricylOne(const TriCase& c) {

@@ -40,7 +40,6 @@ using tricyl::DistanceResult;
 using tricyl::fuzz::Case;
 using tricyl::fuzz::check;
 using tricyl::fuzz::FpTraps;
-using tricyl::fuzz::neg;
 
 template <class S>
 bool finite(const tricyl::Vec3<S>& v) {
@@ -83,18 +82,13 @@ void run(const Case<S>& c) {
     } catch (const tricyl::InvalidInput&) {
       threw = true;
     }
-    const auto& t = c.tri;
-    const tricyl::Triangle<S> orders[5] = {{t.a, t.c, t.b},
-                                           {t.b, t.a, t.c},
-                                           {t.b, t.c, t.a},
-                                           {t.c, t.a, t.b},
-                                           {t.c, t.b, t.a}};
+    tricyl::Triangle<S> orders[5];
+    tricyl::fuzz::otherOrders(c.tri, orders);
     for (int i = 0; i < 5; ++i)
       perm_answer[i] = tricyl::tryDistance(c.cyl, c.pose, orders[i], &perm[i]);
-    tricyl::Pose<S> p = c.pose;
-    p.t = neg(p.t);
-    refl_answer = tricyl::tryDistance(
-        c.cyl, p, tricyl::Triangle<S>{neg(t.a), neg(t.b), neg(t.c)}, &refl);
+    refl_answer =
+        tricyl::tryDistance(c.cyl, tricyl::fuzz::reflectedPose(c.pose),
+                            tricyl::fuzz::reflectedTriangle(c.tri), &refl);
   }
   check(!threw, "distance threw on valid input", c);
   check(a != Answer::kInvalidInput, "kInvalidInput on valid input", c);
@@ -157,10 +151,6 @@ void run(const Case<S>& c) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data,
                                       std::size_t size) {
-  if (size == 0) return 0;
-  if (data[0] & 8)
-    run(tricyl::fuzz::decode<float>(data, size));
-  else
-    run(tricyl::fuzz::decode<double>(data, size));
+  tricyl::fuzz::withTriangleCase(data, size, [](const auto& c) { run(c); });
   return 0;
 }
