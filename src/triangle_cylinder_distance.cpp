@@ -75,7 +75,9 @@ struct Pass {
 // f >= f_b - (1 - s) f'(1), f' = phi' / f); where the two lines meet is a
 // lower bound of the edge's minimum (the edge is skipped when it cannot
 // beat the best so far) and the start of the Newton iteration.
-Pass doublePass(const Problem<double>& P, double prune_slack) {
+// `witness`: the pair intersects, only a common point is wanted (the pass
+// stops at the first candidate at distance 0).
+Pass doublePass(const Problem<double>& P, double prune_slack, bool witness) {
   Pass out;
   P3<double> g[3];
   double f[3];
@@ -103,6 +105,7 @@ Pass doublePass(const Problem<double>& P, double prune_slack) {
       out.best = k;
     }
   }
+  if (witness && best == 0) return out;
   bool cut = false;
   out.cand[3] = detail::dist::faceCandidate(P, &cut);
   out.face_cut = cut;
@@ -110,6 +113,7 @@ Pass doublePass(const Problem<double>& P, double prune_slack) {
     best = out.cand[3].f;
     out.best = 3;
   }
+  if (witness && best == 0) return out;
   for (int k = 0; k < 3; ++k) {
     const int i = detail::dist::kEdgeA[k], j = detail::dist::kEdgeB[k];
     const P3<double> d = P.v[j] - P.v[i];
@@ -352,7 +356,7 @@ Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
   // The double pass: y computed with <= 5 roundings relative to S.
   const double eps_y_d = 6 * kU * S;
   const double slack_d = 2 * eps_y_d + kAlg * kU * Mx;
-  const Pass pass = doublePass(P, slack_d);
+  const Pass pass = doublePass(P, slack_d, boolean == Answer::kIntersect);
 
   if (boolean == Answer::kIntersect) {
     if (out) {
