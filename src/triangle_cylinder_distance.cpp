@@ -256,7 +256,9 @@ bool refineFast(const Pass& pass, const Problem<double>& P, VertexFn ddVertex,
           s = s - DDx(step);
           if (s < DDx(0)) s = DDx(0);
           if (s > DDx(1)) s = DDx(1);
-          if (!(absd(step) > 0x1p-90)) break;
+          // Quadratic convergence: after a step below 2^-45 the next one
+          // would be below about 2^-90 (the certificate checks it).
+          if (!(absd(step) > 0x1p-45)) break;
         }
         p = a + d * s;
         q = detail::dist::project(p, r, h);
