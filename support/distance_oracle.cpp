@@ -60,27 +60,14 @@ R magnitude(const Problem<R>& P) {
 // The minimiser of phi on edge k at 333 bits: a narrow bracket around the
 // double solution when phi' brackets there, else all of [0, 1].
 R solveEdge(const Problem<R>& P, int k) {
-  using detail::dist::edgeDphi;
-  const P3<R>& a = P.v[k];
-  const P3<R> d = P.v[(k + 1) % 3] - a;
-  if (!(edgeDphi(a, d, R(0), P.r, P.h).g < 0)) return R(0);
-  if (!(edgeDphi(a, d, R(1), P.r, P.h).g > 0)) return R(1);
+  const P3<R>& a = P.v[detail::dist::kEdgeA[k]];
+  const P3<R> d = P.v[detail::dist::kEdgeB[k]] - a;
   const P3<double> ad{double(a.x), double(a.y), double(a.z)};
   const P3<double> dd{double(d.x), double(d.y), double(d.z)};
-  const double s0 = detail::dist::edgeSolve(ad, dd, double(P.r),
-                                            double(P.h), 200, 0x1p-60);
-  const R tol = bmp::ldexp(R(1), -320);
-  R lo = R(s0) - R(0x1p-30), hi = R(s0) + R(0x1p-30);
-  if (lo < 0) lo = 0;
-  if (hi > 1) hi = 1;
-  if (!(lo == 0 || edgeDphi(a, d, lo, P.r, P.h).g < 0) ||
-      !(hi == 1 || edgeDphi(a, d, hi, P.r, P.h).g > 0)) {
-    lo = 0;
-    hi = 1;
-  }
-  R s = R(s0);
-  if (!(s > lo && s < hi)) s = (lo + hi) / 2;
-  return detail::dist::edgeSolveIn(a, d, P.r, P.h, lo, hi, s, 4000, tol);
+  const double s0 =
+      detail::dist::edgeSolve(ad, dd, double(P.r), double(P.h), 200, 0x1p-60);
+  return detail::dist::edgeRefine(a, d, P.r, P.h, R(s0), R(0x1p-30), 4000,
+                                  R(bmp::ldexp(R(1), -320)));
 }
 
 R pointSegment(const P3<R>& x, const P3<R>& a, const P3<R>& b) {
@@ -163,8 +150,7 @@ double pointCylinderDistance(const Cylinder<double>& cylinder,
   return up(detail::dist::pointDist(y, r, h));
 }
 
-double pointTriangleDistance(const Triangle<double>& t,
-                             const Vec3<double>& x) {
+double pointTriangleDistance(const Triangle<double>& t, const Vec3<double>& x) {
   const P3<R> a = toR(t.a), b = toR(t.b), c = toR(t.c), p = toR(x);
   const P3<R> n = detail::dist::cross(b - a, c - a);
   const R nn = detail::dist::dot(n, n);

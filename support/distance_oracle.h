@@ -34,7 +34,7 @@ struct DistanceEnclosure {
 
 /// The certified distance of the pulled-back triangle R^T (x - t) to the
 /// solid cylinder (the contract of tricyl::distance). Valid, finite
-/// inputs only (the caller checks); lengths below 2^400 in magnitude.
+/// inputs only (the caller checks).
 DistanceEnclosure distanceEnclosure(const Cylinder<double>& cylinder,
                                     const Pose<double>& pose,
                                     const Triangle<double>& triangle);

@@ -18,22 +18,25 @@
 ///   same inputs: the zero test IS the exact Boolean, so the two never
 ///   disagree.
 /// - `error_bound` is certified: |distance - true distance| <= error_bound.
-///   It is 0 when distance is 0. For a positive distance it is a few ulps of
-///   the distance (docs/distance.md derives the bound: relative error
-///   <= 8 ulps of the true distance for double, except for distances in or
-///   near the subnormal range, where error_bound states the absolute
-///   accuracy actually reached).
-/// - `point_on_cylinder` lies in C and `point_on_triangle` in T' (each up to
-///   the rounding stated in docs/distance.md) and their distance is the
-///   returned distance up to error_bound. The world overload reports both
-///   points in the world frame: the local points y mapped by x = R y + t
-///   (rounded once more). When R is not orthonormal the world points are the
-///   images of the local nearest points under that map: a point on the world
-///   triangle and a point on the posed solid, whose world distance is then
-///   NOT the returned distance (which is measured in the cylinder's frame).
-///   The local overload reports local points.
-/// - When the distance is 0 both points are one common point of the two
-///   sets (rounded to S).
+///   It is 0 when distance is 0. It is within 8 ulps of the distance when
+///   the distance is above about 2^-45 of the problem's magnitude (the
+///   local coordinates, r, lz/2); below, it is the double-word arithmetic's
+///   allowance, about 2^-95 of that magnitude (docs/distance.md, sections 4
+///   and 6, derive it and give the measured errors). distance is positive
+///   whenever intersect is false (the smallest subnormal if it would round
+///   to 0) and +inf only if the true distance exceeds the double range.
+/// - `point_on_triangle` and `point_on_cylinder` are p and q = P_C(p), the
+///   computed local nearest pair (p in the pulled-back triangle, q its
+///   projection onto C), mapped by x = R y + t in double (world overload)
+///   or as they are (local overload): each on its set to a few ulps of the
+///   coordinates' and the problem's magnitude (docs/distance.md, section
+///   5), so not to ulps of a distance much smaller than the coordinates.
+///   When R is not orthonormal the world points are the images of the
+///   local pair under that map: a point of the world triangle and a point
+///   of the posed solid, whose world distance is then NOT the returned
+///   distance (which is measured in the cylinder's frame).
+/// - When the distance is 0, p is a common point of the two sets (to a few
+///   ulps of the problem's magnitude) and q = P_C(p).
 /// - Bounded time: no unbounded iteration anywhere.
 ///
 /// ## Invalid input
@@ -45,13 +48,14 @@
 ///
 /// ## Method (docs/distance.md)
 /// The zero test is the exact Boolean. Otherwise the distance is the
-/// minimum over feature pairs of the triangle (face, edges, vertices) and of
-/// the cylinder (barrel, cap disks, rim circles); each pair is a closed-form
-/// or a bounded one-dimensional root-finding problem (segment vs rim circle:
-/// a quartic stationarity condition solved by safeguarded Newton on a
-/// bracketing interval with a fixed iteration cap), evaluated in double with
-/// a compensated (double-word) refinement where the double result cannot be
-/// certified to the target accuracy.
+/// minimum over the triangle of the convex function dist(., C): per edge,
+/// an end or the root of its monotone derivative (Newton's method in a
+/// shrinking bracket, a fixed cap on the iterations; the hard case, an edge
+/// against a rim circle, is a root of a quartic found this way); for the
+/// face, the projection of C's support point. A double pass finds the
+/// nearest pair; a double-word pass re-solves it. The result is certified
+/// by an upper bound (a point of each set) and a lower bound (a separating
+/// plane: weak duality), whatever the search found.
 #pragma once
 
 #include "tricyl/types.h"
@@ -101,8 +105,7 @@ extern template DistanceResult<double> distance(const Cylinder<double>&,
 extern template Answer tryDistance(const Cylinder<float>&, const Pose<float>&,
                                    const Triangle<float>&,
                                    DistanceResult<float>*) noexcept;
-extern template Answer tryDistance(const Cylinder<double>&,
-                                   const Pose<double>&,
+extern template Answer tryDistance(const Cylinder<double>&, const Pose<double>&,
                                    const Triangle<double>&,
                                    DistanceResult<double>*) noexcept;
 
