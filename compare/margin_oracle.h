@@ -168,8 +168,8 @@ inline bool torus(const Q3* v, const Q& r, const Q& m, const Q& c) {
     const Q ex = b.x - a.x, ey = b.y - a.y, ez = b.z - a.z, za = a.z - c;
     const Poly rho2 = {a.x * a.x + a.y * a.y, 2 * (a.x * ex + a.y * ey),
                        ex * ex + ey * ey};
-    const Poly L = {rho2[0] + za * za + r * r - m * m,
-                    rho2[1] + 2 * za * ez, rho2[2] + ez * ez};
+    const Poly L = {rho2[0] + za * za + r * r - m * m, rho2[1] + 2 * za * ez,
+                    rho2[2] + ez * ez};
     Poly Qp(5, Q(0));
     for (int p = 0; p < 3; ++p)
       for (int q = 0; q < 3; ++q) Qp[p + q] += L[p] * L[q];
@@ -180,7 +180,8 @@ inline bool torus(const Q3* v, const Q& r, const Q& m, const Q& c) {
   const Q3 &A = v[0], &B = v[1], &C = v[2];
   const Q ux = B.x - A.x, uy = B.y - A.y, uz = B.z - A.z;
   const Q wx = C.x - A.x, wy = C.y - A.y, wz = C.z - A.z;
-  const Q nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
+  const Q nx = uy * wz - uz * wy, ny = uz * wx - ux * wz,
+          nz = ux * wy - uy * wx;
   const Q nn = nx * nx + ny * ny + nz * nz;
   if (nn == 0) return false;
   const Q D = nx * nx + ny * ny;
@@ -197,8 +198,7 @@ inline bool torus(const Q3* v, const Q& r, const Q& m, const Q& c) {
     }
     g[2] = {c, 0};
     // Foot f = g - ((g - A) . n / |n|^2) n.
-    const QS gA[3] = {g[0] - QS{A.x, 0}, g[1] - QS{A.y, 0},
-                      g[2] - QS{A.z, 0}};
+    const QS gA[3] = {g[0] - QS{A.x, 0}, g[1] - QS{A.y, 0}, g[2] - QS{A.z, 0}};
     const QS dn = scale(gA[0], nx) + scale(gA[1], ny) + scale(gA[2], nz);
     // Within m: dn^2 <= m^2 |n|^2.
     const QS dn2 = mul(dn, dn, D);

@@ -33,19 +33,24 @@
 // Q(sqrt(n_x^2 + n_y^2)): sign(a + b sqrt(D)) from the signs of a, b and
 // a^2 - b^2 D.
 //
-// Stages of the tori: a double filter with running error bounds (the rules
-// of RunningDoubleKernel, src/filter.h) on inputs scaled by a power of two to
-// unit size, in which the edge polynomials are decided by their Bernstein
-// coefficients on [0, 1] with de Casteljau subdivision to a fixed depth (all
-// coefficients > 0: no point of the edge is inside; an end value < 0: a
-// point is); then, for what it leaves open, GMP rationals, where the quartic
-// is decided by its Sturm sequence on (0, 1) (its ends are tested first) and
-// the quadratic by its vertex. Every stage does a fixed amount of work.
+// Stages of the tori. Edges: a double filter with running error bounds (the
+// rules of RunningDoubleKernel, src/filter.h) on the inputs scaled by a
+// power of two to unit size, in which L and Q are decided by their Bernstein
+// coefficients on [0, 1] with de Casteljau subdivision (all coefficients
+// > 0: no point of the edge is inside; an end value < 0: a point is), to a
+// fixed depth and a fixed number of intervals; the edges it leaves open in
+// GMP integers, the quartic by its ends, its Bernstein coefficients and its
+// Sturm sequence on (0, 1), the quadratic by its ends and vertex. The face:
+// the stage driver of src/stages.h (FilterKernel, then the adaptive kernel)
+// on the scaled inputs. Every stage does a bounded amount of work;
+// docs/margin.md has the derivations and the exactness argument.
 #include "tricyl/triangle_cylinder_margin.h"
 
 #include <gmpxx.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 #include <utility>
@@ -69,18 +74,32 @@ using detail::Tri;
 // Exact sums of two doubles: the rounded sum and its error (Knuth's TwoSum),
 // and the neighbouring doubles below and above the exact sum.
 
+/// The next double above x >= 0 (finite), and below x > 0, by the bits
+/// (the sizes here are never negative).
+double nextUp(double x) {
+  std::uint64_t b;
+  std::memcpy(&b, &x, sizeof b);
+  b += 1;
+  std::memcpy(&x, &b, sizeof b);
+  return x;
+}
+double nextDown(double x) {
+  std::uint64_t b;
+  std::memcpy(&b, &x, sizeof b);
+  b -= 1;
+  std::memcpy(&x, &b, sizeof b);
+  return x;
+}
+
+/// For a, b >= 0 (+0, never -0): the rounded sum s >= 0, its error e, and
+/// the neighbouring doubles below and above the exact sum (e < 0 implies
+/// s > 0; e > 0 with s the largest double gives +inf, checked by callers).
 struct TwoSum {
-  double s;       // fl(a + b), finite
-  double e;       // a + b - s exactly
-  bool finite;    // false: the rounded sum overflowed (e is then 0)
-  double down() const {
-    return e < 0 ? std::nextafter(s, -std::numeric_limits<double>::infinity())
-                 : s;
-  }
-  double up() const {
-    return e > 0 ? std::nextafter(s, std::numeric_limits<double>::infinity())
-                 : s;
-  }
+  double s;     // fl(a + b), finite
+  double e;     // a + b - s exactly
+  bool finite;  // false: the rounded sum overflowed (e is then 0)
+  double down() const { return e < 0 ? nextDown(s) : s; }
+  double up() const { return e > 0 ? nextUp(s) : s; }
 };
 
 TwoSum twoSum(double a, double b) {
@@ -93,17 +112,15 @@ TwoSum twoSum(double a, double b) {
 
 // ---------------------------------------------------------------------------
 // Kernels for the torus parts: the running-bound double filter of
-// src/filter.h, and GMP rationals (exact; the Sturm sequence divides).
+// src/filter.h, and GMP integers (exact).
 
 using Rk = detail::RunningDoubleKernel;
 
-struct QKernel {
-  using Num = mpq_class;
-  static Num lift(double x) { return Num(x); }
-  static Sign sign(const Num& a) {
-    const int s = sgn(a);
-    return s < 0 ? Sign::kNeg : (s > 0 ? Sign::kPos : Sign::kZero);
-  }
+/// GMP integers: the exact stage of the torus edges, on the local
+/// coordinates scaled by a power of two to integers (the torus test is
+/// invariant under a common scaling).
+struct ZKernel {
+  using Num = mpz_class;
 };
 
 /// One torus in doubled local coordinates (X = 2x, Y = 2y, Z = 2z: the
@@ -131,8 +148,10 @@ Sign signWithRoot(const typename K::Num& a, const typename K::Num& b,
 
 /// The face part (see the file comment): does the foot on the triangle's
 /// plane of one of the rim points +-r (n_x, n_y)/|n_xy| lie in the triangle
-/// within m of that rim point? Only called for a triangle that misses the
-/// rim circle and whose edges miss the torus.
+/// within m of that rim point? Only asked for a triangle that misses the rim
+/// circle and whose edges miss the torus. Degree 24 in the inputs (12 in the
+/// local coordinates): run on inputs scaled to unit size (see
+/// ScaledInputs), where every magnitude stays below 2^90.
 template <class K>
 Tri faceFeet(const TorusInput<K>& t) {
   using N = typename K::Num;
@@ -179,8 +198,7 @@ Tri faceFeet(const TorusInput<K>& t) {
         ok = kAnd(ok, detail::isNonNeg(K::sign(s)));
       }
       if (ok == Tri::kFalse) continue;
-      const N dn = n[0] * (gx - t.X[0]) - n[1] * t.Y[0] +
-                   n[2] * (t.C - t.Z[0]);
+      const N dn = n[0] * (gx - t.X[0]) - n[1] * t.Y[0] + n[2] * (t.C - t.Z[0]);
       ok = kAnd(ok, detail::isNonPos(K::sign(dn * dn - M2 * n2)));
     } else {
       for (int i = 0; i < 3 && ok != Tri::kFalse; ++i) {
@@ -231,8 +249,12 @@ using Rd = detail::Rd;
 /// an interval <= 0? kTrue if an end value is certainly < 0, kFalse if every
 /// coefficient is certainly > 0 (convex-hull property), else subdivides at
 /// the midpoint (de Casteljau; halving is exact but for underflow, which the
-/// running bound's product rule covers), to `depth` more levels.
-Tri bernsteinAnyNonPos(const Rd* b, int n, int depth) {
+/// running bound's product rule covers), to `depth` more levels and at most
+/// `*budget` intervals in all (a near-double root needs a few intervals per
+/// level around it; a polynomial that is 0 within its bound everywhere, e.g.
+/// a point edge on the torus, would need all 2^depth).
+Tri bernsteinAnyNonPos(const Rd* b, int n, int depth, int* budget) {
+  if (--*budget < 0) return Tri::kUnknown;
   const Sign s0 = Rk::sign(b[0]), sn = Rk::sign(b[n]);
   if (s0 == Sign::kNeg || sn == Sign::kNeg) return Tri::kTrue;
   bool all_pos = true;
@@ -248,12 +270,13 @@ Tri bernsteinAnyNonPos(const Rd* b, int n, int depth) {
     right[n - k] = w[n - k];
     for (int i = 0; i < n - k; ++i) w[i] = (w[i] + w[i + 1]) * half;
   }
-  const Tri l = bernsteinAnyNonPos(left, n, depth - 1);
+  const Tri l = bernsteinAnyNonPos(left, n, depth - 1, budget);
   if (l == Tri::kTrue) return l;
-  return kOr(l, bernsteinAnyNonPos(right, n, depth - 1));
+  return kOr(l, bernsteinAnyNonPos(right, n, depth - 1, budget));
 }
 
-constexpr int kBernsteinDepth = 6;
+constexpr int kBernsteinDepth = 24;
+constexpr int kBernsteinBudget = 96;
 
 Tri edgeFilter(const TorusInput<Rk>& t, int a, int b) {
   Rd l[3], q[5];
@@ -266,41 +289,54 @@ Tri edgeFilter(const TorusInput<Rk>& t, int a, int b) {
   const Rd qb[5] = {q0, q0 + k(3) * q[1], q0 + k(6) * q[1] + k(2) * q[2],
                     q0 + k(9) * q[1] + k(6) * q[2] + k(3) * q[3],
                     k(12) * ((q[0] + q[1]) + (q[2] + q[3]) + q[4])};
-  const Tri tq = bernsteinAnyNonPos(qb, 4, kBernsteinDepth);
+  int budget = kBernsteinBudget;
+  const Tri tq = bernsteinAnyNonPos(qb, 4, kBernsteinDepth, &budget);
   if (tq == Tri::kTrue) return tq;
-  return kOr(tq, bernsteinAnyNonPos(lb, 2, kBernsteinDepth));
+  budget = kBernsteinBudget;
+  return kOr(tq, bernsteinAnyNonPos(lb, 2, kBernsteinDepth, &budget));
 }
 
-// ---- The exact stage: GMP rationals, Sturm sequence ------------------------
+// ---- The exact stage: GMP integers, Sturm sequence ------------------------
 
-using Poly = std::vector<mpq_class>;  // coefficients, lowest degree first
+using Poly = std::vector<mpz_class>;  // coefficients, lowest degree first
 
 void trim(Poly& p) {
   while (!p.empty() && sgn(p.back()) == 0) p.pop_back();
 }
 
-mpq_class evalAt(const Poly& p, const mpq_class& x) {
-  mpq_class v = 0;
-  for (auto it = p.rbegin(); it != p.rend(); ++it) v = v * x + *it;
-  return v;
-}
-
-/// The remainder of a by b (b non-zero, trimmed).
-Poly remainder(Poly a, const Poly& b) {
+/// A positive multiple of the remainder of a by b (b trimmed, non-empty),
+/// without division: the pseudo-remainder lc^k a mod b, lc = b's leading
+/// coefficient and k the number of elimination steps, times sign(lc)^k so
+/// that the multiple is positive (Sturm's sequence needs the signs of the
+/// remainders, not their sizes). The content is divided out.
+Poly positiveRemainder(Poly a, const Poly& b) {
   trim(a);
   const size_t nb = b.size();
+  const mpz_class& lc = b.back();
+  int k = 0;
   while (a.size() >= nb) {
-    const mpq_class f = a.back() / b.back();
+    const mpz_class f = a.back();
     const size_t shift = a.size() - nb;
+    for (auto& c : a) c *= lc;
     for (size_t i = 0; i < nb; ++i) a[shift + i] -= f * b[i];
+    ++k;
     a.pop_back();  // its leading coefficient is now exactly 0
     trim(a);
   }
+  if (sgn(lc) < 0 && k % 2 == 1)
+    for (auto& c : a) c = -c;
+  mpz_class g = 0;
+  for (const auto& c : a) mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), c.get_mpz_t());
+  if (sgn(g) > 0 && g != 1)
+    for (auto& c : a) mpz_divexact(c.get_mpz_t(), c.get_mpz_t(), g.get_mpz_t());
   return a;
 }
 
 /// Number of distinct real roots of p in (0, 1), for p(0) != 0, p(1) != 0
-/// (Sturm's theorem: variations at 0 minus variations at 1).
+/// (Sturm's theorem: sign variations of the sequence at 0 minus at 1; the
+/// value of a polynomial at 0 is its constant term, at 1 the sum of its
+/// coefficients). The sequence p, p', -rem(p, p'), ... is taken up to
+/// positive factors, which leave every variation count unchanged.
 int sturmRootsInUnit(Poly p) {
   trim(p);
   if (p.size() <= 1) return 0;
@@ -311,131 +347,195 @@ int sturmRootsInUnit(Poly p) {
   trim(d);
   while (!d.empty()) {
     chain.push_back(d);
-    Poly r = remainder(chain[chain.size() - 2], d);
+    Poly r = positiveRemainder(chain[chain.size() - 2], d);
     for (auto& c : r) c = -c;
     d = std::move(r);
   }
-  auto variations = [&](const mpq_class& x) {
+  auto variations = [&](bool at_one) {
     int v = 0, last = 0;
     for (const Poly& q : chain) {
-      const int s = sgn(evalAt(q, x));
+      mpz_class val = q[0];
+      if (at_one)
+        for (size_t i = 1; i < q.size(); ++i) val += q[i];
+      const int s = sgn(val);
       if (s == 0) continue;
       if (last != 0 && s != last) ++v;
       last = s;
     }
     return v;
   };
-  return variations(0) - variations(1);
+  return variations(false) - variations(true);
 }
 
-bool edgeExact(const TorusInput<QKernel>& t, int a, int b) {
-  mpq_class l[3], q[5];
-  edgePolys<QKernel>(t, a, b, l, q);
+bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
+  mpz_class l[3], q[5];
+  edgePolys<ZKernel>(t, a, b, l, q);
   // L <= 0 somewhere on [0, 1]: at an end, or at the interior vertex of the
   // parabola (l2 > 0, -l1 / (2 l2) in (0, 1), 4 l0 l2 - l1^2 <= 0).
-  const mpq_class l_end = l[0] + l[1] + l[2];
+  const mpz_class l_end = l[0] + l[1] + l[2];
   if (sgn(l[0]) <= 0 || sgn(l_end) <= 0) return true;
   if (sgn(l[2]) > 0 && sgn(l[1]) < 0 && l[1] + 2 * l[2] > 0 &&
       4 * l[0] * l[2] - l[1] * l[1] <= 0)
     return true;
   // Q <= 0 somewhere: at an end, or (both ends > 0) at a root in (0, 1).
-  const mpq_class q_end = q[0] + q[1] + q[2] + q[3] + q[4];
+  const mpz_class q_end = q[0] + q[1] + q[2] + q[3] + q[4];
   if (sgn(q[0]) <= 0 || sgn(q_end) <= 0) return true;
+  // Bernstein coefficients (times 12) all > 0: Q > 0 on [0, 1], no roots.
+  const mpz_class q0 = 12 * q[0];
+  if (sgn(q0 + 3 * q[1]) > 0 && sgn(q0 + 6 * q[1] + 2 * q[2]) > 0 &&
+      sgn(q0 + 9 * q[1] + 6 * q[2] + 3 * q[3]) > 0)
+    return false;
   return sturmRootsInUnit(Poly(q, q + 5)) > 0;
 }
 
-/// One torus, exactly.
-bool torusExact(const TorusInput<QKernel>& t) {
-  static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
-  for (const auto& e : kEdge)
-    if (edgeExact(t, e[0], e[1])) return true;
-  return faceFeet<QKernel>(t) == Tri::kTrue;
-}
-
-/// One torus in the filter.
-Tri torusFilter(const TorusInput<Rk>& t) {
+/// The edges of one torus in the filter: kTrue if one certainly meets it,
+/// kFalse if none does; `open[e]` flags the edges left open.
+Tri edgesFilter(const TorusInput<Rk>& t, bool* open) {
   static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
   detail::AnyOf any;
-  for (const auto& e : kEdge)
-    if (any.add(edgeFilter(t, e[0], e[1]))) return Tri::kTrue;
-  if (any.add(faceFeet<Rk>(t))) return Tri::kTrue;
+  for (int e = 0; e < 3; ++e) {
+    const Tri r = edgeFilter(t, kEdge[e][0], kEdge[e][1]);
+    open[e] = r == Tri::kUnknown;
+    if (any.add(r)) return Tri::kTrue;
+  }
   return any.result();
 }
 
 // ---------------------------------------------------------------------------
 // The query.
 
+/// A query whose sizes are valid (finite, >= 0, +0 for zero). The pose and
+/// the triangle are validated by the first call of the triangle kernel (or
+/// by scan() where no call is made first); the largest lengths for the range
+/// gate are computed by scan() on the slow paths only.
 struct Query {
   Cylinder<double> cyl;
-  Pose<double> pose;
-  Triangle<double> tri;
+  const Pose<double>& pose;
+  const Triangle<double>& tri;
   double m;
-  double max_len;
-  double max_unitless;
+  double max_len = 0;
+  double max_unitless = 0;
+  /// False if some input is NaN or infinite.
+  bool scan() {
+    const Triangle<double>& t = tri;
+    return detail::scanFinite({cyl.radius, cyl.lz, m, t.a.x, t.a.y, t.a.z,
+                               t.b.x, t.b.y, t.b.z, t.c.x, t.c.y, t.c.z},
+                              pose, &max_len, &max_unitless);
+  }
 };
 
 /// The doubled local coordinates and sizes of the torus at height sgn * h,
 /// exactly, mirrored in z for the bottom one (sgn = -1) so that its rim is
-/// at +lz.
-TorusInput<QKernel> torusExactInput(const Query& q, int sgn) {
-  TorusInput<QKernel> t;
+/// at +lz, all multiplied by one power of two that makes them integers
+/// (every value here is a dyadic rational).
+TorusInput<ZKernel> torusExactInput(const Query& q, int sgn) {
   const Vec3<double>* v[3] = {&q.tri.a, &q.tri.b, &q.tri.c};
+  mpq_class vals[12];  // X, Y, Z of the three vertices, then R, M, C
   for (int i = 0; i < 3; ++i) {
     const mpq_class d[3] = {mpq_class(v[i]->x) - q.pose.t.x,
                             mpq_class(v[i]->y) - q.pose.t.y,
                             mpq_class(v[i]->z) - q.pose.t.z};
-    mpq_class o[3];
     for (int k = 0; k < 3; ++k)
-      o[k] = 2 * (mpq_class(q.pose.R[0][k]) * d[0] +
-                  mpq_class(q.pose.R[1][k]) * d[1] +
-                  mpq_class(q.pose.R[2][k]) * d[2]);
-    t.X[i] = o[0];
-    t.Y[i] = o[1];
-    t.Z[i] = sgn > 0 ? o[2] : mpq_class(-o[2]);
+      vals[3 * i + k] = 2 * (mpq_class(q.pose.R[0][k]) * d[0] +
+                             mpq_class(q.pose.R[1][k]) * d[1] +
+                             mpq_class(q.pose.R[2][k]) * d[2]);
+    if (sgn < 0) vals[3 * i + 2] = -vals[3 * i + 2];
   }
-  t.R = 2 * mpq_class(q.cyl.radius);
-  t.M = 2 * mpq_class(q.m);
-  t.C = mpq_class(q.cyl.lz);
+  vals[9] = 2 * mpq_class(q.cyl.radius);
+  vals[10] = 2 * mpq_class(q.m);
+  vals[11] = mpq_class(q.cyl.lz);
+  // The largest denominator (a power of two) is a common one.
+  mpz_class den = 1;
+  for (const auto& x : vals)
+    if (x.get_den() > den) den = x.get_den();
+  mpz_class ints[12];
+  for (int i = 0; i < 12; ++i)
+    mpz_divexact(ints[i].get_mpz_t(),
+                 mpz_class(vals[i].get_num() * den).get_mpz_t(),
+                 vals[i].get_den_mpz_t());
+  TorusInput<ZKernel> t;
+  for (int i = 0; i < 3; ++i) {
+    t.X[i] = ints[3 * i];
+    t.Y[i] = ints[3 * i + 1];
+    t.Z[i] = ints[3 * i + 2];
+  }
+  t.R = ints[9];
+  t.M = ints[10];
+  t.C = ints[11];
   return t;
 }
 
-/// The same in the filter, on the inputs scaled by 2^-k (k = the exponent of
-/// the largest length), which keeps every magnitude of the torus tests
-/// below 2^60 so that the bound computations' own underflow stays far below
-/// the filter's absolute slack. False if the scaling is not exact (a
-/// length would become subnormal) or the inputs are outside the range gate.
-bool torusFilterInputs(const Query& q, TorusInput<Rk>* top,
-                       TorusInput<Rk>* bot) {
+/// The inputs scaled by 2^-k, k the exponent of the largest length, so
+/// that every length is below 2 and the magnitudes of the torus tests
+/// (degree <= 24 in the inputs) stay below 2^90: far inside the budget of
+/// the filters' absolute slack (src/filter.h, "Underflow"). `ok` is false if
+/// the scaling is not exact (a length would become subnormal) or the inputs
+/// are outside the range gate; the tori are then decided in GMP alone.
+struct ScaledInputs {
+  Cylinder<double> cyl;
+  Pose<double> pose;
+  Triangle<double> tri;
+  double m;
+  bool ok;
+};
+
+ScaledInputs scaleInputs(const Query& q) {
+  ScaledInputs s{q.cyl, q.pose, q.tri, q.m, false};
   if (!detail::rangeGateOk(q.max_len, q.max_unitless) || q.max_len == 0)
-    return false;
+    return s;
   const int k = std::ilogb(q.max_len);
   bool exact = true;
-  auto sc = [&](double v) {
+  auto sc = [&](double& v) {
     const double w = std::ldexp(v, -k);
     if (std::ldexp(w, k) != v) exact = false;  // w became subnormal
-    return w;
+    v = w;
   };
-  const Vec3<double>* v[3] = {&q.tri.a, &q.tri.b, &q.tri.c};
-  const double tx = sc(q.pose.t.x), ty = sc(q.pose.t.y), tz = sc(q.pose.t.z);
-  const Rd two = Rk::lift(2.0);
-  for (int i = 0; i < 3; ++i) {
-    const Rd d0 = Rk::inputDiff(sc(v[i]->x), tx);
-    const Rd d1 = Rk::inputDiff(sc(v[i]->y), ty);
-    const Rd d2 = Rk::inputDiff(sc(v[i]->z), tz);
-    Rd o[3];
-    for (int c = 0; c < 3; ++c)
-      o[c] = two * (Rk::lift(q.pose.R[0][c]) * d0 +
-                    Rk::lift(q.pose.R[1][c]) * d1 +
-                    Rk::lift(q.pose.R[2][c]) * d2);
-    top->X[i] = bot->X[i] = o[0];
-    top->Y[i] = bot->Y[i] = o[1];
-    top->Z[i] = o[2];
-    bot->Z[i] = -o[2];
+  sc(s.cyl.radius);
+  sc(s.cyl.lz);
+  sc(s.m);
+  sc(s.pose.t.x);
+  sc(s.pose.t.y);
+  sc(s.pose.t.z);
+  for (Vec3<double>* v : {&s.tri.a, &s.tri.b, &s.tri.c}) {
+    sc(v->x);
+    sc(v->y);
+    sc(v->z);
   }
-  top->R = bot->R = Rk::lift(2 * sc(q.cyl.radius));
-  top->M = bot->M = Rk::lift(2 * sc(q.m));
-  top->C = bot->C = Rk::lift(sc(q.cyl.lz));
-  return exact;
+  s.ok = exact;
+  return s;
+}
+
+/// The torus at +h (top) or -h, mirrored to +h, in kernel K from the local
+/// frame of src/triangle_cylinder_impl.h (x, y, Z = 2z, H = lz): doubled
+/// coordinates X = 2x, Y = 2y, Z, doubled sizes R = 2r, M = 2m, C = lz.
+template <class K>
+TorusInput<K> torusInput(const detail::TriCylLocal<K>& l, double m, bool top) {
+  TorusInput<K> t;
+  const auto two = K::lift(2.0);
+  for (int i = 0; i < 3; ++i) {
+    t.X[i] = two * l.x[i];
+    t.Y[i] = two * l.y[i];
+    t.Z[i] = top ? l.Z[i] : -l.Z[i];
+  }
+  t.R = l.r + l.r;
+  t.M = K::lift(m) + K::lift(m);
+  t.C = l.H;
+  return t;
+}
+
+/// The face part of one torus through the stage driver (src/stages.h):
+/// FilterKernel, then the adaptive kernel, on the scaled inputs; GMP
+/// dyadics alone on the original ones where the scaling is not exact.
+Decision faceStage(const Query& q, const ScaledInputs& s, bool top) {
+  auto pred = [&](auto tag, bool*) {
+    using K = typename decltype(tag)::type;
+    const auto l =
+        s.ok ? detail::makeLocal<K>(s.cyl, s.pose, s.tri, q.max_unitless)
+             : detail::makeLocal<K>(q.cyl, q.pose, q.tri, q.max_unitless);
+    return faceFeet<K>(torusInput<K>(l, s.ok ? s.m : q.m, top));
+  };
+  if (!s.ok) return detail::runAdaptive(pred, false);
+  return detail::runStages(pred, 2.0, q.max_unitless);
 }
 
 /// Cylinder part with the exact sum r + m (grow_radius) or lz + 2m as the
@@ -465,12 +565,18 @@ bool intersects(double r, double lz, const Query& q) {
 Stage stronger(Stage a, Stage b) {
   auto rank = [](Stage s) {
     switch (s) {
-      case Stage::kEarlyOut: return 0;
-      case Stage::kFastPath: return 1;
-      case Stage::kExtended: return 2;
-      case Stage::kExact: return 3;
-      case Stage::kExactGmp: return 4;
-      default: return 5;
+      case Stage::kEarlyOut:
+        return 0;
+      case Stage::kFastPath:
+        return 1;
+      case Stage::kExtended:
+        return 2;
+      case Stage::kExact:
+        return 3;
+      case Stage::kExactGmp:
+        return 4;
+      default:
+        return 5;
     }
   };
   return rank(a) >= rank(b) ? a : b;
@@ -482,8 +588,8 @@ Decision no(Stage s) { return {Answer::kDisjoint, s}; }
 /// A sized part (grow_radius: Cyl(r + m, h), else Cyl(r, h + m)).
 /// `stage` accumulates the strongest stage used.
 bool cylinderPart(const Query& q, bool grow_radius, Stage* stage) {
-  const TwoSum s = grow_radius ? twoSum(q.cyl.radius, q.m)
-                               : twoSum(q.cyl.lz, 2 * q.m);
+  const TwoSum s =
+      grow_radius ? twoSum(q.cyl.radius, q.m) : twoSum(q.cyl.lz, 2 * q.m);
   if (s.finite && std::isfinite(2 * q.m)) {
     const double r = grow_radius ? s.down() : q.cyl.radius;
     const double lz = grow_radius ? q.cyl.lz : s.down();
@@ -495,74 +601,98 @@ bool cylinderPart(const Query& q, bool grow_radius, Stage* stage) {
         !intersects(r_up, lz_up, q))
       return false;  // a superset: exact no
   }
-  const Decision d = cylinderPartExact(q, grow_radius);
+  Query qs = q;
+  qs.scan();
+  const Decision d = cylinderPartExact(qs, grow_radius);
   *stage = stronger(*stage, d.stage);
   return d.answer == Answer::kIntersect;
 }
 
-Decision decide(const Query& q) {
+Decision decide(Query& q) {
   if (q.m == 0) return decideIntersect(q.cyl, q.pose, q.tri);
-  // A superset of C + B_m: Cyl(r + m, h + m), sizes rounded up.
-  const TwoSum rs = twoSum(q.cyl.radius, q.m);
-  const TwoSum ls = twoSum(q.cyl.lz, 2 * q.m);
-  if (rs.finite && ls.finite && std::isfinite(2 * q.m)) {
-    const double r_up = rs.up(), lz_up = ls.up();
-    if (std::isfinite(r_up) && std::isfinite(lz_up) &&
-        !intersects(r_up, lz_up, q))
-      return no(Stage::kEarlyOut);
+  // A superset of C + B_m: Cyl(r + m, h + m), sizes rounded up. This first
+  // call of the kernel also validates the pose and the triangle. For
+  // x = fl(a + b) >= 0 normal, fl(x + fl(x 2^-51)) >= x (1 + 2^-52) >= a + b;
+  // in the subnormal range the sum is exact and the bound still >= it.
+  bool validated = false;
+  const double two_m = 2 * q.m;
+  const double r_sum = q.cyl.radius + q.m, l_sum = q.cyl.lz + two_m;
+  const double r_up = r_sum + r_sum * 0x1p-51;
+  const double lz_up = l_sum + l_sum * 0x1p-51;
+  if (std::isfinite(r_up) && std::isfinite(lz_up)) {
+    const Answer a = tryIntersect(Cylinder<double>{r_up, lz_up}, q.pose, q.tri);
+    if (a == Answer::kInvalidInput) return {a, Stage::kInvalid};
+    if (a == Answer::kDisjoint) return no(Stage::kEarlyOut);
+    validated = true;
   }
+  if (!validated && !q.scan()) return {Answer::kInvalidInput, Stage::kInvalid};
   Stage stage = Stage::kFastPath;
   if (cylinderPart(q, true, &stage)) return yes(stage);
   if (cylinderPart(q, false, &stage)) return yes(stage);
-  // The tori. The triangle misses C here, hence the rim circles.
-  Tri t[2] = {Tri::kUnknown, Tri::kUnknown};
-  TorusInput<Rk> ft[2];
-  if (torusFilterInputs(q, &ft[0], &ft[1])) {
-    for (int i = 0; i < 2; ++i) {
-      t[i] = torusFilter(ft[i]);
-      if (t[i] == Tri::kTrue) return yes(stage);
-    }
-    if (t[0] == Tri::kFalse && t[1] == Tri::kFalse) return no(stage);
+  // The tori. The triangle misses C here, hence the rim circles. Edges
+  // first (the face part is complete only when they miss): the filter on
+  // both tori, then GMP for the edges it left open, then the faces.
+  q.scan();
+  const ScaledInputs s = scaleInputs(q);
+  bool open[2][3] = {{true, true, true}, {true, true, true}};
+  if (s.ok) {
+    const auto l = detail::makeLocal<Rk>(s.cyl, s.pose, s.tri, q.max_unitless);
+    for (int i = 0; i < 2; ++i)
+      if (edgesFilter(torusInput<Rk>(l, s.m, i == 0), open[i]) == Tri::kTrue)
+        return yes(stage);
+  }
+  static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+  for (int i = 0; i < 2; ++i) {
+    if (!(open[i][0] || open[i][1] || open[i][2])) continue;
+    const TorusInput<ZKernel> t = torusExactInput(q, i == 0 ? 1 : -1);
+    stage = Stage::kExactGmp;
+    for (int e = 0; e < 3; ++e)
+      if (open[i][e] && edgeExact(t, kEdge[e][0], kEdge[e][1]))
+        return yes(stage);
   }
   for (int i = 0; i < 2; ++i) {
-    if (t[i] != Tri::kUnknown) continue;
-    if (torusExact(torusExactInput(q, i == 0 ? 1 : -1)))
-      return yes(Stage::kExactGmp);
+    const Decision d = faceStage(q, s, i == 0);
+    stage = stronger(stage, d.stage);
+    if (d.answer == Answer::kIntersect) return yes(stage);
   }
-  return no(Stage::kExactGmp);
+  return no(stage);
+}
+
+/// A size is valid iff finite and >= 0 (-0 included), read from its bits:
+/// no floating-point operation touches a NaN.
+bool validSize(double v) {
+  std::uint64_t b;
+  std::memcpy(&b, &v, sizeof b);
+  const std::uint64_t abs = b & ~(std::uint64_t(1) << 63);
+  return abs < 0x7ff0000000000000ULL && (abs == b || abs == 0);
 }
 
 Decision validateAndDecide(const Cylinder<double>& cyl,
                            const Pose<double>& pose,
                            const Triangle<double>& tri, double m) {
-  Query q{cyl, pose, tri, m, 0, 0};
-  if (!detail::scanFinite({cyl.radius, cyl.lz, m, tri.a.x, tri.a.y, tri.a.z,
-                           tri.b.x, tri.b.y, tri.b.z, tri.c.x, tri.c.y,
-                           tri.c.z},
-                          pose, &q.max_len, &q.max_unitless) ||
-      !(cyl.radius >= 0 && cyl.lz >= 0 && m >= 0))
+  if (!validSize(cyl.radius) || !validSize(cyl.lz) || !validSize(m))
     return {Answer::kInvalidInput, Stage::kInvalid};
   // -0 is 0 for every size (the bits of -0 would break nothing, but the
   // exact sums are clearer on +0).
-  q.cyl.radius = cyl.radius + 0.0;
-  q.cyl.lz = cyl.lz + 0.0;
-  q.m = m + 0.0;
+  Query q{{cyl.radius + 0.0, cyl.lz + 0.0}, pose, tri, m + 0.0};
   return decide(q);
 }
 
 template <class S>
 Decision decideAs(const Cylinder<S>& cyl, const Pose<S>& pose,
                   const Triangle<S>& tri, S m) noexcept {
-  if constexpr (std::is_same_v<S, float>) {
-    const Cylinder<float> mm{m, m};
-    if (!detail::floatBitsFinite(cyl, pose, tri, mm))  // before widening
-      return {Answer::kInvalidInput, Stage::kInvalid};
-  }
   try {
-    return validateAndDecide(
-        {double(cyl.radius), double(cyl.lz)}, detail::widen(pose),
-        {detail::widen(tri.a), detail::widen(tri.b), detail::widen(tri.c)},
-        double(m));
+    if constexpr (std::is_same_v<S, float>) {
+      const Cylinder<float> mm{m, m};
+      if (!detail::floatBitsFinite(cyl, pose, tri, mm))  // before widening
+        return {Answer::kInvalidInput, Stage::kInvalid};
+      return validateAndDecide(
+          {double(cyl.radius), double(cyl.lz)}, detail::widen(pose),
+          {detail::widen(tri.a), detail::widen(tri.b), detail::widen(tri.c)},
+          double(m));
+    } else {
+      return validateAndDecide(cyl, pose, tri, m);
+    }
   } catch (...) {  // std::bad_alloc from GMP or a vector: nothing else throws
     std::terminate();
   }
