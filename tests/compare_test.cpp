@@ -537,20 +537,22 @@ TEST(CompareEndToEnd, SmallRunWritesParsableReports) {
   // is 0 exactly when the exact Boolean says the sets meet, so it never
   // disagrees with it in sign, and it never misjudges a margin.
   {
-    std::istringstream csv(slurp(dir + "/distance.csv"));
+    std::istringstream dcsv(slurp(dir + "/distance.csv"));
     std::string line;
-    std::getline(csv, line);  // header
-    std::size_t rows = 0;
-    while (std::getline(csv, line)) {
-      ++rows;
+    std::getline(dcsv, line);  // header
+    std::size_t drows = 0;
+    while (std::getline(dcsv, line)) {
+      ++drows;
       std::vector<std::string> f;
       std::stringstream ls(line);
       for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
       ASSERT_GE(f.size(), 5u) << line;
       EXPECT_TRUE(fams.count(f[0])) << line;
-      if (f[1] == "tricyl") EXPECT_EQ(f[4], "0") << line;  // sign
+      if (f[1] == "tricyl") {
+        EXPECT_EQ(f[4], "0") << line;  // sign disagreements
+      }
     }
-    EXPECT_EQ(rows, fams.size() * 4);
+    EXPECT_EQ(drows, fams.size() * 4);
     std::istringstream mcsv(slurp(dir + "/margin.csv"));
     std::getline(mcsv, line);
     std::size_t mrows = 0;

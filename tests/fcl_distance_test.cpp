@@ -7,6 +7,7 @@
 // with tricyl::withinDistance per triangle; TriangleP; float. Meshes: env,
 // bunny, rob (../shared/data/meshes, skipped with a message when absent)
 // and a built-in sphere, so the suite never runs empty.
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -428,6 +429,38 @@ TEST(FclDistanceShapes, TrianglePBothOrders) {
   }
   EXPECT_GT(apart, 100);
   EXPECT_GT(meeting, 10);
+}
+
+// The broadphase callback: DynamicAABBTree manager over a mesh and a box,
+// queried with a cylinder: tricyl::DefaultDistanceFunction gives the
+// smaller of tricyl::distance to the mesh and fcl::distance to the box.
+TEST(FclDistanceShapes, BroadphaseDefaultDistanceFunction) {
+  const Mesh m = fcltest::sphereMesh(10);
+  auto model = fcltest::makeModel<fcl::OBBRSS<double>>(m);
+  auto box = std::make_shared<fcl::Boxd>(0.5, 0.5, 0.5);
+  auto cyl = std::make_shared<fcl::Cylinderd>(0.2, 0.6);
+  Tf tb = Tf::Identity(), tc = Tf::Identity();
+  tb.translation() = V3(4, 0, 0);
+  fcl::CollisionObjectd om(model, Tf::Identity()), ob(box, tb);
+  fcl::DynamicAABBTreeCollisionManagerd manager;
+  manager.registerObject(&om);
+  manager.registerObject(&ob);
+  manager.setup();
+  for (double x : {1.5, 2.0, 2.8, 3.2}) {
+    tc.translation() = V3(x, 0.1, -0.05);
+    fcl::CollisionObjectd oc(cyl, tc);
+    DefaultDistanceData<double> data;
+    manager.distance(&oc, &data, DefaultDistanceFunction<double>);
+    fcl::DistanceResultd to_mesh, to_box;
+    tricyl::distance(&om, &oc, fcl::DistanceRequestd(), to_mesh);
+    fcl::distance(&ob, &oc, fcl::DistanceRequestd(), to_box);
+    // The box pair is libccd's (tolerance 1e-6), whose answer may depend
+    // on the argument order the manager uses.
+    if (to_mesh.min_distance < to_box.min_distance - 1e-5)
+      EXPECT_EQ(data.result.min_distance, to_mesh.min_distance) << x;
+    else
+      EXPECT_NEAR(data.result.min_distance, to_box.min_distance, 1e-5) << x;
+  }
 }
 
 // Invalid margins are refused; a huge finite margin takes every triangle.

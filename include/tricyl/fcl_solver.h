@@ -11,6 +11,10 @@
 /// - `fcl::DefaultCollisionFunction<S>` becomes
 ///   `tricyl::DefaultCollisionFunction<S>`;
 /// - `fcl::DefaultCollisionData<S>` becomes `tricyl::DefaultCollisionData<S>`;
+/// - `fcl::distance(o1, o2, request, result)` becomes
+///   `tricyl::distance(o1, o2, request, result)`, and
+///   `fcl::DefaultDistanceFunction<S>` / `DefaultDistanceData<S>` become
+///   `tricyl::DefaultDistanceFunction<S>` / `tricyl::DefaultDistanceData<S>`;
 /// - `fcl::collide(o1, o2, &solver, ...)` takes a `tricyl::Solver<S> solver`.
 ///
 /// ## What changes (and nothing else does)
@@ -498,6 +502,30 @@ bool DefaultCollisionFunction(fcl::CollisionObject<S>* o1,
     collision_data->done = true;
   }
   return collision_data->done;
+}
+
+/// The broadphase distance callback data: FCL's own struct (request,
+/// result, done).
+template <class S>
+using DefaultDistanceData = fcl::DefaultDistanceData<S>;
+
+/// fcl::DefaultDistanceFunction with tricyl::distance: pass it with a
+/// DefaultDistanceData<S>* to BroadPhaseCollisionManager::distance.
+template <class S>
+bool DefaultDistanceFunction(fcl::CollisionObject<S>* o1,
+                             fcl::CollisionObject<S>* o2, void* data, S& dist) {
+  auto* distance_data = static_cast<DefaultDistanceData<S>*>(data);
+  const fcl::DistanceRequest<S>& request = distance_data->request;
+  fcl::DistanceResult<S>& result = distance_data->result;
+  if (distance_data->done) {
+    dist = result.min_distance;
+    return true;
+  }
+  tricyl::distance(o1, o2, request, result);
+  dist = result.min_distance;
+  // Same stopping rule as FCL's: in collision or touching.
+  if (dist <= 0) return true;
+  return distance_data->done;
 }
 
 }  // namespace tricyl

@@ -46,10 +46,16 @@ constexpr double kLeafRel = 0x1p-40;
 /// A node still to visit, or (leaf) a triangle still to measure, with a
 /// lower bound of its distance. NaN bounds order as -Inf (visited first,
 /// never pruned).
+enum Kind : unsigned char {
+  kInner,         // an inner node, its box bound
+  kLeafBoxBound,  // a leaf, its box bound only
+  kLeaf,          // a leaf, the larger of its box and triangle bounds
+};
+
 struct Entry {
   double lb;
   int node;
-  bool leaf;
+  Kind kind;
 };
 
 /// The open entries, smallest bound first (best-first: a triangle is
@@ -57,11 +63,13 @@ struct Entry {
 class EntryQueue {
  public:
   EntryQueue() { items_.reserve(256); }
-  void push(double lb, int node, bool leaf) {
-    items_.push_back({std::isnan(lb) ? -kInf : lb, node, leaf});
+  void push(double lb, int node, Kind kind) {
+    items_.push_back({std::isnan(lb) ? -kInf : lb, node, kind});
     std::push_heap(items_.begin(), items_.end(), later);
   }
   bool empty() const { return items_.empty(); }
+  /// The smallest bound (the queue is not empty).
+  double topBound() const { return items_.front().lb; }
   Entry pop() {
     std::pop_heap(items_.begin(), items_.end(), later);
     const Entry e = items_.back();
@@ -126,32 +134,19 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
   std::size_t tested = 0, skipped = 0, leaves = 0, hits = 0;
   double best = result.min_distance;
   EntryQueue queue;
+  // A node's entry carries its box bound; a leaf's triangle gets its own
+  // cheap bound (mesh_traversal.h, triangleLowerBound) only when it comes
+  // to the top of the queue (most leaves never do), and goes back in with
+  // the larger bound if another entry is now first.
   const auto push = [&](int n) {
     ++tested;
     const double lb = bound(n);
-    const fcl::BVNode<BV>& node = model.getBV(n);
-    if (!isLeaf(node)) {
-      if (pruner.prune(lb, best)) {
-        ++skipped;
-        return;
-      }
-      queue.push(lb, n, false);
-      return;
-    }
-    V3 p[3];
-    triangleOf(node, p);
-    const double x[3][3] = {{p[0][0], p[0][1], p[0][2]},
-                            {p[1][0], p[1][1], p[1][2]},
-                            {p[2][0], p[2][1], p[2][2]}};
-    const double lt = triangleLowerBound(x, pose.R, t_cyl, cyl.radius, k.h);
-    const double l = gt(lt, lb) ? lt : lb;
-    if (pruner.prune(l, best)) {
+    if (pruner.prune(lb, best)) {
       ++skipped;
       return;
     }
-    queue.push(l, n, true);
+    queue.push(lb, n, isLeaf(model.getBV(n)) ? kLeafBoxBound : kInner);
   };
-
   push(0);
   while (!queue.empty()) {
     const Entry e = queue.pop();
@@ -162,7 +157,23 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
       break;
     }
     const fcl::BVNode<BV>& node = model.getBV(e.node);
-    if (!e.leaf) {
+    if (e.kind == kLeafBoxBound) {
+      V3 p[3];
+      triangleOf(node, p);
+      const double x[3][3] = {{p[0][0], p[0][1], p[0][2]},
+                              {p[1][0], p[1][1], p[1][2]},
+                              {p[2][0], p[2][1], p[2][2]}};
+      const double lt = triangleLowerBound(x, pose.R, t_cyl, cyl.radius, k.h);
+      if (pruner.prune(lt, best)) {
+        ++skipped;
+        continue;
+      }
+      if (gt(lt, e.lb) && !queue.empty() && gt(lt, queue.topBound())) {
+        queue.push(lt, e.node, kLeaf);
+        continue;
+      }
+    }
+    if (e.kind == kInner) {
       prefetchNode(model.getBV(leftChild(node)));
       prefetchNode(model.getBV(rightChild(node)));
       push(leftChild(node));

@@ -624,10 +624,12 @@ inline double triangleLowerBound(const double x[3][3], const double R[3][3],
   L += std::fabs(t[0]) + std::fabs(t[1]) + std::fabs(t[2]) + r + h;
   const double E = 0x1p-44 * L;
   // Along the axis.
+  // (min and max by quiet comparisons, not std::fmin/fmax, libm calls: a
+  // NaN coordinate makes the bound NaN or leaves it unproved either way.)
   double zmin = y[0][2], zmax = y[0][2];
   for (int k = 1; k < 3; ++k) {
-    zmin = std::fmin(zmin, y[k][2]);
-    zmax = std::fmax(zmax, y[k][2]);
+    if (std::isless(y[k][2], zmin)) zmin = y[k][2];
+    if (gt(y[k][2], zmax)) zmax = y[k][2];
   }
   double g = zmin - h;
   if (gt(-h - zmax, g)) g = -h - zmax;
