@@ -134,6 +134,15 @@ inline double sqrtNonNegative(double x) {
 #endif
 }
 
+/// |a x u|, as the square root of the sum of the squared components of the
+/// cross product (THE NODE TEST AND ITS MARGIN: the components' rounding is
+/// absolute, not amplified near a parallel pair).
+inline double crossLength(const double* a, const double* u) {
+  const double c0 = a[1] * u[2] - a[2] * u[1], c1 = a[2] * u[0] - a[0] * u[2],
+               c2 = a[0] * u[1] - a[1] * u[0];
+  return sqrtNonNegative(c0 * c0 + c1 * c1 + c2 * c2);
+}
+
 /// The terms every test of a node reads: d = b - c, the margin m of THE NODE
 /// TEST AND ITS MARGIN for this box, u.d, and |u.a_i| for the box axes.
 struct NodeTerms {
@@ -189,12 +198,7 @@ overlaps(const Box& x, const Local& k) {
       const double excess = std::fabs(ad) - (x.e[i] + k.h * ua[i] + m);
       if (!gt(excess, 0)) continue;
       // r |a_i x u| (see THE NODE TEST AND ITS MARGIN).
-      const double* a = x.a[i];
-      const double c0 = a[1] * k.u[2] - a[2] * k.u[1],
-                   c1 = a[2] * k.u[0] - a[0] * k.u[2],
-                   c2 = a[0] * k.u[1] - a[1] * k.u[0];
-      if (gt(excess, k.r * sqrtNonNegative(c0 * c0 + c1 * c1 + c2 * c2)))
-        return false;
+      if (gt(excess, k.r * crossLength(x.a[i], k.u))) return false;
     }
   }
   // (C): the axis line, squared on both sides (both non-negative; the
@@ -416,11 +420,7 @@ lowerBound(const Box& x, const Local& k) {
     } else {
       const double* a = x.a[i];
       const double ad = a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
-      const double c0 = a[1] * k.u[2] - a[2] * k.u[1],
-                   c1 = a[2] * k.u[0] - a[0] * k.u[2],
-                   c2 = a[0] * k.u[1] - a[1] * k.u[0];
-      gi = std::fabs(ad) - (x.e[i] + k.h * ua[i] +
-                            k.r * sqrtNonNegative(c0 * c0 + c1 * c1 + c2 * c2));
+      gi = std::fabs(ad) - (x.e[i] + k.h * ua[i] + k.r * crossLength(a, k.u));
     }
     if (gt(gi, g)) g = gi;
   }
