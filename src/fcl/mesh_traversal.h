@@ -424,13 +424,21 @@ lowerBound(const Box& x, const Local& k) {
     }
     if (gt(gi, g)) g = gi;
   }
-  // (C)
+  // (C), with its two square roots only when it can beat the others: |e|
+  // >= max e_i, so |q| <= g + r + max e_i means gc <= g. (Leaving a gap out
+  // only weakens the bound, never invalidates it, so the rounding of this
+  // pre-test does not matter.)
   const double q[3] = {d[0] - ud * k.u[0], d[1] - ud * k.u[1],
                        d[2] - ud * k.u[2]};
-  const double gc =
-      sqrtNonNegative(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) - k.r -
-      sqrtNonNegative(x.e[0] * x.e[0] + x.e[1] * x.e[1] + x.e[2] * x.e[2]);
-  if (gt(gc, g)) g = gc;
+  const double q2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+  const double e01 = gt(x.e[1], x.e[0]) ? x.e[1] : x.e[0];
+  const double reach = g + k.r + (gt(x.e[2], e01) ? x.e[2] : e01);
+  if (!(std::islessequal(0.0, reach) && std::islessequal(q2, reach * reach))) {
+    const double gc =
+        sqrtNonNegative(q2) - k.r -
+        sqrtNonNegative(x.e[0] * x.e[0] + x.e[1] * x.e[1] + x.e[2] * x.e[2]);
+    if (gt(gc, g)) g = gc;
+  }
   return g - m;
 }
 
