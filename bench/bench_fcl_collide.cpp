@@ -33,7 +33,7 @@
 #include <string>
 #include <vector>
 
-#include "obj_mesh.h"
+#include "fcl_obj_model.h"
 #include "tricyl/fcl_solver.h"
 #include "walk.h"
 
@@ -94,30 +94,12 @@ Tf frameWithAxis(const V3& z, const V3& c) {
 MeshData load(const std::string& file, std::uint64_t seed,
               bool grazing = false) {
   MeshData d;
-  tricyl::obj::Mesh f;
-  try {
-    f = tricyl::obj::read(std::string(TRICYL_MESH_DIR) + "/" + file);
-  } catch (const std::exception&) {
-    return d;
-  }
-  std::vector<V3> v;
-  std::vector<fcl::Triangle> t;
-  for (std::size_t i = 0; i < f.numVertices(); ++i)
-    v.emplace_back(f.vertices[3 * i], f.vertices[3 * i + 1],
-                   f.vertices[3 * i + 2]);
-  for (std::size_t k = 0; k < f.numTriangles(); ++k)
-    t.emplace_back(f.indices[3 * k], f.indices[3 * k + 1],
-                   f.indices[3 * k + 2]);
-  d.model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
-  d.model->beginModel(int(t.size()), int(v.size()));
-  d.model->addSubModel(v, t);
-  d.model->endModel();
-  V3 lo = v[0], hi = v[0];
-  for (const V3& p : v) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const double diag = (hi - lo).norm();
+  tricyl::bench::FclObjModel fm;
+  if (!tricyl::bench::loadFclObj(file, &fm)) return d;
+  d.model = fm.model;
+  const std::vector<V3>& v = fm.v;
+  const std::vector<fcl::Triangle>& t = fm.t;
+  const double diag = fm.diag;
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
   std::normal_distribution<double> g;

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "family_cases.h"
 #include "scalar_floor.h"
 #include "scenes.h"
 #include "tricyl/triangle_cylinder.h"
@@ -32,17 +33,10 @@ using tricyl::bench::FclCases;
 using tricyl::scenes::Family;
 using tricyl::scenes::TriCase;
 
-constexpr int kCases = 4096;  // a power of two (Walk)
-
-static_assert(Walk::valid(kCases));
+constexpr int kCases = tricyl::bench::kFamilyCases;
 
 const std::vector<TriCase>& cases(Family f) {
-  static std::vector<TriCase> store[6];
-  auto& v = store[int(f)];
-  if (v.empty())
-    for (int i = 0; i < kCases; ++i)
-      v.push_back(tricyl::scenes::generate(f, 7, std::uint64_t(i)));
-  return v;
+  return tricyl::bench::familyCases(f);
 }
 
 template <class S>

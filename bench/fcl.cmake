@@ -10,3 +10,15 @@ if(TRICYL_HAVE_FCL AND TARGET tricyl_fcl)
   tricyl_set_warnings(bench_fcl_collide)
   tricyl_set_fp_flags(bench_fcl_collide)
 endif()
+
+# bench_fcl_distance: mesh/cylinder distance (tricyl::distance, fcl::distance
+# with tricyl::Solver, stock fcl::distance) and the margin collide, paired.
+if(TRICYL_HAVE_FCL AND TARGET tricyl_fcl)
+  add_executable(bench_fcl_distance ${CMAKE_CURRENT_LIST_DIR}/bench_fcl_distance.cpp)
+  target_link_libraries(bench_fcl_distance PRIVATE tricyl::fcl benchmark::benchmark
+                                                   tricyl_obj_mesh)
+  target_compile_definitions(bench_fcl_distance PRIVATE
+    TRICYL_MESH_DIR="${PROJECT_SOURCE_DIR}/../shared/data/meshes")
+  tricyl_set_warnings(bench_fcl_distance)
+  tricyl_set_fp_flags(bench_fcl_distance)
+endif()

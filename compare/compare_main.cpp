@@ -16,6 +16,9 @@
 #include <vector>
 
 #include "harness.h"
+#if defined(TRICYL_COMPARE_HAVE_DISTANCE)
+#include "distance_families.h"
+#endif
 #include "known_cases.h"
 #include "mesh_scenes.h"
 #include "report.h"
@@ -100,6 +103,14 @@ int main(int argc, char** argv) {
                  "run the methods on the cases of FILE ('case' lines of "
                  "hangs.txt, hex floats) instead of the families")
       ->check(CLI::ExistingFile);
+  long distance_cases = 1000, margin_cases = 100;
+  app.add_option("--distance-cases", distance_cases,
+                 "cases per distance family (0: none; needs the MPFR "
+                 "distance oracle)")
+      ->capture_default_str();
+  app.add_option("--margin-cases", margin_cases,
+                 "scenes per margin family (each with up to 11 margins)")
+      ->capture_default_str();
   app.add_flag("--no-plots", no_plots, "do not run gnuplot");
   app.add_flag("--quiet,-q", quiet, "no progress bar");
   CLI11_PARSE(app, argc, argv);
@@ -298,6 +309,30 @@ int main(int argc, char** argv) {
     RunResult result = runAll(sets, opt);
     const auto figures = writeReport(out, sets, result, info);
 
+    // The distance and margin families (distance_families.h): the triangle
+    // families selected, in this process (FCL's GJK distance has an
+    // iteration cap: no time limit needed).
+    std::string distance_summary;
+#if defined(TRICYL_COMPARE_HAVE_DISTANCE)
+    if (replay.empty() && (distance_cases > 0 || margin_cases > 0)) {
+      tricyl::distance_families::Options dopt;
+      dopt.out = out;
+      dopt.seed = seed;
+      dopt.cases = std::max(0L, distance_cases);
+      dopt.margin_cases = std::max(0L, margin_cases);
+      dopt.plots = !no_plots;
+      for (const auto& set : sets)
+        if (set.kind == "family")
+          if (auto f = tricyl::scenes::parseFamily(set.name))
+            dopt.families.push_back(*f);
+      if (!dopt.families.empty())
+        distance_summary = tricyl::distance_families::run(dopt);
+    }
+#else
+    (void)distance_cases;
+    (void)margin_cases;
+#endif
+
     // A short summary on stdout.
     std::printf(
         "tricyl-compare: %.1f s, %zu hangs; wrote %s/report.md, "
@@ -321,6 +356,7 @@ int main(int argc, char** argv) {
       }
       std::printf("\n");
     }
+    std::printf("%s", distance_summary.c_str());
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tricyl-compare: %s\n", e.what());

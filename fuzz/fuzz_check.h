@@ -91,6 +91,23 @@ Pose<S> reflectedPose(const Pose<S>& p) {
   return out;
 }
 
+/// The five other orders of a triangle's vertices.
+template <class S>
+void otherOrders(const Triangle<S>& t, Triangle<S> out[5]) {
+  out[0] = {t.a, t.c, t.b};
+  out[1] = {t.b, t.a, t.c};
+  out[2] = {t.b, t.c, t.a};
+  out[3] = {t.c, t.a, t.b};
+  out[4] = {t.c, t.b, t.a};
+}
+
+/// The triangle of the point reflection of the scene (with
+/// reflectedPose): every vertex negated, exactly.
+template <class S>
+Triangle<S> reflectedTriangle(const Triangle<S>& t) {
+  return {neg(t.a), neg(t.b), neg(t.c)};
+}
+
 /// The same world placement turned a quarter about the shape's axis: the
 /// columns of R become (c1, -c0, c2), so y becomes (y1, -y0, y2), exactly;
 /// with flip_axis also c2 -> -c2 (y2 -> -y2). Every shape here is

@@ -254,6 +254,19 @@ inline void printScalar(const char* name, double v) {
 }
 
 /// Prints a case bit-exactly (hex floats; float values widened exactly).
+/// Decodes the triangle layout in float (bit 3 of the flags byte: decoded
+/// from 4-byte patterns, so no out-of-range double -> float conversion is
+/// involved) or in double, and calls f with the case (the entry point of
+/// the triangle targets). An empty input is skipped.
+template <class F>
+void withTriangleCase(const std::uint8_t* data, std::size_t size, F&& f) {
+  if (size == 0) return;
+  if (data[0] & 8)
+    f(decode<float>(data, size));
+  else
+    f(decode<double>(data, size));
+}
+
 template <class S>
 void print(const Case<S>& c) {
   std::fprintf(stderr, "scalar = %s\n", sizeof(S) == 8 ? "double" : "float");

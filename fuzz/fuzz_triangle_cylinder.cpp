@@ -32,7 +32,6 @@ using tricyl::Stage;
 using tricyl::fuzz::Case;
 using tricyl::fuzz::check;
 using tricyl::fuzz::FpTraps;
-using tricyl::fuzz::neg;
 using tricyl::fuzz::widen;
 
 template <class S>
@@ -78,13 +77,12 @@ void run(const Case<S>& c) {
     } catch (const tricyl::InvalidInput&) {
       threw = true;
     }
-    const auto& t = c.tri;
-    const auto orders = tricyl::fuzz::otherVertexOrders(t);
+    tricyl::Triangle<S> orders[5];
+    tricyl::fuzz::otherOrders(c.tri, orders);
     for (int i = 0; i < 5; ++i)
       perm[i] = tricyl::tryIntersect(c.cyl, c.pose, orders[i]);
-    tricyl::Pose<S> p = c.pose;
-    p.t = neg(p.t);
-    reflected = tricyl::tryIntersect(c.cyl, p, {neg(t.a), neg(t.b), neg(t.c)});
+    reflected = tricyl::tryIntersect(c.cyl, tricyl::fuzz::reflectedPose(c.pose),
+                                     tricyl::fuzz::reflectedTriangle(c.tri));
   }
   check(!threw, "intersect threw on valid input", c);
   check(a != Answer::kInvalidInput, "kInvalidInput on valid input", c);
@@ -112,12 +110,6 @@ void run(const Case<S>& c) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data,
                                       std::size_t size) {
-  if (size == 0) return 0;
-  // Bit 3 of the flags byte selects float inputs (decoded from 4-byte
-  // patterns, so no out-of-range double -> float conversion is involved).
-  if (data[0] & 8)
-    run(tricyl::fuzz::decode<float>(data, size));
-  else
-    run(tricyl::fuzz::decode<double>(data, size));
+  tricyl::fuzz::withTriangleCase(data, size, [](const auto& c) { run(c); });
   return 0;
 }

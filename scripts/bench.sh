@@ -17,7 +17,8 @@ cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DTRICYL_BUILD_BENCH=ON >
 cmake --build build/release -j "$(nproc)"
 mkdir -p bench/results build/bench-json
 suites=()
-for b in bench_triangle_cylinder bench_queries bench_mesh_cylinder bench_fcl_collide bench_margin; do
+for b in bench_triangle_cylinder bench_queries bench_mesh_cylinder bench_fcl_collide \
+    bench_distance bench_margin; do
   exe=build/release/bench/$b
   [ -x "$exe" ] || continue
   echo "== $b" >&2

@@ -12,7 +12,7 @@
 #            with the amd64 one).
 set -euo pipefail
 PKGS=(build-essential cmake libgmp-dev libfcl-dev libccd-dev libeigen3-dev
-      libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev gnuplot-nox
+      libgtest-dev libbenchmark-dev libmpfr-dev libboost-dev libcli11-dev nlohmann-json3-dev gnuplot-nox
       clang-14 libclang-rt-14-dev libfuzzer-14-dev doxygen libtinyobjloader-dev
       # optional (examples/ompl_planner, its test, bench_planning): OMPL, and
       # the Boost libraries its CMake config links but does not pull in

@@ -434,7 +434,8 @@ TEST(CompareEndToEnd, SmallRunWritesParsableReports) {
   const std::string dir = tmpl;
   const std::string cmd = std::string("'") + TRICYL_COMPARE_EXE + "' --out '" +
                           dir + "' --cases 150 --mesh-cases 30 " +
-                          "--sweep-cases 8 --threads 2 --quiet > '" + dir +
+                          "--sweep-cases 8 --threads 2 --distance-cases 40 " +
+                          "--margin-cases 4 --quiet > '" + dir +
                           "/stdout.txt' 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir + "/stdout.txt");
 
@@ -531,6 +532,43 @@ TEST(CompareEndToEnd, SmallRunWritesParsableReports) {
     EXPECT_EQ(stat((dir + "/error_vs_time.png").c_str(), &st), 0);
     EXPECT_EQ(stat((dir + "/stability_delta.png").c_str(), &st), 0);
   }
+#if defined(TRICYL_COMPARE_HAVE_DISTANCE)
+  // The distance families: one row per family x method; tricyl's distance
+  // is 0 exactly when the exact Boolean says the sets meet, so it never
+  // disagrees with it in sign, and it never misjudges a margin.
+  {
+    std::istringstream dcsv(slurp(dir + "/distance.csv"));
+    std::string line;
+    std::getline(dcsv, line);  // header
+    std::size_t drows = 0;
+    while (std::getline(dcsv, line)) {
+      ++drows;
+      std::vector<std::string> f;
+      std::stringstream ls(line);
+      for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+      ASSERT_GE(f.size(), 5u) << line;
+      EXPECT_TRUE(fams.count(f[0])) << line;
+      if (f[1] == "tricyl") {
+        EXPECT_EQ(f[4], "0") << line;  // sign disagreements
+      }
+    }
+    EXPECT_EQ(drows, fams.size() * 4);
+    std::istringstream mcsv(slurp(dir + "/margin.csv"));
+    std::getline(mcsv, line);
+    std::size_t mrows = 0;
+    while (std::getline(mcsv, line)) {
+      ++mrows;
+      std::vector<std::string> f;
+      std::stringstream ls(line);
+      for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+      ASSERT_GE(f.size(), 4u) << line;
+      EXPECT_EQ(f[3], "0") << line;  // tricyl's wrong margin answers
+    }
+    EXPECT_EQ(mrows, fams.size());
+    EXPECT_NE(slurp(dir + "/distance_error_vs_time.gp").find("plot"),
+              std::string::npos);
+  }
+#endif
   std::system(("rm -rf '" + dir + "'").c_str());
 }
 

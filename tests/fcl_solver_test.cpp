@@ -587,7 +587,7 @@ TEST(FclSolverOtherPairs, IdenticalToStockSolver) {
 
 // -------------------------------------------------------------- distance ---
 
-TEST(FclSolverDistance, InheritedDistanceWorks) {
+TEST(FclSolverDistance, InheritedAndCylinderDistanceWork) {
   // libccd's ccdVec3PointTriDist2 (inside GJKDistance, stock and ours alike)
   // raises a trapped FP exception on these scenes: not tricyl code.
   test::NoFpTraps no_traps;
@@ -606,10 +606,18 @@ TEST(FclSolverDistance, InheritedDistanceWorks) {
       fcl::DistanceResultd stock, ours;
       const double d_stock = fcl::distance(&o_mesh, &o, req, stock);
       const double d_ours = fcl::distance(&o_mesh, &o, &solver, req, ours);
-      // fcl::distance(4 args) sets distance_tolerance from the request;
-      // the defaults agree (1e-6), so the inherited code gives the same.
-      EXPECT_EQ(d_stock, d_ours) << "z " << z;
-      EXPECT_EQ(stock.min_distance, ours.min_distance);
+      // Box: fcl::distance(4 args) sets distance_tolerance from the
+      // request; the defaults agree (1e-6), so the inherited code gives the
+      // same. Cylinder: tricyl's certified distance (tests/
+      // fcl_distance_test.cpp), libccd's within its tolerance of it.
+      if (g == box) {
+        EXPECT_EQ(d_stock, d_ours) << "z " << z;
+        EXPECT_EQ(stock.min_distance, ours.min_distance);
+      } else if (d_stock >= 0) {
+        EXPECT_NEAR(d_stock, d_ours, 1e-5) << "z " << z;
+      } else {  // in collision: libccd -1, tricyl minus the contact depth
+        EXPECT_LT(d_ours, 0) << "z " << z;
+      }
       if (z == 1.0) {
         EXPECT_GT(d_ours, 0.3);
       }

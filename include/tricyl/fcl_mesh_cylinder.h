@@ -69,6 +69,8 @@
 #include <fcl/narrowphase/collision_object.h>
 #include <fcl/narrowphase/collision_request.h>
 #include <fcl/narrowphase/collision_result.h>
+#include <fcl/narrowphase/distance_request.h>
+#include <fcl/narrowphase/distance_result.h>
 
 #include <cstddef>
 
@@ -94,5 +96,54 @@ bool collideMeshCylinder(const fcl::CollisionGeometry<double>* g1,
                          fcl::CollisionResult<double>& result,
                          std::size_t* num_contacts,
                          TraversalStats* stats = nullptr);
+
+/// The same traversal for the margin collide (fcl_solver.h, MARGIN
+/// COLLIDE): a triangle counts iff tricyl::tryWithinDistance(cylinder, pose,
+/// triangle, margin) is not kDisjoint (the closed margin-neighbourhood of the
+/// cylinder meets it: exact), the node test is run for that neighbourhood
+/// (margin added to every support: certified, see src/fcl/mesh_traversal.h),
+/// contacts as above, except that a triangle within the margin that does not
+/// touch the cylinder gets, with request.enable_contact, the midpoint of the
+/// nearest points, the unit normal from the triangle's nearest point toward
+/// the cylinder's, and penetration_depth = -distance (in [-margin, 0)).
+/// margin = 0 is collideMeshCylinder. Also returns false (touching nothing)
+/// for a margin that is negative, NaN or infinite.
+bool collideMeshCylinderWithin(const fcl::CollisionGeometry<double>* g1,
+                               const fcl::Transform3<double>& tf1,
+                               const fcl::CollisionGeometry<double>* g2,
+                               const fcl::Transform3<double>& tf2,
+                               const fcl::CollisionRequest<double>& request,
+                               fcl::CollisionResult<double>& result,
+                               double margin, std::size_t* num_contacts,
+                               TraversalStats* stats = nullptr);
+
+/// tricyl's own distance traversal of a BVHModel/Cylinder pair (either
+/// order), what tricyl::distance (fcl_solver.h) runs for it in double.
+///
+/// Contract: result.min_distance becomes the smallest, over the triangles,
+/// of what Solver::shapeTriangleDistance gives for the world triangle FCL
+/// would hand it (tf_mesh * v, or v for AABB/KDOP meshes whose transform FCL
+/// takes for the identity, as in collideMeshCylinder), if smaller than the
+/// value already in `result` (DistanceResult::update): tricyl::distance's
+/// certified distance for a disjoint triangle, and for a colliding one minus
+/// estimateContact's depth, where the walk stops (FCL stops at
+/// min_distance <= 0 too). Without rel_err/abs_err in the request the value
+/// is the brute-force minimum over all the triangles (src/fcl/
+/// mesh_distance.cpp, PRUNING), not an approximation; with them, within
+/// those tolerances as in FCL. result.o1 is the mesh, b1 the triangle,
+/// nearest_points[0] on the triangle and [1] on the cylinder, world frame
+/// (FCL's convention in either argument order). Signed distance is the
+/// caller's (tricyl::distance): this never reads enable_signed_distance.
+/// Returns false, touching nothing, for what collideMeshCylinder does not
+/// handle (its NOT HANDLED list, except the collide-only request fields).
+/// stats: nodes_tested = lower bounds computed, nodes_skipped = nodes
+/// pruned, leaves = triangles measured, hits = improvements of the minimum.
+bool distanceMeshCylinder(const fcl::CollisionGeometry<double>* g1,
+                          const fcl::Transform3<double>& tf1,
+                          const fcl::CollisionGeometry<double>* g2,
+                          const fcl::Transform3<double>& tf2,
+                          const fcl::DistanceRequest<double>& request,
+                          fcl::DistanceResult<double>& result,
+                          TraversalStats* stats = nullptr);
 
 }  // namespace tricyl

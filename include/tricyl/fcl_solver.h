@@ -11,6 +11,10 @@
 /// - `fcl::DefaultCollisionFunction<S>` becomes
 ///   `tricyl::DefaultCollisionFunction<S>`;
 /// - `fcl::DefaultCollisionData<S>` becomes `tricyl::DefaultCollisionData<S>`;
+/// - `fcl::distance(o1, o2, request, result)` becomes
+///   `tricyl::distance(o1, o2, request, result)`, and
+///   `fcl::DefaultDistanceFunction<S>` / `DefaultDistanceData<S>` become
+///   `tricyl::DefaultDistanceFunction<S>` / `tricyl::DefaultDistanceData<S>`;
 /// - `fcl::collide(o1, o2, &solver, ...)` takes a `tricyl::Solver<S> solver`.
 ///
 /// ## What changes (and nothing else does)
@@ -40,10 +44,48 @@
 ///   Cylinder pair itself for `double` (fcl_mesh_cylinder.h): same contacts,
 ///   cheaper traversal; requests it does not handle, and `float` models, run
 ///   FCL's traversal with Solver.
+/// - Distance (DISTANCE below): Cylinder vs a BVHModel triangle (every BV
+///   type) and TriangleP vs Cylinder, either order: tricyl::distance's
+///   certified distance, or minus the contact depth when they meet.
 /// - Every other pair (Box, Capsule, Cone, Convex, ... vs meshes and shapes,
-///   Sphere vs meshes, and distance queries) runs GJKSolver_libccd<S>'s own
-///   code, inherited unchanged; through tricyl::collide, the solver the
-///   request names (see The request).
+///   Sphere vs meshes, and their distance queries) runs GJKSolver_libccd<S>'s
+///   own code, inherited unchanged; through tricyl::collide and
+///   tricyl::distance, the solver the request names (see The request).
+///
+/// ## DISTANCE (docs/fcl_solver.md, Distance and margins through FCL)
+/// - shapeTriangleDistance (both of FCL's overloads, the same world
+///   triangles as the Boolean): disjoint -> tricyl::distance's distance and
+///   nearest points (world frame), returns true; meeting (the exact
+///   Boolean; invalid input counts as meeting) -> minus estimateContact's
+///   depth (< 0), both points at its contact point, returns false (libccd's
+///   convention). FCL then stores nearest_points[0] on the mesh and [1] on
+///   the cylinder in either argument order, world frame.
+/// - FCL 0.7 registers mesh/cylinder distance for RSS, kIOS and OBBRSS only;
+///   Solver's own distance table adds AABB, OBB and KDOP16/18/24 (double:
+///   tricyl's own traversal; float: every triangle) and TriangleP/Cylinder
+///   (both orders).
+/// - enable_signed_distance: FCL's own signed step (collide with contacts,
+///   minus the deepest contact's depth) runs with this solver's contacts.
+/// - tricyl::distance(o1, o2, request, result): fcl::distance's
+///   replacement; a mesh/cylinder pair in double is walked by tricyl's own
+///   traversal (fcl_mesh_cylinder.h, distanceMeshCylinder): certified lower
+///   bounds per node and per triangle, best-first, the exact brute-force
+///   minimum of the per-triangle distances.
+///
+/// ## MARGIN COLLIDE (docs/fcl_solver.md)
+/// tricyl::collide(o1, o2, request, result, CollideOptions<S>{margin}):
+/// FCL 0.7's CollisionRequest has no margin field. A triangle collides when
+/// the closed margin-neighbourhood of the cylinder (Minkowski sum with a
+/// ball of radius margin) meets it: tricyl::withinDistance, exact. Mesh
+/// (every BV type, either order) and TriangleP against a cylinder; the mesh
+/// traversal prunes with the node test run for the neighbourhood
+/// (certified). Contacts as tricyl::collide's; with enable_contact, a
+/// triangle within the margin that does not meet the cylinder gets the
+/// midpoint of the nearest points, the unit normal from o1 toward o2 and
+/// penetration_depth = -distance. margin = 0 is tricyl::collide; a
+/// negative, NaN or infinite margin throws InvalidInput. Every other pair:
+/// tricyl::collide, then fcl::distance with Solver (libccd's GJK, not
+/// exact) <= margin.
 ///
 /// ## The request (tricyl::collide)
 /// - The pairs tricyl answers itself (cylinder vs mesh or TriangleP in
@@ -114,6 +156,7 @@
 #include <fcl/narrowphase/detail/gjk_solver_libccd.h>
 #include <fcl/narrowphase/distance.h>
 
+#include <cmath>
 #include <cstddef>
 #include <type_traits>
 #include <vector>
@@ -143,7 +186,10 @@ class Solver : public fcl::detail::GJKSolver_libccd<S> {
   /// Cylinder pairs in this solver type's collision table (once).
   Solver();
 
+  using Base::shapeDistance;
   using Base::shapeIntersect;
+  using Base::shapeSignedDistance;
+  using Base::shapeTriangleDistance;
   using Base::shapeTriangleIntersect;
 
   /// Cylinder `s` at `tf` vs the world-frame triangle (P1, P2, P3): the
@@ -189,6 +235,61 @@ class Solver : public fcl::detail::GJKSolver_libccd<S> {
       const fcl::Cylinder<S>& s1, const fcl::Transform3<S>& tf1,
       const fcl::Sphere<S>& s2, const fcl::Transform3<S>& tf2,
       std::vector<fcl::ContactPoint<S>>* contacts = nullptr) const;
+
+  /// Cylinder `s` at `tf` vs the world-frame triangle (P1, P2, P3): the form
+  /// FCL's AABB (and generic) mesh distance traversal calls (DISTANCE).
+  /// [out] dist: tricyl::distance's certified distance when disjoint (then
+  /// returns true); minus tricyl::estimateContact's depth (< 0) when they
+  /// meet (then returns false, libccd's convention). p1: nearest point on
+  /// the cylinder, p2: on the triangle, world frame (both the contact point
+  /// when they meet).
+  bool shapeTriangleDistance(const fcl::Cylinder<S>& s,
+                             const fcl::Transform3<S>& tf,
+                             const fcl::Vector3<S>& P1,
+                             const fcl::Vector3<S>& P2,
+                             const fcl::Vector3<S>& P3, S* dist = nullptr,
+                             fcl::Vector3<S>* p1 = nullptr,
+                             fcl::Vector3<S>* p2 = nullptr) const;
+
+  /// The same for a triangle in the mesh frame `tf2` (FCL's RSS, kIOS and
+  /// OBBRSS distance traversals): moved to the world frame as tf2 * P, the
+  /// points are world-frame.
+  bool shapeTriangleDistance(const fcl::Cylinder<S>& s,
+                             const fcl::Transform3<S>& tf1,
+                             const fcl::Vector3<S>& P1,
+                             const fcl::Vector3<S>& P2,
+                             const fcl::Vector3<S>& P3,
+                             const fcl::Transform3<S>& tf2, S* dist = nullptr,
+                             fcl::Vector3<S>* p1 = nullptr,
+                             fcl::Vector3<S>* p2 = nullptr) const;
+
+  /// TriangleP vs Cylinder distance (and the reverse, below), registered in
+  /// this solver's distance table: as shapeTriangleDistance, p1 on the first
+  /// shape, p2 on the second, world frame.
+  bool shapeDistance(const fcl::TriangleP<S>& s1, const fcl::Transform3<S>& tf1,
+                     const fcl::Cylinder<S>& s2, const fcl::Transform3<S>& tf2,
+                     S* dist = nullptr, fcl::Vector3<S>* p1 = nullptr,
+                     fcl::Vector3<S>* p2 = nullptr) const;
+  /// Cylinder vs TriangleP distance.
+  bool shapeDistance(const fcl::Cylinder<S>& s1, const fcl::Transform3<S>& tf1,
+                     const fcl::TriangleP<S>& s2, const fcl::Transform3<S>& tf2,
+                     S* dist = nullptr, fcl::Vector3<S>* p1 = nullptr,
+                     fcl::Vector3<S>* p2 = nullptr) const;
+  /// Signed forms (request.enable_signed_distance): the same values (minus
+  /// the contact depth when they meet).
+  bool shapeSignedDistance(const fcl::TriangleP<S>& s1,
+                           const fcl::Transform3<S>& tf1,
+                           const fcl::Cylinder<S>& s2,
+                           const fcl::Transform3<S>& tf2, S* dist = nullptr,
+                           fcl::Vector3<S>* p1 = nullptr,
+                           fcl::Vector3<S>* p2 = nullptr) const;
+  /// Cylinder vs TriangleP, signed.
+  bool shapeSignedDistance(const fcl::Cylinder<S>& s1,
+                           const fcl::Transform3<S>& tf1,
+                           const fcl::TriangleP<S>& s2,
+                           const fcl::Transform3<S>& tf2, S* dist = nullptr,
+                           fcl::Vector3<S>* p1 = nullptr,
+                           fcl::Vector3<S>* p2 = nullptr) const;
 
   /// The same pairs in the pointer form (deprecated in FCL, kept so that no
   /// route reaches libccd for them). Normal from the first shape to the
@@ -277,6 +378,110 @@ std::size_t collide(const fcl::CollisionObject<S>* o1,
   return fcl::collide(o1, o2, &solver, request, result);
 }
 
+namespace detail {
+
+/// True when tricyl answers a distance query itself (DISTANCE): a cylinder
+/// against a BVHModel or a TriangleP, either order.
+template <class S>
+bool answersDistancePair(const fcl::CollisionGeometry<S>* g1,
+                         const fcl::CollisionGeometry<S>* g2) {
+  const auto meshOrTriangle = [](const fcl::CollisionGeometry<S>* g) {
+    return g->getObjectType() == fcl::OT_BVH ||
+           g->getNodeType() == fcl::GEOM_TRIANGLE;
+  };
+  const fcl::NODE_TYPE t1 = g1->getNodeType(), t2 = g2->getNodeType();
+  return (t1 == fcl::GEOM_CYLINDER && meshOrTriangle(g2)) ||
+         (t2 == fcl::GEOM_CYLINDER && meshOrTriangle(g1));
+}
+
+/// The rest of tricyl::distance (below), compiled once per S in
+/// src/fcl/fcl_solver*.cpp.
+template <class S>
+S distanceImpl(const fcl::CollisionGeometry<S>* g1,
+               const fcl::Transform3<S>& tf1,
+               const fcl::CollisionGeometry<S>* g2,
+               const fcl::Transform3<S>& tf2,
+               const fcl::DistanceRequest<S>& request,
+               fcl::DistanceResult<S>& result);
+
+/// The margin collide (MARGIN COLLIDE), compiled once per S.
+template <class S>
+std::size_t collideWithinImpl(const fcl::CollisionGeometry<S>* g1,
+                              const fcl::Transform3<S>& tf1,
+                              const fcl::CollisionGeometry<S>* g2,
+                              const fcl::Transform3<S>& tf2,
+                              const fcl::CollisionRequest<S>& request,
+                              fcl::CollisionResult<S>& result, S margin);
+
+}  // namespace detail
+
+/// fcl::distance(g1, tf1, g2, tf2, request, result) with tricyl's distance
+/// (DISTANCE in this file's description): a cylinder against a BVHModel
+/// (double: tricyl's own traversal, fcl_mesh_cylinder.h, distanceMeshCylinder;
+/// float, or models it does not handle: FCL's traversal with Solver<S>) or a
+/// TriangleP, either order, is measured by tricyl::distance per triangle;
+/// every other pair is run as fcl::distance runs it for
+/// request.gjk_solver_type. Returns result.min_distance (after the signed
+/// distance step, unlike fcl::distance, which returns the value before it).
+template <class S>
+S distance(const fcl::CollisionGeometry<S>* g1, const fcl::Transform3<S>& tf1,
+           const fcl::CollisionGeometry<S>* g2, const fcl::Transform3<S>& tf2,
+           const fcl::DistanceRequest<S>& request,
+           fcl::DistanceResult<S>& result) {
+  return detail::distanceImpl(g1, tf1, g2, tf2, request, result);
+}
+
+/// fcl::distance(o1, o2, request, result) with tricyl's distance: the
+/// geometry form on the objects' geometries and transforms.
+template <class S>
+S distance(const fcl::CollisionObject<S>* o1, const fcl::CollisionObject<S>* o2,
+           const fcl::DistanceRequest<S>& request,
+           fcl::DistanceResult<S>& result) {
+  return detail::distanceImpl(o1->collisionGeometry().get(), o1->getTransform(),
+                              o2->collisionGeometry().get(), o2->getTransform(),
+                              request, result);
+}
+
+/// What tricyl::collide takes beyond FCL 0.7's CollisionRequest (which has
+/// no margin field): see MARGIN COLLIDE in this file's description.
+template <class S>
+struct CollideOptions {
+  /// Safety margin, >= 0 and finite: a pair collides when the closed
+  /// margin-neighbourhood of one meets the other (distance <= margin).
+  /// 0 is the plain collide.
+  S margin = S(0);
+};
+
+/// tricyl::collide with options (MARGIN COLLIDE). Throws tricyl::InvalidInput
+/// for a negative, NaN or infinite margin. Returns the number of contacts.
+template <class S>
+std::size_t collide(const fcl::CollisionGeometry<S>* g1,
+                    const fcl::Transform3<S>& tf1,
+                    const fcl::CollisionGeometry<S>* g2,
+                    const fcl::Transform3<S>& tf2,
+                    const fcl::CollisionRequest<S>& request,
+                    fcl::CollisionResult<S>& result,
+                    const CollideOptions<S>& options) {
+  if (!(std::isfinite(options.margin) && options.margin >= 0))
+    throw InvalidInput("tricyl::collide: the margin must be finite and >= 0");
+  if (options.margin == 0)
+    return tricyl::collide(g1, tf1, g2, tf2, request, result);
+  return detail::collideWithinImpl(g1, tf1, g2, tf2, request, result,
+                                   options.margin);
+}
+
+/// tricyl::collide with options, on collision objects.
+template <class S>
+std::size_t collide(const fcl::CollisionObject<S>* o1,
+                    const fcl::CollisionObject<S>* o2,
+                    const fcl::CollisionRequest<S>& request,
+                    fcl::CollisionResult<S>& result,
+                    const CollideOptions<S>& options) {
+  return tricyl::collide(o1->collisionGeometry().get(), o1->getTransform(),
+                         o2->collisionGeometry().get(), o2->getTransform(),
+                         request, result, options);
+}
+
 /// The broadphase callback data: FCL's own struct (request, result, done).
 template <class S>
 using DefaultCollisionData = fcl::DefaultCollisionData<S>;
@@ -297,6 +502,30 @@ bool DefaultCollisionFunction(fcl::CollisionObject<S>* o1,
     collision_data->done = true;
   }
   return collision_data->done;
+}
+
+/// The broadphase distance callback data: FCL's own struct (request,
+/// result, done).
+template <class S>
+using DefaultDistanceData = fcl::DefaultDistanceData<S>;
+
+/// fcl::DefaultDistanceFunction with tricyl::distance: pass it with a
+/// DefaultDistanceData<S>* to BroadPhaseCollisionManager::distance.
+template <class S>
+bool DefaultDistanceFunction(fcl::CollisionObject<S>* o1,
+                             fcl::CollisionObject<S>* o2, void* data, S& dist) {
+  auto* distance_data = static_cast<DefaultDistanceData<S>*>(data);
+  const fcl::DistanceRequest<S>& request = distance_data->request;
+  fcl::DistanceResult<S>& result = distance_data->result;
+  if (distance_data->done) {
+    dist = result.min_distance;
+    return true;
+  }
+  tricyl::distance(o1, o2, request, result);
+  dist = result.min_distance;
+  // Same stopping rule as FCL's: in collision or touching.
+  if (dist <= 0) return true;
+  return distance_data->done;
 }
 
 }  // namespace tricyl

@@ -9,6 +9,7 @@ add_library(tricyl_fcl
   ${CMAKE_CURRENT_LIST_DIR}/fcl_solver_float.cpp
   ${CMAKE_CURRENT_LIST_DIR}/fcl_stock_float.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh_collide.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/mesh_distance.cpp
 )
 add_library(tricyl::fcl ALIAS tricyl_fcl)
 target_compile_features(tricyl_fcl PUBLIC cxx_std_17)

@@ -22,6 +22,20 @@
                            fcl::CollisionResult<S>&);                         \
   KIND bool DefaultCollisionFunction(fcl::CollisionObject<S>*,                \
                                      fcl::CollisionObject<S>*, void*);        \
+  namespace detail {                                                          \
+  KIND S distanceImpl(const fcl::CollisionGeometry<S>*,                       \
+                      const fcl::Transform3<S>&,                              \
+                      const fcl::CollisionGeometry<S>*,                       \
+                      const fcl::Transform3<S>&,                              \
+                      const fcl::DistanceRequest<S>&,                         \
+                      fcl::DistanceResult<S>&);                               \
+  KIND std::size_t collideWithinImpl(const fcl::CollisionGeometry<S>*,        \
+                                     const fcl::Transform3<S>&,               \
+                                     const fcl::CollisionGeometry<S>*,        \
+                                     const fcl::Transform3<S>&,               \
+                                     const fcl::CollisionRequest<S>&,         \
+                                     fcl::CollisionResult<S>&, S);            \
+  }                                                                           \
   }                                                                           \
   namespace fcl {                                                             \
   KIND detail::CollisionFunctionMatrix<tricyl::Solver<S>>&                    \
@@ -54,16 +68,24 @@
 // instantiates only double, and declares those extern itself). Instantiated
 // once, in src/fcl/fcl_stock_float.cpp, so that no including file compiles
 // FCL's float libccd and GJKSolver_indep matrices again.
-#define TRICYL_FCL_FLOAT_STOCK_COLLIDE(KIND)                \
-  namespace fcl {                                           \
-  KIND std::size_t collide(const CollisionObject<float>*,   \
-                           const CollisionObject<float>*,   \
-                           const CollisionRequest<float>&,  \
-                           CollisionResult<float>&);        \
-  KIND std::size_t collide(const CollisionGeometry<float>*, \
-                           const Transform3<float>&,        \
-                           const CollisionGeometry<float>*, \
-                           const Transform3<float>&,        \
-                           const CollisionRequest<float>&,  \
-                           CollisionResult<float>&);        \
+#define TRICYL_FCL_FLOAT_STOCK_COLLIDE(KIND)                                   \
+  namespace fcl {                                                              \
+  KIND float distance(const CollisionObject<float>*,                           \
+                      const CollisionObject<float>*,                           \
+                      const DistanceRequest<float>&, DistanceResult<float>&);  \
+  KIND float distance(const CollisionGeometry<float>*,                         \
+                      const Transform3<float>&,                                \
+                      const CollisionGeometry<float>*,                         \
+                      const Transform3<float>&, const DistanceRequest<float>&, \
+                      DistanceResult<float>&);                                 \
+  KIND std::size_t collide(const CollisionObject<float>*,                      \
+                           const CollisionObject<float>*,                      \
+                           const CollisionRequest<float>&,                     \
+                           CollisionResult<float>&);                           \
+  KIND std::size_t collide(const CollisionGeometry<float>*,                    \
+                           const Transform3<float>&,                           \
+                           const CollisionGeometry<float>*,                    \
+                           const Transform3<float>&,                           \
+                           const CollisionRequest<float>&,                     \
+                           CollisionResult<float>&);                           \
   }

@@ -1,0 +1,248 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// tricyl's BVHModel/Cylinder distance traversal (fcl_mesh_cylinder.h,
+// distanceMeshCylinder): best-first over the model's own tree, each node
+// and each triangle pruned by a certified lower bound of its distance to the
+// cylinder (mesh_traversal.h, lowerBound and triangleLowerBound),
+// tricyl::tryDistance on the triangles that survive.
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/narrowphase/distance_request.h>
+#include <fcl/narrowphase/distance_result.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include "mesh_traversal.h"
+#include "tricyl/fcl_adapters.h"
+#include "tricyl/fcl_contact.h"
+#include "tricyl/fcl_mesh_cylinder.h"
+#include "tricyl/triangle_cylinder_distance.h"
+
+namespace tricyl {
+namespace {
+
+using namespace traversal;  // NOLINT: this file's own internal helpers
+
+// PRUNING. A node whose certified lower bound lb (lowerBoundLocal) exceeds
+// best (1 + 2^-40), best the smallest distance found so far, is skipped. A
+// triangle below it has true distance >= lb, and tricyl::distance returns it
+// within error_bound, a few ulps of the distance (<= 8 ulps, 2^-50
+// relative, docs/distance.md), so its computed distance is >= lb (1 -
+// 2^-49) > best: it could not have replaced best (DistanceResult::update
+// keeps the first of equal distances). The traversal therefore returns the
+// smallest computed distance over ALL the triangles, the brute-force
+// minimum, not an approximation of it. Distances in the subnormal range,
+// where error_bound is absolute and larger than 2^-40 of the distance
+// (triangle_cylinder_distance.h), are the exception: the node bound's own
+// absolute term (2^-500 and up) dwarfs them and nothing is pruned that near.
+// DistanceRequest::rel_err and abs_err, when set, loosen the test exactly as
+// FCL's traversal does (canStop: lb >= best - abs_err and lb (1 + rel_err) >=
+// best): the answer is then within those tolerances of the minimum.
+constexpr double kLeafRel = 0x1p-40;
+
+/// A node still to visit, or (leaf) a triangle still to measure, with a
+/// lower bound of its distance. NaN bounds order as -Inf (visited first,
+/// never pruned).
+enum Kind : unsigned char {
+  kInner,         // an inner node, its box bound
+  kLeafBoxBound,  // a leaf, its box bound only
+  kLeaf,          // a leaf, the larger of its box and triangle bounds
+};
+
+struct Entry {
+  double lb;
+  int node;
+  Kind kind;
+};
+
+/// The open entries, smallest bound first (best-first: a triangle is
+/// measured only if no open entry could hold a nearer one).
+class EntryQueue {
+ public:
+  EntryQueue() { items_.reserve(256); }
+  void push(double lb, int node, Kind kind) {
+    items_.push_back({std::isnan(lb) ? -kInf : lb, node, kind});
+    std::push_heap(items_.begin(), items_.end(), later);
+  }
+  bool empty() const { return items_.empty(); }
+  /// The smallest bound (the queue is not empty).
+  double topBound() const { return items_.front().lb; }
+  Entry pop() {
+    std::pop_heap(items_.begin(), items_.end(), later);
+    const Entry e = items_.back();
+    items_.pop_back();
+    return e;
+  }
+
+ private:
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
+  static bool later(const Entry& a, const Entry& b) { return a.lb > b.lb; }
+  std::vector<Entry> items_;
+};
+
+class Pruner {
+ public:
+  explicit Pruner(const fcl::DistanceRequest<double>& request)
+      : rel_err_(request.rel_err),
+        abs_err_(request.abs_err),
+        loose_(request.rel_err > 0 || request.abs_err > 0) {}
+  /// True when a node of lower bound lb cannot improve on best.
+  bool prune(double lb, double best) const {
+    if (gt(lb, best + best * kLeafRel)) return true;
+    return loose_ && std::isgreaterequal(lb, best - abs_err_) &&
+           std::isgreaterequal(lb * (1 + rel_err_), best);
+  }
+
+ private:
+  double rel_err_, abs_err_;
+  bool loose_;
+};
+
+template <class BV>
+bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
+              const fcl::CollisionGeometry<double>* cyl_geom_base,
+              const Tf& tf_cyl, const fcl::DistanceRequest<double>& request,
+              fcl::DistanceResult<double>& result, TraversalStats* stats) {
+  using Boxer = BoxOf<BV>;
+  const auto& model = static_cast<const fcl::BVHModel<BV>&>(*geom);
+  const auto& cyl_geom = static_cast<const fcl::Cylinderd&>(*cyl_geom_base);
+  Setup setup;
+  if (!prepare<BV, Boxer>(model, tf_mesh, cyl_geom, tf_cyl, 0.0, &setup))
+    return false;
+  const Local& k = setup.k;
+  const Cylinder<double> cyl{cyl_geom.radius, cyl_geom.lz};
+  const Pose<double> pose = toPose(tf_cyl);
+  const Pruner pruner(request);
+
+  const auto bound = [&](int n) {
+    Box box;
+    Boxer::get(model.getBV(n).bv, &box);
+    return lowerBoundLocal(lowerBound<Boxer::kAligned>(box, k), k);
+  };
+  const double t_cyl[3] = {pose.t.x, pose.t.y, pose.t.z};
+  // A leaf's triangle, in the world frame the Solver sees.
+  const auto triangleOf = [&](const fcl::BVNode<BV>& node, V3 p[3]) {
+    worldTriangle(model.vertices, model.tri_indices[primitiveId(node)], tf_mesh,
+                  setup.raw, p);
+  };
+  // A node's entry: an inner node with its box bound; a leaf with the
+  // larger of its box bound and its triangle's own cheap bound
+  // (mesh_traversal.h, triangleLowerBound).
+  std::size_t tested = 0, skipped = 0, leaves = 0, hits = 0;
+  double best = result.min_distance;
+  EntryQueue queue;
+  // A node's entry carries its box bound; a leaf's triangle gets its own
+  // cheap bound (mesh_traversal.h, triangleLowerBound) only when it comes
+  // to the top of the queue (most leaves never do), and goes back in with
+  // the larger bound if another entry is now first.
+  const auto push = [&](int n) {
+    ++tested;
+    const double lb = bound(n);
+    if (pruner.prune(lb, best)) {
+      ++skipped;
+      return;
+    }
+    queue.push(lb, n, isLeaf(model.getBV(n)) ? kLeafBoxBound : kInner);
+  };
+  push(0);
+  while (!queue.empty()) {
+    const Entry e = queue.pop();
+    // Every open entry is at least e.lb: once that cannot improve on best,
+    // nothing can.
+    if (pruner.prune(e.lb, best)) {
+      ++skipped;
+      break;
+    }
+    const fcl::BVNode<BV>& node = model.getBV(e.node);
+    if (e.kind == kLeafBoxBound) {
+      V3 p[3];
+      triangleOf(node, p);
+      const double x[3][3] = {{p[0][0], p[0][1], p[0][2]},
+                              {p[1][0], p[1][1], p[1][2]},
+                              {p[2][0], p[2][1], p[2][2]}};
+      const double lt = triangleLowerBound(x, pose.R, t_cyl, cyl.radius, k.h);
+      if (pruner.prune(lt, best)) {
+        ++skipped;
+        continue;
+      }
+      if (gt(lt, e.lb) && !queue.empty() && gt(lt, queue.topBound())) {
+        queue.push(lt, e.node, kLeaf);
+        continue;
+      }
+    }
+    if (e.kind == kInner) {
+      prefetchNode(model.getBV(leftChild(node)));
+      prefetchNode(model.getBV(rightChild(node)));
+      push(leftChild(node));
+      push(rightChild(node));
+      continue;
+    }
+    const int id = primitiveId(node);
+    V3 p[3];
+    triangleOf(node, p);
+    const Triangle<double> tri{toVec3(p[0]), toVec3(p[1]), toVec3(p[2])};
+    ++leaves;
+    DistanceResult<double> d;
+    if (tryDistance(cyl, pose, tri, &d) == Answer::kDisjoint) {
+      if (d.distance < best) {
+        ++hits;
+        best = d.distance;
+        result.update(d.distance, geom, cyl_geom_base, id,
+                      fcl::DistanceResult<double>::NONE,
+                      V3(d.point_on_triangle.x, d.point_on_triangle.y,
+                         d.point_on_triangle.z),
+                      V3(d.point_on_cylinder.x, d.point_on_cylinder.y,
+                         d.point_on_cylinder.z));
+      }
+      continue;
+    }
+    // In collision (or a non-finite world vertex, reported "in collision"
+    // as the Solver answers it): minus the contact depth, and both nearest
+    // points at the contact point, as Solver::shapeTriangleDistance gives
+    // them; the request is then satisfied (FCL stops at min_distance <= 0).
+    ContactEstimate<double> est;
+    estimateContact(cyl, pose, tri, &est);
+    ++hits;
+    const V3 pos(est.point.x, est.point.y, est.point.z);
+    result.update(-est.depth, geom, cyl_geom_base, id,
+                  fcl::DistanceResult<double>::NONE, pos, pos);
+    break;
+  }
+  if (stats != nullptr) {
+    stats->nodes_tested += tested;
+    stats->nodes_skipped += skipped;
+    stats->leaves += leaves;
+    stats->hits += hits;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool distanceMeshCylinder(const fcl::CollisionGeometry<double>* g1,
+                          const fcl::Transform3<double>& tf1,
+                          const fcl::CollisionGeometry<double>* g2,
+                          const fcl::Transform3<double>& tf2,
+                          const fcl::DistanceRequest<double>& request,
+                          fcl::DistanceResult<double>& result,
+                          TraversalStats* stats) {
+  if (g1 == nullptr || g2 == nullptr) return false;
+  // FCL runs the mesh as o1 whatever the argument order (fcl::distance
+  // swaps a shape/BVH pair): so does this.
+  if (g2->getObjectType() == fcl::OT_BVH &&
+      g1->getNodeType() == fcl::GEOM_CYLINDER)
+    return distanceMeshCylinder(g2, tf2, g1, tf1, request, result, stats);
+  if (g1->getObjectType() != fcl::OT_BVH ||
+      g2->getNodeType() != fcl::GEOM_CYLINDER)
+    return false;
+  if (request.isSatisfied(result)) return true;  // as FCL's distancers
+  return dispatchBv(g1->getNodeType(), [&](auto tag) {
+    using BV = typename decltype(tag)::type;
+    return traverse<BV>(g1, tf1, g2, tf2, request, result, stats);
+  });
+}
+
+}  // namespace tricyl

@@ -1,0 +1,712 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The pieces shared by tricyl's own BVHModel/Cylinder traversals
+// (fcl_mesh_cylinder.h): tricyl::collide's (mesh_collide.cpp, with or without
+// a margin) and tricyl::distance's (mesh_distance.cpp). A certified node test
+// and a certified lower bound of a node's distance to the cylinder, the box
+// of every FCL BV type, the validation and set-up common to both. Internal:
+// not installed, not part of the interface.
+#pragma once
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/math/bv/AABB.h>
+#include <fcl/math/bv/OBB.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/math/bv/RSS.h>
+#include <fcl/math/bv/kDOP.h>
+#include <fcl/math/bv/kIOS.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace tricyl {
+namespace traversal {
+
+using V3 = fcl::Vector3d;
+using Tf = fcl::Transform3d;
+
+// ---------------------------------------------------------------------------
+// THE NODE TEST AND ITS MARGIN
+//
+// A node is skipped when one of these separating tests holds for its box
+// (centre b, axes a_i, half extents e_i) and the cylinder moved into the mesh
+// frame (centre c, unit axis u, radius r, half length h), with d = b - c:
+//   (A) |u.d|   > h + sum_i e_i |u.a_i|                       (cylinder axis)
+//   (B) |a_i.d| > e_i + h |a_i.u| + r |a_i x u|               (box axis i)
+//   (C) |d - (u.d) u| > r + |e|                               (axis line)
+// In exact arithmetic with orthonormal rotations and boxes that contain
+// their triangles, each right-hand side is the sum of the two supports along
+// that direction (for (C): the cylinder lies within r of its axis line and
+// the box within |e| of b), so a skipped node holds no point of the
+// cylinder. What the computed test departs from that by, and the margin m
+// added to every right-hand side:
+// 1. Rounding in c, u (R_m^T (t_c - t_m), R_m^T R_c e_z), in the tests
+//    themselves, in FCL's box fit (centres, extents, unit axes), in the
+//    world vertices tf_m * v the leaf test sees, and in the box
+//    conversions below: each a few units in the last place (u = 2^-53) of
+//    the magnitudes involved, all bounded by
+//      L = |b|_1 + sum e + |c|_1 + |t_m|_1 + |t_c|_1 + r + h.
+//    2^-36 L is more than 10^5 times the largest of them.
+// 2. Rotations a hair off orthonormal, delta = max over R_m, R_c (and the
+//    root box's axes, see traverse) of sum |R^T R - I| (required <= 2^-20,
+//    else FCL's own traversal runs):
+//    the contract's cylinder {x : R_c^T (x - t_c) in C} is then
+//    {t_c + R_c^-T y : y in C}, and the mesh frame is R_m^-1 (x - t_m);
+//    R^-T and R^-1 differ from R and R^T by at most 2 delta (delta <= 2^-20)
+//    in norm, which moves every point of the sets compared by at most
+//    2 delta (|x - t_m| + r + h) <= 4 delta L; u is unit to within 2 delta.
+//    16 delta L covers both.
+// Every right-hand side is a 1-Lipschitz function of u and of the box axes
+// (times the lengths it multiplies), which is what lets errors of a few ulps
+// (item 1) or of 2 delta (item 2) in them move it by as little. The radial
+// term of (B) is written r |a_i x u| for that reason: for unit vectors it
+// equals r sqrt(1 - (a_i.u)^2), but that form is not Lipschitz in a_i.u
+// near 1, and an error epsilon there (a.u rounded to 1, or u a hair longer
+// than unit) became an error r sqrt(2 epsilon): a node holding a triangle
+// the tilted rim touches was skipped when a box axis lay within ~2^-26 of
+// the cylinder's axis (before 2026-11, on all eight BV types;
+// tests/fcl_mesh_collide_test.cpp, BoxAxisNearlyParallelToTheCylinderAxis).
+// |a_i x u| is computed as the square root of the sum of the squared
+// components of the cross product: the components' rounding is absolute
+// (a few ulps of |a_i| |u|), not amplified.
+// 3. Underflow, where "a few ulps" fails: a product or square below 2^-1022
+//    is off by up to 2^-1074 absolutely, whatever its size. In the squared
+//    comparisons ((C), and the sum of squares under (B)'s root) that is an
+//    error of at most 2^-536 in the lengths compared (sqrt(a^2 - eps) >=
+//    a - sqrt(eps)); elsewhere less. An absolute 2^-500 covers it; it is
+//    nothing next to any length a mesh has (tests: ExactTouchingIsFound at
+//    scales 2^-540 and 2^-560).
+// So m = (2^-36 + 16 delta) L + 2^-500, evaluated per node (the |b|_1 +
+// sum e part changes from node to node). NaN or Inf in a box makes m NaN or
+// Inf, and no test with a NaN or an infinite right-hand side skips: such nodes
+// are always visited (and their triangles reported "in collision", below).
+constexpr double kRelMargin = 0x1p-36;
+constexpr double kAbsMargin = 0x1p-500;
+constexpr double kMaxNonOrthogonality = 0x1p-20;
+
+/// The cylinder in the mesh frame and the per-call constants.
+struct Local {
+  double c[3];
+  double u[3];
+  double r;
+  double h;
+  double rel;  // 2^-36 + 16 delta
+  // rel * (|c|_1 + |t_m|_1 + |t_c|_1 + r + h) + 2^-500, plus the margin
+  // of a margin collide ((1 + rel) margin: see MARGIN COLLIDE below).
+  double global;
+  double delta;  // the departure from orthonormal (item 2), for lowerBound
+  // Axis-aligned boxes: the cylinder's support along the world axes of the
+  // mesh frame, h |u_i| + r |e_i x u|, and |u_i|.
+  double au[3];
+  double support[3];
+};
+
+/// A node's box. Axis-aligned boxes (AABB, KDOP) leave `a` unset.
+struct Box {
+  double b[3];
+  double a[3][3];  // a[i] = axis i
+  double e[3];
+};
+
+/// a > b without raising FE_INVALID on a NaN (a quiet comparison): false
+/// then, so a NaN never skips a node.
+inline bool gt(double a, double b) { return std::isgreater(a, b); }
+
+/// The correctly rounded square root of x >= 0 (or a quiet NaN, or +Inf:
+/// then NaN or +Inf, with no FP exception). Not std::sqrt: GCC treats the node
+/// test's rarely taken branches as cold and compiles std::sqrt there as a call
+/// into libm (errno handling) that also spills the live registers; in the
+/// bunny.obj scene of bench_fcl_collide those calls took about 4% of
+/// tricyl::collide's time.
+inline double sqrtNonNegative(double x) {
+#if defined(__SSE2__)
+  return _mm_cvtsd_f64(_mm_sqrt_sd(_mm_setzero_pd(), _mm_set_sd(x)));
+#else
+  return std::sqrt(x);
+#endif
+}
+
+/// |a x u|, as the square root of the sum of the squared components of the
+/// cross product (THE NODE TEST AND ITS MARGIN: the components' rounding is
+/// absolute, not amplified near a parallel pair).
+inline double crossLength(const double* a, const double* u) {
+  const double c0 = a[1] * u[2] - a[2] * u[1], c1 = a[2] * u[0] - a[0] * u[2],
+               c2 = a[0] * u[1] - a[1] * u[0];
+  return sqrtNonNegative(c0 * c0 + c1 * c1 + c2 * c2);
+}
+
+/// The terms every test of a node reads: d = b - c, the margin m of THE NODE
+/// TEST AND ITS MARGIN for this box, u.d, and |u.a_i| for the box axes.
+struct NodeTerms {
+  double d[3];
+  double m;
+  double ud;
+  double ua[3];
+};
+
+template <bool kAligned>
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((always_inline))
+#endif
+inline NodeTerms
+nodeTerms(const Box& x, const Local& k) {
+  NodeTerms n;
+  for (int i = 0; i < 3; ++i) n.d[i] = x.b[i] - k.c[i];
+  n.m = k.global + k.rel * (std::fabs(x.b[0]) + std::fabs(x.b[1]) +
+                            std::fabs(x.b[2]) + x.e[0] + x.e[1] + x.e[2]);
+  n.ud = k.u[0] * n.d[0] + k.u[1] * n.d[1] + k.u[2] * n.d[2];
+  if constexpr (kAligned) {
+    for (int i = 0; i < 3; ++i) n.ua[i] = k.au[i];
+  } else {
+    for (int i = 0; i < 3; ++i)
+      n.ua[i] = std::fabs(k.u[0] * x.a[i][0] + k.u[1] * x.a[i][1] +
+                          k.u[2] * x.a[i][2]);
+  }
+  return n;
+}
+
+template <bool kAligned>
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((always_inline))
+#endif
+inline bool
+overlaps(const Box& x, const Local& k) {
+  const NodeTerms n = nodeTerms<kAligned>(x, k);
+  const double* d = n.d;
+  const double m = n.m;
+  const double ud = n.ud;
+  const double* ua = n.ua;
+  // (A): the cylinder's axis.
+  if (gt(std::fabs(ud),
+         k.h + x.e[0] * ua[0] + x.e[1] * ua[1] + x.e[2] * ua[2] + m))
+    return false;
+  // (B): the box's axes. The radial part r |a_i x u| >= 0 is only computed
+  // when the rest does not already pass.
+  for (int i = 0; i < 3; ++i) {
+    if constexpr (kAligned) {
+      if (gt(std::fabs(d[i]), x.e[i] + k.support[i] + m)) return false;
+    } else {
+      const double ad = x.a[i][0] * d[0] + x.a[i][1] * d[1] + x.a[i][2] * d[2];
+      const double excess = std::fabs(ad) - (x.e[i] + k.h * ua[i] + m);
+      if (!gt(excess, 0)) continue;
+      // r |a_i x u| (see THE NODE TEST AND ITS MARGIN).
+      if (gt(excess, k.r * crossLength(x.a[i], k.u))) return false;
+    }
+  }
+  // (C): the axis line, squared on both sides (both non-negative; the
+  // relative rounding of the squares is covered by m as in 1.). |e| >=
+  // max e_i, so a node within r + max e_i + m passes without the root.
+  const double q[3] = {d[0] - ud * k.u[0], d[1] - ud * k.u[1],
+                       d[2] - ud * k.u[2]};
+  const double q2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+  // (max by quiet comparisons, not std::fmax, a libm call: a NaN extent
+  // makes m NaN, and the node is visited either way.)
+  const double e01 = gt(x.e[1], x.e[0]) ? x.e[1] : x.e[0];
+  const double near = k.r + (gt(x.e[2], e01) ? x.e[2] : e01) + m;
+  if (!gt(q2, near * near)) return true;
+  const double reach =
+      k.r +
+      sqrtNonNegative(x.e[0] * x.e[0] + x.e[1] * x.e[1] + x.e[2] * x.e[2]) + m;
+  return !gt(q2, reach * reach);
+}
+
+// Box conversions, one per BV type. Each gives a box containing the BV.
+inline void fromObb(const fcl::OBB<double>& o, Box* x) {
+  for (int i = 0; i < 3; ++i) {
+    x->b[i] = o.To[i];
+    x->e[i] = o.extent[i];
+    for (int j = 0; j < 3; ++j) x->a[i][j] = o.axis(j, i);
+  }
+}
+
+inline void fromMinMax(const double* lo, const double* hi, Box* x) {
+  for (int i = 0; i < 3; ++i) {
+    x->b[i] = 0.5 * (lo[i] + hi[i]);
+    x->e[i] = 0.5 * (hi[i] - lo[i]);
+  }
+}
+
+template <class BV>
+struct BoxOf;
+
+template <>
+struct BoxOf<fcl::AABB<double>> {
+  static constexpr bool kAligned = true;
+  static void get(const fcl::AABB<double>& v, Box* x) {
+    fromMinMax(v.min_.data(), v.max_.data(), x);
+  }
+};
+
+template <std::size_t N>
+struct BoxOf<fcl::KDOP<double, N>> {
+  static constexpr bool kAligned = true;
+  // The first three of the N/2 directions are the coordinate axes; the
+  // minima are dist(0..2), the maxima dist(N/2 + 0..2) (FCL's kDOP.h).
+  static void get(const fcl::KDOP<double, N>& v, Box* x) {
+    const double lo[3] = {v.dist(0), v.dist(1), v.dist(2)};
+    const double hi[3] = {v.dist(N / 2), v.dist(N / 2 + 1), v.dist(N / 2 + 2)};
+    fromMinMax(lo, hi, x);
+  }
+};
+
+template <>
+struct BoxOf<fcl::OBB<double>> {
+  static constexpr bool kAligned = false;
+  static void get(const fcl::OBB<double>& v, Box* x) { fromObb(v, x); }
+};
+
+template <>
+struct BoxOf<fcl::OBBRSS<double>> {
+  static constexpr bool kAligned = false;
+  static void get(const fcl::OBBRSS<double>& v, Box* x) { fromObb(v.obb, x); }
+};
+
+template <>
+struct BoxOf<fcl::kIOS<double>> {
+  static constexpr bool kAligned = false;
+  static void get(const fcl::kIOS<double>& v, Box* x) { fromObb(v.obb, x); }
+};
+
+template <>
+struct BoxOf<fcl::RSS<double>> {
+  static constexpr bool kAligned = false;
+  // FCL's RSS: a rectangle with one corner at To, sides l[0] along axis
+  // column 0 and l[1] along column 1, swept by a sphere of radius r. Its box:
+  // centre To + (l0/2) a0 + (l1/2) a1, half extents (l0/2 + r, l1/2 + r, r).
+  static void get(const fcl::RSS<double>& v, Box* x) {
+    const double h0 = 0.5 * v.l[0], h1 = 0.5 * v.l[1];
+    for (int i = 0; i < 3; ++i) {
+      x->b[i] = v.To[i] + h0 * v.axis(i, 0) + h1 * v.axis(i, 1);
+      for (int j = 0; j < 3; ++j) x->a[i][j] = v.axis(j, i);
+    }
+    x->e[0] = h0 + v.r;
+    x->e[1] = h1 + v.r;
+    x->e[2] = v.r;
+  }
+};
+
+/// sum |R^T R - I| over the nine entries; NaN for a non-finite R.
+inline double nonOrthogonality(const fcl::Matrix3d& R) {
+  double s = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const double g = R(0, i) * R(0, j) + R(1, i) * R(1, j) +
+                       R(2, i) * R(2, j) - (i == j ? 1.0 : 0.0);
+      s += std::fabs(g);
+    }
+  return s;
+}
+
+inline bool finiteTransform(const Tf& tf) {
+  const auto& M = tf.matrix();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j)
+      if (!std::isfinite(M(i, j))) return false;
+  return true;
+}
+
+inline bool exactIdentity(const Tf& tf) {
+  const auto& M = tf.matrix();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j)
+      if (!(M(i, j) == (i == j ? 1.0 : 0.0))) return false;
+  return true;
+}
+
+inline double norm1(const V3& v) {
+  return std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
+}
+
+// FCL 0.7's BVNodeBase accessors and fcl::Triangle::operator[] are
+// out-of-line functions of libfcl: a call through the PLT for every node and
+// vertex index (about 6 % of tricyl::collide on bunny.obj). These read the
+// same data directly: BV_node_base.h documents first_child (>= 0: the first
+// of the two adjacent children, < 0: -(primitive index + 1)), and an
+// fcl::Triangle is its three vertex indices, read through its object
+// representation (trivially copyable). MeshCollideTest checks the contacts
+// against FCL's own traversal for every BV type.
+inline bool isLeaf(const fcl::BVNodeBase& n) { return n.first_child < 0; }
+inline int leftChild(const fcl::BVNodeBase& n) { return n.first_child; }
+inline int rightChild(const fcl::BVNodeBase& n) { return n.first_child + 1; }
+inline int primitiveId(const fcl::BVNodeBase& n) {
+  return -(n.first_child + 1);
+}
+
+static_assert(std::is_trivially_copyable_v<fcl::Triangle> &&
+              sizeof(fcl::Triangle) == 3 * sizeof(std::size_t));
+inline void vertexIds(const fcl::Triangle& t, std::size_t ids[3]) {
+  std::memcpy(ids, &t, sizeof(fcl::Triangle));
+}
+
+/// Asks for the part of a node the node test reads (the traversal is a
+/// chain of dependent loads through a tree far larger than the cache).
+template <class BV>
+void prefetchNode(const fcl::BVNode<BV>& node) {
+#if defined(__GNUC__) || defined(__clang__)
+  const char* p = reinterpret_cast<const char*>(&node);
+  constexpr std::size_t kBytes = std::min<std::size_t>(sizeof(node), 192);
+  for (std::size_t off = 0; off < kBytes; off += 64)
+    __builtin_prefetch(p + off);
+#else
+  (void)node;
+#endif
+}
+
+/// A small explicit stack (FCL's trees are rarely deeper than 64; deeper
+/// ones spill to the heap).
+class NodeStack {
+ public:
+  void push(int n) {
+    if (size_ < kInline)
+      inline_[size_] = n;
+    else
+      spill_.push_back(n);
+    ++size_;
+  }
+  bool empty() const { return size_ == 0; }
+  int pop() {
+    --size_;
+    if (size_ < kInline) return inline_[size_];
+    const int n = spill_.back();
+    spill_.pop_back();
+    return n;
+  }
+
+ private:
+  static constexpr std::size_t kInline = 128;
+  int inline_[kInline];
+  std::size_t size_ = 0;
+  std::vector<int> spill_;
+};
+
+/// A certified lower bound of the distance between the node's box and the
+/// cylinder (in the mesh frame), or a value <= 0 (or NaN) when none is
+/// proved. Each separating test of `overlaps` gives one: the gap between the
+/// two supports along a unit direction (tests (A), (B)), or the distance
+/// from the box centre to the axis line less r and the box's circumradius
+/// |e| (test (C)), is at most the distance between the sets (projection on a
+/// unit direction, and distance to a line, are 1-Lipschitz). The computed
+/// gaps are within m of the exact ones (THE NODE TEST AND ITS MARGIN: the
+/// margin bounds the error of each computed side, not only its sign), so
+/// max(gaps) - m is a lower bound. The caller converts it to the cylinder's
+/// frame (lowerBoundLocal). Used with k.global holding no collide margin.
+template <bool kAligned>
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((always_inline))
+#endif
+inline double
+lowerBound(const Box& x, const Local& k) {
+  const NodeTerms n = nodeTerms<kAligned>(x, k);
+  const double* d = n.d;
+  const double m = n.m;
+  const double ud = n.ud;
+  const double* ua = n.ua;
+  // (A)
+  double g =
+      std::fabs(ud) - (k.h + x.e[0] * ua[0] + x.e[1] * ua[1] + x.e[2] * ua[2]);
+  // (B)
+  for (int i = 0; i < 3; ++i) {
+    double gi;
+    if constexpr (kAligned) {
+      gi = std::fabs(d[i]) - (x.e[i] + k.support[i]);
+    } else {
+      const double* a = x.a[i];
+      const double ad = a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
+      gi = std::fabs(ad) - (x.e[i] + k.h * ua[i] + k.r * crossLength(a, k.u));
+    }
+    if (gt(gi, g)) g = gi;
+  }
+  // (C), with its two square roots only when it can beat the others: |e|
+  // >= max e_i, so |q| <= g + r + max e_i means gc <= g. (Leaving a gap out
+  // only weakens the bound, never invalidates it, so the rounding of this
+  // pre-test does not matter.)
+  const double q[3] = {d[0] - ud * k.u[0], d[1] - ud * k.u[1],
+                       d[2] - ud * k.u[2]};
+  const double q2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+  const double e01 = gt(x.e[1], x.e[0]) ? x.e[1] : x.e[0];
+  const double reach = g + k.r + (gt(x.e[2], e01) ? x.e[2] : e01);
+  if (!(std::islessequal(0.0, reach) && std::islessequal(q2, reach * reach))) {
+    const double gc =
+        sqrtNonNegative(q2) - k.r -
+        sqrtNonNegative(x.e[0] * x.e[0] + x.e[1] * x.e[1] + x.e[2] * x.e[2]);
+    if (gt(gc, g)) g = gc;
+  }
+  return g - m;
+}
+
+/// The mesh-frame lower bound `lb` of lowerBound as a lower bound of the
+/// distance the contract measures (in the cylinder's frame, y = R_c^T (x -
+/// t_c), of the world triangles tf_m * v): both maps are within delta of
+/// isometries (item 2; delta <= 2^-20), so lengths shrink by at most a
+/// factor (1 - delta) each; (1 - 4 delta) covers both and the rounding of
+/// this product. Not positive (or NaN) stays so: nothing is pruned then.
+inline double lowerBoundLocal(double lb, const Local& k) {
+  return lb * (1 - 4 * k.delta - 0x1p-50);
+}
+
+/// What prepare() found: the model, the cylinder in the mesh frame, and how
+/// the Solver forms the world vertices.
+struct Setup {
+  Local k;
+  bool raw;  // vertices used as stored (no tf_mesh * v), see prepare()
+};
+
+/// The validation and set-up common to the traversals. Returns false (the
+/// caller then hands the query to FCL's own traversal) for anything the
+/// margins do not cover: a model that is not a built triangle mesh, a
+/// cylinder with NaN/Inf or negative sizes, non-finite transforms, rotations
+/// or a root box far from orthonormal, a root box that is not finite.
+/// `margin` (>= 0, finite) is a collide margin added to every support (0 for
+/// plain collide and for distance).
+template <class BV, class Boxer>
+bool prepare(const fcl::BVHModel<BV>& model, const Tf& tf_mesh,
+             const fcl::Cylinderd& cyl_geom, const Tf& tf_cyl, double margin,
+             Setup* out) {
+  if (model.getModelType() != fcl::BVH_MODEL_TRIANGLES ||
+      (model.build_state != fcl::BVH_BUILD_STATE_PROCESSED &&
+       model.build_state != fcl::BVH_BUILD_STATE_UPDATED) ||
+      model.getNumBVs() <= 0 || model.vertices == nullptr ||
+      model.tri_indices == nullptr)
+    return false;
+
+  const double r = cyl_geom.radius, lz = cyl_geom.lz;
+  if (!(std::isfinite(r) && std::isfinite(lz) && r >= 0 && lz >= 0) ||
+      !(std::isfinite(margin) && margin >= 0) || !finiteTransform(tf_mesh) ||
+      !finiteTransform(tf_cyl))
+    return false;
+  const fcl::Matrix3d& Rm = tf_mesh.linear();
+  const fcl::Matrix3d& Rc = tf_cyl.linear();
+  // The root's box must be finite with near-orthonormal axes. FCL's fit
+  // gives that for finite vertices (Jacobi eigenvectors: orthonormal to
+  // rounding); a NaN or Inf vertex spoils the root's fit (its covariance)
+  // and can leave boxes that hold nothing: such models go to FCL's
+  // traversal. The root's departure from orthonormal enters delta like the
+  // rotations' (a box fitted along axes A misses its points by at most
+  // |A A^T - I| |v - b|, item 2 of the margin); the other boxes come from
+  // the same fit.
+  double box_delta = 0;
+  {
+    Box root;
+    Boxer::get(model.getBV(0).bv, &root);
+    for (int i = 0; i < 3; ++i) {
+      if (!std::isfinite(root.b[i]) || !std::isfinite(root.e[i])) return false;
+      if constexpr (!Boxer::kAligned)
+        for (int j = 0; j < 3; ++j)
+          box_delta += std::fabs(
+              root.a[i][0] * root.a[j][0] + root.a[i][1] * root.a[j][1] +
+              root.a[i][2] * root.a[j][2] - (i == j ? 1.0 : 0.0));
+    }
+  }
+  const double delta =
+      std::max({nonOrthogonality(Rm), nonOrthogonality(Rc), box_delta});
+  if (!std::islessequal(delta, kMaxNonOrthogonality)) return false;
+
+  Local& k = out->k;
+  const V3 c = Rm.transpose() * (tf_cyl.translation() - tf_mesh.translation());
+  const V3 u = Rm.transpose() * Rc.col(2);
+  for (int i = 0; i < 3; ++i) {
+    k.c[i] = c[i];
+    k.u[i] = u[i];
+  }
+  k.r = r;
+  k.h = 0.5 * lz;
+  k.delta = delta;
+  k.rel = kRelMargin + 16 * delta;
+  // MARGIN COLLIDE: the margin-neighbourhood of the cylinder (its Minkowski
+  // sum with a closed ball of radius `margin`) has, along every unit
+  // direction, the cylinder's support plus `margin`, and lies within r +
+  // margin of the axis line: adding `margin` to every right-hand side of
+  // (A), (B), (C) makes them separating tests for it. The sums it enters are
+  // rounded relatively, as the other lengths: rel * margin more covers that.
+  k.global = k.rel * (norm1(c) + norm1(tf_mesh.translation()) +
+                      norm1(tf_cyl.translation()) + k.r + k.h + margin) +
+             kAbsMargin + margin;
+  for (int i = 0; i < 3; ++i) {
+    k.au[i] = std::fabs(u[i]);
+    // h |u_i| + r |e_i x u| (see THE NODE TEST AND ITS MARGIN): |e_i x u|
+    // is the length of u's other two components.
+    const double uj = u[(i + 1) % 3], uk = u[(i + 2) % 3];
+    k.support[i] = k.h * k.au[i] + k.r * std::sqrt(uj * uj + uk * uk);
+  }
+
+  // World vertices exactly as the Solver sees them (fcl_solver.h, FRAMES):
+  // AABB and KDOP meshes are moved by FCL's initialize() unless it takes the
+  // transform for the identity (Eigen's isIdentity, as FCL calls it). The
+  // other meshes are moved by tf_mesh at every leaf; when tf_mesh is exactly
+  // the identity that gives each finite coordinate's own value (1 x + 0 y +
+  // 0 z + 0 = x, up to the sign of a zero), so the vertices are read as they
+  // are. (A non-finite vertex stays non-finite and is reported "in
+  // collision" either way.)
+  out->raw =
+      Boxer::kAligned ? tf_mesh.matrix().isIdentity() : exactIdentity(tf_mesh);
+  return true;
+}
+
+/// The world vertices of triangle `id` as the Solver sees them.
+inline void worldTriangle(const V3* vertices, const fcl::Triangle& t,
+                          const Tf& tf_mesh, bool raw, V3 out[3]) {
+  std::size_t v[3];
+  vertexIds(t, v);
+  for (int j = 0; j < 3; ++j)
+    out[j] = raw ? vertices[v[j]] : V3(tf_mesh * vertices[v[j]]);
+}
+
+/// The 2D distance from the origin to the triangle (p0, p1, p2) of the
+/// plane (0 when the triangle, or the segment or point it degenerates to,
+/// holds the origin). 1-Lipschitz in the vertices.
+inline double originToTriangle2d(const double p[3][2]) {
+  // Inside: the origin on the same side of the three edges (or on one).
+  double s[3];
+  for (int i = 0; i < 3; ++i) {
+    const double* a = p[i];
+    const double* b = p[(i + 1) % 3];
+    s[i] = a[0] * b[1] - a[1] * b[0];  // (a - o) x (b - o)
+  }
+  // (Quiet comparisons throughout: a NaN raises no FP exception and proves
+  // nothing.)
+  const bool nonneg = std::isgreaterequal(s[0], 0) &&
+                      std::isgreaterequal(s[1], 0) &&
+                      std::isgreaterequal(s[2], 0);
+  const bool nonpos = std::islessequal(s[0], 0) && std::islessequal(s[1], 0) &&
+                      std::islessequal(s[2], 0);
+  if (nonneg || nonpos) {
+    // A proper triangle holds the origin. (A degenerate one, all s = 0,
+    // is a segment through the origin's line: fall through to the edges,
+    // which measure it correctly.)
+    if (s[0] != 0 || s[1] != 0 || s[2] != 0) return 0;
+  }
+  double best2 = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 3; ++i) {
+    const double* a = p[i];
+    const double* b = p[(i + 1) % 3];
+    const double e0 = b[0] - a[0], e1 = b[1] - a[1];
+    const double ee = e0 * e0 + e1 * e1;
+    double t = 0;
+    if (gt(ee, 0)) {
+      t = -(a[0] * e0 + a[1] * e1) / ee;
+      t = std::isless(t, 0) ? 0 : (gt(t, 1) ? 1 : t);
+    }
+    const double q0 = a[0] + t * e0, q1 = a[1] + t * e1;
+    const double d2 = q0 * q0 + q1 * q1;
+    if (std::isless(d2, best2)) best2 = d2;
+  }
+  return sqrtNonNegative(best2);
+}
+
+/// A certified lower bound of the distance the contract of
+/// tricyl::distance measures (the pulled-back triangle y = R^T (x - t), R
+/// and t as given, to the solid cylinder of radius r and half length h), or
+/// a value <= 0 (or NaN) when none is proved; cheap (about 60 flops) next to
+/// the distance itself. The largest of three gaps, each at most the
+/// distance: along the axis (projection on z), in the plane of the caps
+/// (projection on xy: the 2D distance from the axis to the projected
+/// triangle, less r), and across the triangle's plane (the distance from
+/// the centre to the plane, less the cylinder's support h |n_z| + r |n_xy|
+/// along its unit normal n). Rounding: the computed y are within
+/// E = 2^-44 L (L = the largest |x| + |t| + r + h; the true error is a few
+/// ulps of L, 2^-50 L at most) of the exact ones; the first two gaps are
+/// 1-Lipschitz in y, and their own rounding is a few ulps of L: 4 E covers
+/// both. The plane gap is not Lipschitz for slivers: the unit normal is off
+/// by at most eps_n = 4 (E (|e1| + |e2|) + 2^-50 |e1| |e2|) / |n|; it is used
+/// only when eps_n < 2^-20, with (|y0| + r + h) eps_n + 4 E taken off.
+inline double triangleLowerBound(const double x[3][3], const double R[3][3],
+                                 const double t[3], double r, double h) {
+  double L = 0;
+  double y[3][3];
+  for (int k = 0; k < 3; ++k) {
+    const double d[3] = {x[k][0] - t[0], x[k][1] - t[1], x[k][2] - t[2]};
+    for (int i = 0; i < 3; ++i) {
+      y[k][i] = R[0][i] * d[0] + R[1][i] * d[1] + R[2][i] * d[2];
+      const double a = std::fabs(x[k][i]);
+      if (gt(a, L)) L = a;
+    }
+  }
+  L += std::fabs(t[0]) + std::fabs(t[1]) + std::fabs(t[2]) + r + h;
+  const double E = 0x1p-44 * L;
+  // Along the axis.
+  // (min and max by quiet comparisons, not std::fmin/fmax, libm calls: a
+  // NaN coordinate makes the bound NaN or leaves it unproved either way.)
+  double zmin = y[0][2], zmax = y[0][2];
+  for (int k = 1; k < 3; ++k) {
+    if (std::isless(y[k][2], zmin)) zmin = y[k][2];
+    if (gt(y[k][2], zmax)) zmax = y[k][2];
+  }
+  double g = zmin - h;
+  if (gt(-h - zmax, g)) g = -h - zmax;
+  // In the caps' plane.
+  const double p[3][2] = {
+      {y[0][0], y[0][1]}, {y[1][0], y[1][1]}, {y[2][0], y[2][1]}};
+  const double radial = originToTriangle2d(p) - r;
+  if (gt(radial, g)) g = radial;
+  g -= 4 * E;
+  // Across the triangle's plane.
+  const double e1[3] = {y[1][0] - y[0][0], y[1][1] - y[0][1],
+                        y[1][2] - y[0][2]};
+  const double e2[3] = {y[2][0] - y[0][0], y[2][1] - y[0][1],
+                        y[2][2] - y[0][2]};
+  const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1],
+                       e1[2] * e2[0] - e1[0] * e2[2],
+                       e1[0] * e2[1] - e1[1] * e2[0]};
+  const double nn = sqrtNonNegative(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  const double l1 =
+      sqrtNonNegative(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+  const double l2 =
+      sqrtNonNegative(e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]);
+  const double eps_n = 4 * (E * (l1 + l2) + 0x1p-50 * l1 * l2);
+  if (gt(nn, 0) && std::isless(eps_n, 0x1p-20 * nn)) {
+    const double en = eps_n / nn;
+    const double s =
+        std::fabs(n[0] * y[0][0] + n[1] * y[0][1] + n[2] * y[0][2]) / nn;
+    const double support =
+        (h * std::fabs(n[2]) + r * sqrtNonNegative(n[0] * n[0] + n[1] * n[1])) /
+        nn;
+    const double y0 =
+        std::fabs(y[0][0]) + std::fabs(y[0][1]) + std::fabs(y[0][2]);
+    const double face = s - support - (y0 + r + h) * en - 4 * E;
+    if (gt(face, g)) g = face;
+  }
+  return g;
+}
+
+/// Calls f(BvTag<BV>{}) for the BV type of a BVHModel<BV> of node type `t`
+/// (FCL 0.7's eight BV types, for scalar S) and returns its result; false
+/// for any other node type. Shared by the traversals and the Solver.
+template <class BV>
+struct BvTag {
+  using type = BV;
+};
+
+template <class S = double, class F>
+bool dispatchBv(fcl::NODE_TYPE t, F&& f) {
+  switch (t) {
+    case fcl::BV_AABB:
+      return f(BvTag<fcl::AABB<S>>{});
+    case fcl::BV_OBB:
+      return f(BvTag<fcl::OBB<S>>{});
+    case fcl::BV_RSS:
+      return f(BvTag<fcl::RSS<S>>{});
+    case fcl::BV_kIOS:
+      return f(BvTag<fcl::kIOS<S>>{});
+    case fcl::BV_OBBRSS:
+      return f(BvTag<fcl::OBBRSS<S>>{});
+    case fcl::BV_KDOP16:
+      return f(BvTag<fcl::KDOP<S, 16>>{});
+    case fcl::BV_KDOP18:
+      return f(BvTag<fcl::KDOP<S, 18>>{});
+    case fcl::BV_KDOP24:
+      return f(BvTag<fcl::KDOP<S, 24>>{});
+    default:
+      return false;
+  }
+}
+
+}  // namespace traversal
+}  // namespace tricyl

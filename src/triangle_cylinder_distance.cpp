@@ -1,0 +1,657 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// tricyl::distance: the exact Boolean for the zero test, a double pass that
+// finds the nearest pair and certifies it when the double result is already
+// within a few ulps, and a double-word refinement of the nearest candidates
+// otherwise. Method and error bound: docs/distance.md;
+// the generic algorithm: src/triangle_cylinder_distance_impl.h.
+#include "tricyl/triangle_cylinder_distance.h"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <type_traits>
+#include <utility>
+
+#include "dd.h"
+#include "eft.h"
+#include "triangle_cylinder_distance_impl.h"
+#include "tricyl/triangle_cylinder.h"
+
+namespace tricyl {
+namespace {
+
+using detail::DD;
+using detail::dist::Candidate;
+using detail::dist::P3;
+using detail::dist::Problem;
+
+// Unit roundoffs of the two passes, as used by the error bound: double
+// (u = 2^-53) and double-word, where every operation of src/dd.h is within
+// 2^-101 of its operands' magnitudes (dd.h's error model, rounded up).
+constexpr double kU = 0x1p-53;
+constexpr double kUdd = 0x1p-101;
+// The algorithm's rounding, in units of u_T times the problem's magnitude
+// Mx = max |v_i| coordinate * sqrt 3 + r + h: docs/distance.md, section 4.
+constexpr double kAlg = 32;
+// The double pass is accepted when its certified error is at most this
+// fraction of the distance (4 ulps at worst).
+constexpr double kAcceptRel = 0x1p-50;
+constexpr double kTightGap = 0x1p-52;
+constexpr int kSolveIter = 100;
+constexpr int kRefineIter = 240;
+// Newton steps of the usual refinement (each doubles the correct bits
+// from the double pass's parameter; it stops at a step below 2^-90).
+constexpr int kFastNewton = 5;
+
+inline double absd(double x) { return x < 0 ? -x : x; }
+inline double maxd(double a, double b) { return a > b ? a : b; }
+
+// Largest magnitude of the lengths (vertices, translation, r, lz).
+double maxLength(const Cylinder<double>& c, const Pose<double>& p,
+                 const Triangle<double>& t) {
+  double m = maxd(absd(c.radius), absd(c.lz));
+  const Vec3<double>* v[4] = {&t.a, &t.b, &t.c, &p.t};
+  for (const auto* x : v)
+    m = maxd(m, maxd(absd(x->x), maxd(absd(x->y), absd(x->z))));
+  return m;
+}
+
+// v 2^e (std::ldexp: no power of two is formed, so e may exceed the
+// exponent range of a double).
+Vec3<double> scaled(const Vec3<double>& v, int e) {
+  return {std::ldexp(v.x, e), std::ldexp(v.y, e), std::ldexp(v.z, e)};
+}
+
+struct Pass {
+  Candidate<double> cand[4];  // edges 0..2, face 3
+  bool face_cut = false;
+  int best = -1;
+};
+
+// The double pass. Vertices first: g_i = v_i - P(v_i), f_i = |g_i|. An
+// edge's phi'(0) and phi'(1) are g_a . d and g_b . d, so an edge whose
+// minimum is at an end costs nothing more. For the others, the tangents of
+// the convex f at both ends bound f from below (f >= f_a + s f'(0) and
+// f >= f_b - (1 - s) f'(1), f' = phi' / f); where the two lines meet is a
+// lower bound of the edge's minimum (the edge is skipped when it cannot
+// beat the best so far) and the start of the Newton iteration.
+// `witness`: the pair intersects, only a common point is wanted (the pass
+// stops at the first candidate at distance 0).
+Pass doublePass(const Problem<double>& P, double prune_slack, bool witness) {
+  Pass out;
+  P3<double> g[3];
+  double f[3];
+  for (int i = 0; i < 3; ++i) {
+    g[i] = P.v[i] - detail::dist::project(P.v[i], P.r, P.h);
+    f[i] = detail::dist::norm(g[i]);
+  }
+  auto vertex = [&](int k, int i) {  // vertex i as edge k's candidate
+    Candidate<double> c;
+    c.valid = true;
+    c.kind = k;
+    c.s = i == detail::dist::kEdgeA[k] ? 0.0 : 1.0;
+    c.p = P.v[i];
+    c.q = P.v[i] - g[i];
+    c.w = g[i];
+    c.f = f[i];
+    return c;
+  };
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    const int i = detail::dist::kEdgeA[k], j = detail::dist::kEdgeB[k];
+    out.cand[k] = vertex(k, f[i] <= f[j] ? i : j);
+    if (out.cand[k].f < best) {
+      best = out.cand[k].f;
+      out.best = k;
+    }
+  }
+  if (witness && best == 0) return out;
+  bool cut = false;
+  out.cand[3] = detail::dist::faceCandidate(P, &cut);
+  out.face_cut = cut;
+  if (out.cand[3].valid && out.cand[3].f < best) {
+    best = out.cand[3].f;
+    out.best = 3;
+  }
+  if (witness && best == 0) return out;
+  for (int k = 0; k < 3; ++k) {
+    const int i = detail::dist::kEdgeA[k], j = detail::dist::kEdgeB[k];
+    const P3<double> d = P.v[j] - P.v[i];
+    const double ga = detail::dist::dot(g[i], d),
+                 gb = detail::dist::dot(g[j], d);
+    if (!(ga < 0) || !(gb > 0)) {  // the minimum is at an end
+      out.cand[k] = vertex(k, ga < 0 ? j : i);
+      continue;
+    }
+    double s0 = 0.5;
+    // (Only where both ends are well clear of the double pass's error:
+    // near 0 the slopes f' = phi' / f are not accurate.)
+    if (f[i] > 64 * prune_slack && f[j] > 64 * prune_slack) {
+      const double sa = ga / f[i], sb = gb / f[j];  // f'(0) < 0 < f'(1)
+      const double den = sb - sa;  // > 0 unless both slopes underflow
+      const double t = den > 0 ? (f[i] + sb - f[j]) / den : 0.5;
+      const double lb = f[i] + sa * (t < 0 ? 0 : (t > 1 ? 1 : t));
+      if (lb > best * (1 + 0x1p-40) + prune_slack) continue;
+      if (t > 0 && t < 1) s0 = t;
+    }
+    const double s = detail::dist::edgeSolveIn(
+        P.v[i], d, P.r, P.h, 0.0, 1.0, s0, kSolveIter, 0x1p-53, 0x1p-40);
+    out.cand[k] = detail::dist::edgeCandidate(P, k, s);
+    if (out.cand[k].f < best) {
+      best = out.cand[k].f;
+      out.best = k;
+    }
+  }
+  return out;
+}
+
+// The map back to the world, x = R y + t, in the units of the scaled
+// problem: R and y may both have been scaled (distanceDouble), so R y is
+// scaled back by 2^rexp.
+struct WorldMap {
+  const Pose<double>* pose;
+  int rexp;
+};
+
+// x = R y + t in double from y rounded to double: within a few ulps of
+// the world coordinates' magnitude (docs/distance.md, section 5).
+Vec3<double> toWorld(const WorldMap& wm, const P3<double>& y) {
+  const Pose<double>& pose = *wm.pose;
+  const double c[3] = {y.x, y.y, y.z};
+  const double t[3] = {pose.t.x, pose.t.y, pose.t.z};
+  double out[3];
+  for (int i = 0; i < 3; ++i) {
+    const double ry =
+        pose.R[i][0] * c[0] + pose.R[i][1] * c[1] + pose.R[i][2] * c[2];
+    out[i] = t[i] + (wm.rexp == 0 ? ry : std::ldexp(ry, wm.rexp));
+  }
+  return {out[0], out[1], out[2]};
+}
+template <class DDx>
+Vec3<double> toWorld(const WorldMap& wm, const P3<DDx>& y) {
+  return toWorld(wm, P3<double>{double(y.x), double(y.y), double(y.z)});
+}
+
+// The vertex index of a candidate at an edge's end, else -1.
+int vertexOf(const Candidate<double>& c) {
+  if (c.kind > 2) return -1;
+  if (c.s == 0) return detail::dist::kEdgeA[c.kind];
+  if (c.s == 1) return detail::dist::kEdgeB[c.kind];
+  return -1;
+}
+
+template <class DDx>
+DDx hSupport(const P3<DDx>& w, const DDx& r, const DDx& h) {
+  return r * sqrt(w.x * w.x + w.y * w.y) + h * abs(w.z);
+}
+
+// The usual refinement: the candidates of the double pass within its
+// error of the best (usually the best alone), each re-solved in
+// double-word: a vertex as it is, an edge point by two Newton steps from
+// the double parameter, a face point in closed form. U is the least of
+// their distances, L the greatest of their separating-plane bounds (each
+// is a valid lower bound). The vertices outside a candidate enter its
+// bound only if a double evaluation cannot show that they lie beyond the
+// candidate's points along w (|w . v_j - fl(w_d . v_j)| <= |w_d|_1
+// (eps_y + 5 u M), w_d = w rounded to double). Returns false when the
+// result is not within kAcceptRel: the general refinement then runs.
+template <class DDx, class VertexFn>
+bool refineFast(const Pass& pass, const Problem<double>& P, VertexFn ddVertex,
+                double U, double tie, double eps_y_d, double M, double slack_dd,
+                const WorldMap& wm, DistanceResult<double>* out) {
+  const DDx r(P.r), h(P.h);
+  P3<DDx> Y[3];
+  bool have[3] = {false, false, false};
+  auto vertex = [&](int v) -> const P3<DDx>& {
+    if (!have[v]) {
+      Y[v] = ddVertex(v);
+      have[v] = true;
+    }
+    return Y[v];
+  };
+  DDx Ubest(std::numeric_limits<double>::infinity()), Lbest(-1);
+  P3<DDx> pb{}, qb{};
+  bool done_vertex[3] = {false, false, false};
+  for (int k = 0; k < 4; ++k) {
+    const Candidate<double>& cb = pass.cand[k];
+    if (!cb.valid || !(cb.f <= U + tie)) continue;
+    const int vb = vertexOf(cb);
+    if (vb >= 0) {
+      if (done_vertex[vb]) continue;
+      done_vertex[vb] = true;
+    }
+    DDx Ud, Ld;
+    P3<DDx> p, q;
+    if (cb.kind == 3) {
+      Problem<DDx> Q;
+      Q.r = r;
+      Q.h = h;
+      for (int v = 0; v < 3; ++v) Q.v[v] = vertex(v);
+      bool cut = false;
+      const Candidate<DDx> c = detail::dist::faceCandidate(Q, &cut);
+      if (cut || !c.valid) return false;
+      Ud = c.f;
+      Ld = detail::dist::certify(Q, c.w);
+      p = c.p;
+      q = c.q;
+    } else {
+      P3<DDx> w;
+      DDx m;
+      if (vb >= 0) {
+        p = vertex(vb);
+        q = detail::dist::project(p, r, h);
+        w = p - q;
+        m = detail::dist::dot(w, p);
+      } else {
+        const int i = detail::dist::kEdgeA[cb.kind],
+                  j = detail::dist::kEdgeB[cb.kind];
+        const P3<DDx>& a = vertex(i);
+        const P3<DDx> d = vertex(j) - a;
+        DDx s(cb.s);
+        for (int it = 0; it < kFastNewton; ++it) {
+          const auto e = detail::dist::edgeDphi(a, d, s, r, h);
+          if (!(e.g2 > DDx(detail::dist::kTinyDen))) break;
+          const double step = double(e.g) / double(e.g2);
+          if (!(absd(step) < 2)) break;
+          s = s - DDx(step);
+          if (s < DDx(0)) s = DDx(0);
+          if (s > DDx(1)) s = DDx(1);
+          // Quadratic convergence: after a step below 2^-45 the next one
+          // would be below about 2^-90 (the certificate checks it).
+          if (!(absd(step) > 0x1p-45)) break;
+        }
+        p = a + d * s;
+        q = detail::dist::project(p, r, h);
+        w = p - q;
+        const DDx dd = detail::dist::dot(d, d);
+        if (s > DDx(0) && s < DDx(1) && dd > DDx(detail::dist::kTinyDen))
+          w = w - d * (detail::dist::dot(w, d) / dd);
+        const DDx ma = detail::dist::dot(w, a),
+                  mb = detail::dist::dot(w, vertex(j));
+        m = ma < mb ? ma : mb;
+      }
+      Ud = detail::dist::norm(p - q);
+      const P3<double> wd{double(w.x), double(w.y), double(w.z)};
+      const double w1 = absd(wd.x) + absd(wd.y) + absd(wd.z);
+      const double margin = w1 * (eps_y_d + 5 * kU * M) * (1 + 0x1p-50);
+      for (int v = 0; v < 3; ++v) {
+        if (have[v]) {
+          const DDx x = detail::dist::dot(w, Y[v]);
+          if (x < m) m = x;
+        } else if (!(detail::dist::dot(wd, P.v[v]) - margin >=
+                     m.hi + 4 * kU * absd(m.hi))) {
+          const DDx x = detail::dist::dot(w, vertex(v));
+          if (x < m) m = x;
+        }
+      }
+      const DDx ww = detail::dist::dot(w, w);
+      if (!(ww > DDx(detail::dist::kTinyDen))) return false;
+      Ld = (m - hSupport(w, r, h)) / sqrt(ww);
+    }
+    if (Ud < Ubest) {
+      Ubest = Ud;
+      pb = p;
+      qb = q;
+    }
+    if (Ld > Lbest) Lbest = Ld;
+  }
+  const double dist = double(Ubest);
+  const double gap = double(Ubest - Lbest);
+  const double err = (gap > 0 ? gap : 0) + slack_dd + kU * dist;
+  // Accepted when certified within kAcceptRel, and also when the two
+  // bounds met (the search found the minimum) but the a-priori rounding
+  // allowance of double-word arithmetic is what exceeds kAcceptRel (a
+  // distance below about 2^-45 of the problem's magnitude): the general
+  // refinement, in the same arithmetic, could not do better.
+  if (!(dist > 0) || !(gap >= -slack_dd) ||
+      !(err <= kAcceptRel * dist || gap <= kTightGap * dist))
+    return false;
+  if (out) {
+    out->distance = dist;
+    out->error_bound = err * (1 + 0x1p-50);
+    out->point_on_triangle = toWorld(wm, pb);
+    out->point_on_cylinder = toWorld(wm, qb);
+  }
+  return true;
+}
+
+// The distance for valid double inputs of moderate magnitude (no
+// overflow of products of up to six lengths: every length below 2^100).
+template <class DDx>
+Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
+             const Triangle<double>& tri, Answer boolean, int rexp,
+             DistanceResult<double>* out) {
+  const WorldMap wm{&pose, rexp};
+  // The vertices in order of increasing magnitude of their local
+  // coordinates (kEdge: every edge then starts at its smaller end).
+  const Vec3<double>* X[3] = {&tri.a, &tri.b, &tri.c};
+  const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
+  // The double pulled-back triangle, and S = max sum_k |R_ki| |x_k - t_k|.
+  Problem<double> P;
+  P.r = cyl.radius;
+  P.h = cyl.lz * 0.5;
+  double S = 0, M = 0;
+  for (int v = 0; v < 3; ++v) {
+    const double x[3] = {X[v]->x, X[v]->y, X[v]->z};
+    const double dx[3] = {x[0] - tt[0], x[1] - tt[1], x[2] - tt[2]};
+    double y[3];
+    for (int i = 0; i < 3; ++i) {
+      y[i] = pose.R[0][i] * dx[0] + pose.R[1][i] * dx[1] + pose.R[2][i] * dx[2];
+      S = maxd(S, absd(pose.R[0][i]) * absd(dx[0]) +
+                      absd(pose.R[1][i]) * absd(dx[1]) +
+                      absd(pose.R[2][i]) * absd(dx[2]));
+      M = maxd(M, absd(y[i]));
+    }
+    P.v[v] = {y[0], y[1], y[2]};
+  }
+  auto mag = [&](int v) {
+    return maxd(absd(P.v[v].x), maxd(absd(P.v[v].y), absd(P.v[v].z)));
+  };
+  for (int pass = 0; pass < 2; ++pass)
+    for (int v = 0; v + 1 < 3; ++v)
+      if (mag(v + 1) < mag(v)) {
+        std::swap(P.v[v], P.v[v + 1]);
+        std::swap(X[v], X[v + 1]);
+      }
+  // Mx bounds every point's norm and the cylinder's extent (section 4).
+  const double Mx = (M * 1.75 + P.r + P.h) * (1 + 0x1p-50);
+  // The double pass: y computed with <= 5 roundings relative to S.
+  const double eps_y_d = 6 * kU * S;
+  const double slack_d = 2 * eps_y_d + kAlg * kU * Mx;
+  const Pass pass = doublePass(P, slack_d, boolean == Answer::kIntersect);
+
+  if (boolean == Answer::kIntersect) {
+    if (out) {
+      const Candidate<double>& c = pass.cand[pass.best >= 0 ? pass.best : 0];
+      out->distance = 0;
+      out->error_bound = 0;
+      out->point_on_triangle = toWorld(wm, c.p);
+      out->point_on_cylinder = toWorld(wm, c.q);
+    }
+    return Answer::kIntersect;
+  }
+
+  double U = std::numeric_limits<double>::infinity(), L = 0;
+  for (int k = 0; k < 4; ++k) {
+    const Candidate<double>& c = pass.cand[k];
+    if (k == 3 ? !pass.face_cut : c.valid)
+      L = maxd(L, detail::dist::certify(P, c.w));
+    if (c.valid && c.f < U) U = c.f;
+  }
+  // (L > U beyond the rounding allowance cannot happen for consistent
+  // bounds; such a pass is not accepted.)
+  const double err_d = maxd(U - L, 0.0) + slack_d + kU * U;
+  if (U > 0 && L <= U + slack_d && err_d <= kAcceptRel * U) {
+    if (out) {
+      const Candidate<double>& c = pass.cand[pass.best];
+      out->distance = U;
+      out->error_bound = err_d * (1 + 0x1p-50);
+      out->point_on_triangle = toWorld(wm, c.p);
+      out->point_on_cylinder = toWorld(wm, c.q);
+    }
+    return Answer::kDisjoint;
+  }
+
+  // Double-word refinement. x - t is exact as a pair (TwoSum); the sum
+  // of three double-word products is within 2^-101 S (dd.h).
+  auto ddVertex = [&](int v) {
+    const double x[3] = {X[v]->x, X[v]->y, X[v]->z};
+    DDx dx[3];
+    for (int k = 0; k < 3; ++k) {
+      double s, e;
+      detail::twoSum(x[k], -tt[k], s, e);
+      dx[k] = DDx(s, e);
+    }
+    DDx y[3];
+    for (int i = 0; i < 3; ++i)
+      y[i] = detail::mulD(dx[0], pose.R[0][i]) +
+             detail::mulD(dx[1], pose.R[1][i]) +
+             detail::mulD(dx[2], pose.R[2][i]);
+    return P3<DDx>{y[0], y[1], y[2]};
+  };
+  const double slack_dd = 2 * kUdd * S + kAlg * kUdd * Mx;
+  const double tie = 2 * err_d;
+  if (refineFast<DDx>(pass, P, ddVertex, U, tie, eps_y_d, M, slack_dd, wm, out))
+    return Answer::kDisjoint;
+
+  // The general refinement: every candidate within the double pass's
+  // error of the best, each edge re-solved in a bracket.
+  Problem<DDx> Q;
+  Q.r = DDx(P.r);
+  Q.h = DDx(P.h);
+  for (int v = 0; v < 3; ++v) Q.v[v] = ddVertex(v);
+  DDx Ubest(std::numeric_limits<double>::infinity());
+  DDx Lbest(0);
+  Candidate<DDx> best;
+  bool face_cut = false;
+  const Candidate<DDx> face = detail::dist::faceCandidate(Q, &face_cut);
+  if (!face_cut) Lbest = detail::dist::certify(Q, face.w);
+  if (face.valid) {
+    Ubest = face.f;
+    best = face;
+  }
+  for (int k = 0; k < 3; ++k) {
+    const Candidate<double>& c = pass.cand[k];
+    if (!c.valid || !(c.f <= U + tie)) continue;
+    const P3<DDx>& a = Q.v[detail::dist::kEdgeA[k]];
+    const P3<DDx> d = Q.v[detail::dist::kEdgeB[k]] - a;
+    const DDx s = detail::dist::edgeRefine(
+        a, d, Q.r, Q.h, DDx(c.s), DDx(0x1p-24), kRefineIter, DDx(0x1p-104));
+    DDx at[7] = {s, DDx(0), DDx(1)};
+    const int n = 3 + detail::dist::edgeKinks(a, d, Q.r, Q.h, at + 3);
+    for (int i = 0; i < n; ++i) {
+      const Candidate<DDx> e = detail::dist::edgeCandidate(Q, k, at[i]);
+      const DDx l = detail::dist::certify(Q, e.w);
+      if (l > Lbest) Lbest = l;
+      if (e.f < Ubest) {
+        Ubest = e.f;
+        best = e;
+      }
+    }
+  }
+  if (!best.valid) {  // cannot happen: the double best is refined
+    best = detail::dist::edgeCandidate(Q, 0, DDx(0));
+    Ubest = best.f;
+  }
+  double dist = double(Ubest);
+  const double gap = double(Ubest - Lbest);
+  double err = (gap > 0 ? gap : 0) + slack_dd + kU * dist;
+  if (!(dist > 0)) {  // below double-word resolution: still positive
+    err += std::numeric_limits<double>::denorm_min();
+    dist = std::numeric_limits<double>::denorm_min();
+  }
+  if (out) {
+    out->distance = dist;
+    out->error_bound = err * (1 + 0x1p-50);
+    out->point_on_triangle = toWorld(wm, best.p);
+    out->point_on_cylinder = toWorld(wm, best.q);
+  }
+  return Answer::kDisjoint;
+}
+
+template <class DDx>
+Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
+                      const Triangle<double>& tri,
+                      DistanceResult<double>* out) {
+  const Answer boolean = tryIntersect(cyl, pose, tri);
+  if (boolean == Answer::kInvalidInput) return boolean;
+  // Power-of-two scaling keeps the products of up to six local lengths
+  // finite and normal. The local problem's magnitude is at most
+  // M = max(4 max|R_ij| * (world lengths), r, lz) = 2^eM (exponents
+  // added: the product may overflow). R is scaled by 2^-ea (to about 1),
+  // the world lengths by 2^-(eM - ea), so the local frame (y, r, lz) by
+  // 2^-eM. Exact, except that parts below the scaled underflow threshold
+  // are lost (docs/distance.md, section 6).
+  double mr = 0;
+  for (const auto& row : pose.R)
+    for (double x : row) mr = maxd(mr, absd(x));
+  Cylinder<double> none{0, 0};
+  const double mw = maxLength(none, pose, tri);  // world lengths
+  int ea = 0, ew = 0, ec = 0;
+  if (mr > 0) (void)std::frexp(4 * (mr * 0.25), &ea);
+  if (mw > 0) (void)std::frexp(mw, &ew);
+  (void)std::frexp(maxd(cyl.radius, cyl.lz), &ec);
+  int eM = mr > 0 && mw > 0 ? ea + 2 + ew : -2000;
+  if (!(mr > 0)) ea = 0;
+  if (maxd(cyl.radius, cyl.lz) > 0 && ec > eM) eM = ec;
+  if (eM == -2000) eM = 0;  // everything 0: nothing to scale
+  if (eM >= -80 && eM <= 80 && ea >= -40 && ea <= 40)
+    return solve<DDx>(cyl, pose, tri, boolean, 0, out);
+  // The world lengths' scale, kept so that they stay within 2^+-100 (with
+  // R = 0, or a tiny R, the world lengths hardly matter); the local
+  // frame's scale is then 2^-(ea + el) (>= 2^-eM).
+  int el = eM - ea;
+  if (mw > 0 && el < ew - 100) el = ew - 100;
+  if (mw > 0 && el > ew + 100) el = ew + 100;
+  eM = ea + el;
+  // r and lz are capped at 2^110: beyond the clamp above they can only
+  // exceed the local triangle's extent (|y| < 2^104), where C's barrel
+  // (or slab) constraint is slack for every point of the triangle and the
+  // distance does not depend on them.
+  const Cylinder<double> c2{std::fmin(std::ldexp(cyl.radius, -eM), 0x1p110),
+                            std::fmin(std::ldexp(cyl.lz, -eM), 0x1p111)};
+  Pose<double> p2;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) p2.R[i][j] = std::ldexp(pose.R[i][j], -ea);
+  p2.t = scaled(pose.t, -el);
+  const Triangle<double> t2{scaled(tri.a, -el), scaled(tri.b, -el),
+                            scaled(tri.c, -el)};
+  DistanceResult<double> r2{};
+  const Answer a = solve<DDx>(c2, p2, t2, boolean, 2 * ea, &r2);
+  if (out) {
+    out->distance = std::ldexp(r2.distance, eM);
+    out->error_bound = std::ldexp(r2.error_bound, eM);
+    out->point_on_cylinder = scaled(r2.point_on_cylinder, el);
+    out->point_on_triangle = scaled(r2.point_on_triangle, el);
+    if (a == Answer::kDisjoint && !(out->distance > 0))
+      out->distance = std::numeric_limits<double>::denorm_min();
+  }
+  return a;
+}
+
+// The same computation with a fused multiply-add for the double-word
+// TwoProducts, on CPUs that have one (x86-64 with FMA3: one instruction
+// instead of Dekker's seventeen). The results are the same bits (both
+// TwoProducts are exact, and -ffp-contract=off keeps every other operation
+// as written); `flatten` inlines the whole query into this one function,
+// compiled for the FMA target.
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && \
+    !TRICYL_HAVE_FMA
+#define TRICYL_DIST_FMA_DISPATCH 1
+__attribute__((target("fma"), flatten)) Answer distanceDoubleFma(
+    const Cylinder<double>& cyl, const Pose<double>& pose,
+    const Triangle<double>& tri, DistanceResult<double>* out) {
+  return distanceDouble<detail::DDT<true>>(cyl, pose, tri, out);
+}
+const bool kHasFma = __builtin_cpu_supports("fma") != 0;
+#else
+#define TRICYL_DIST_FMA_DISPATCH 0
+#endif
+
+// The portable path, also inlined into one function.
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((flatten))
+#endif
+Answer
+distanceDoubleGeneric(const Cylinder<double>& cyl, const Pose<double>& pose,
+                      const Triangle<double>& tri,
+                      DistanceResult<double>* out) {
+  return distanceDouble<DD>(cyl, pose, tri, out);
+}
+
+Answer distanceAny(const Cylinder<double>& cyl, const Pose<double>& pose,
+                   const Triangle<double>& tri, DistanceResult<double>* out) {
+#if TRICYL_DIST_FMA_DISPATCH
+  if (kHasFma) return distanceDoubleFma(cyl, pose, tri, out);
+#endif
+  return distanceDoubleGeneric(cyl, pose, tri, out);
+}
+
+Vec3<double> widen(const Vec3<float>& v) {
+  return {double(v.x), double(v.y), double(v.z)};
+}
+Vec3<float> narrow(const Vec3<double>& v) {
+  return {float(v.x), float(v.y), float(v.z)};
+}
+
+template <class S>
+Answer dispatch(const Cylinder<S>& cyl, const Pose<S>& pose,
+                const Triangle<S>& tri, DistanceResult<S>* out) {
+  if constexpr (std::is_same_v<S, double>) {
+    return distanceAny(cyl, pose, tri, out);
+  } else {
+    // float -> double is exact: the double result for the same inputs,
+    // rounded once more (its error added to the bound).
+    const Cylinder<double> c{double(cyl.radius), double(cyl.lz)};
+    Pose<double> p;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) p.R[i][j] = double(pose.R[i][j]);
+    p.t = widen(pose.t);
+    const Triangle<double> t{widen(tri.a), widen(tri.b), widen(tri.c)};
+    DistanceResult<double> r{};
+    const Answer a = distanceAny(c, p, t, &r);
+    if (a != Answer::kInvalidInput && out) {
+      float d = float(r.distance);
+      if (a == Answer::kDisjoint && !(d > 0))
+        d = std::numeric_limits<float>::denorm_min();
+      const double err = r.error_bound + absd(double(d) - r.distance);
+      float ef = float(err);
+      if (double(ef) < err)
+        ef = std::nextafter(ef, std::numeric_limits<float>::infinity());
+      out->distance = d;
+      out->error_bound = ef;
+      out->point_on_cylinder = narrow(r.point_on_cylinder);
+      out->point_on_triangle = narrow(r.point_on_triangle);
+    }
+    return a;
+  }
+}
+
+[[noreturn]] void throwInvalid() {
+  throw InvalidInput(
+      "tricyl::distance(cylinder, triangle): NaN or infinite input, or a "
+      "negative radius or length");
+}
+
+}  // namespace
+
+template <class S>
+Answer tryDistance(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                   const Triangle<S>& triangle,
+                   DistanceResult<S>* out) noexcept {
+  return dispatch(cylinder, pose, triangle, out);
+}
+
+template <class S>
+DistanceResult<S> distance(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                           const Triangle<S>& triangle) {
+  DistanceResult<S> r{};
+  if (dispatch(cylinder, pose, triangle, &r) == Answer::kInvalidInput)
+    throwInvalid();
+  return r;
+}
+
+template <class S>
+DistanceResult<S> distance(const Cylinder<S>& cylinder,
+                           const Triangle<S>& triangle) {
+  return distance(cylinder, identityPose<S>(), triangle);
+}
+
+template DistanceResult<float> distance(const Cylinder<float>&,
+                                        const Pose<float>&,
+                                        const Triangle<float>&);
+template DistanceResult<double> distance(const Cylinder<double>&,
+                                         const Pose<double>&,
+                                         const Triangle<double>&);
+template DistanceResult<float> distance(const Cylinder<float>&,
+                                        const Triangle<float>&);
+template DistanceResult<double> distance(const Cylinder<double>&,
+                                         const Triangle<double>&);
+template Answer tryDistance(const Cylinder<float>&, const Pose<float>&,
+                            const Triangle<float>&,
+                            DistanceResult<float>*) noexcept;
+template Answer tryDistance(const Cylinder<double>&, const Pose<double>&,
+                            const Triangle<double>&,
+                            DistanceResult<double>*) noexcept;
+
+}  // namespace tricyl

@@ -1,0 +1,544 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Distance and margins through FCL (fcl_solver.h, DISTANCE and MARGIN
+// COLLIDE): tricyl::distance (the wrapper, its own traversal) and
+// fcl::distance with tricyl::Solver, on every BV type and in both argument
+// orders, against brute force over the triangles with tricyl::distance per
+// triangle; the signed distance; the margin collide against brute force
+// with tricyl::withinDistance per triangle; TriangleP; float. Meshes: env,
+// bunny, rob (../shared/data/meshes, skipped with a message when absent)
+// and a built-in sphere, so the suite never runs empty.
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "fcl_test_support.h"
+#include "test_support.h"
+#include "tricyl/fcl_mesh_cylinder.h"
+#include "tricyl/fcl_solver.h"
+#include "tricyl/triangle_cylinder.h"
+#include "tricyl/triangle_cylinder_distance.h"
+#include "tricyl/triangle_cylinder_margin.h"
+
+namespace tricyl {
+namespace {
+
+using fcltest::Mesh;
+using fcltest::Scene;
+using fcltest::Tf;
+using fcltest::V3;
+
+template <class BV>
+constexpr bool kAlignedBv = std::is_same_v<BV, fcl::AABB<double>> ||
+                            std::is_same_v<BV, fcl::KDOP<double, 16>> ||
+                            std::is_same_v<BV, fcl::KDOP<double, 18>> ||
+                            std::is_same_v<BV, fcl::KDOP<double, 24>>;
+
+/// The meshes: the three shared ones that exist, and a built-in sphere.
+std::vector<Mesh> meshes() {
+  std::vector<Mesh> out;
+  for (const char* f : {"env.obj", "bunny.obj", "rob.obj"}) {
+    Mesh m;
+    m.name = f;
+    if (fcltest::readObj(fcltest::meshPath(f), &m)) {
+      out.push_back(std::move(m));
+    } else {
+      std::printf("[ note ] %s not found under %s: skipped\n", f,
+                  TRICYL_MESH_DIR);
+    }
+  }
+  Mesh s = fcltest::sphereMesh(12);
+  s.name = "builtin sphere";
+  out.push_back(std::move(s));
+  return out;
+}
+
+/// The world triangle the Solver sees for triangle i (fcl_solver.h, FRAMES).
+template <class BV>
+Triangle<double> worldTri(const Mesh& m, const Tf& mesh_tf, std::size_t i) {
+  const bool raw = kAlignedBv<BV> && mesh_tf.matrix().isIdentity();
+  V3 p[3];
+  for (int j = 0; j < 3; ++j)
+    p[j] = raw ? m.v[m.t[i][j]] : V3(mesh_tf * m.v[m.t[i][j]]);
+  return fcltest::toTri(p[0], p[1], p[2]);
+}
+
+/// Brute force over the triangles: the smallest tricyl::distance, the first
+/// triangle reaching it, and whether any triangle meets the cylinder.
+struct Brute {
+  double min = std::numeric_limits<double>::max();
+  std::size_t arg = 0;
+  bool collides = false;
+  std::set<std::size_t> colliding;
+};
+
+template <class BV>
+Brute bruteForce(const Mesh& m, const Scene& s) {
+  Brute b;
+  const Cylinder<double> cyl{s.r, s.lz};
+  const Pose<double> pose = toPose(s.cyl_tf);
+  for (std::size_t i = 0; i < m.t.size(); ++i) {
+    DistanceResult<double> d;
+    const Answer a = tryDistance(cyl, pose, worldTri<BV>(m, s.mesh_tf, i), &d);
+    if (a != Answer::kDisjoint) {
+      b.collides = true;
+      b.colliding.insert(i);
+      continue;
+    }
+    if (d.distance < b.min) {
+      b.min = d.distance;
+      b.arg = i;
+    }
+  }
+  return b;
+}
+
+/// Seeded scenes: fcltest::makeScenes' (grazing and random, many touching),
+/// and the same moved apart by 10^-12 .. 1 of the mesh's diagonal (disjoint).
+std::vector<Scene> scenes(const Mesh& m, std::uint64_t seed, int per_kind) {
+  std::vector<Scene> base = fcltest::makeScenes(m, seed, per_kind);
+  std::mt19937_64 rng(seed ^ 0x61706172u);
+  std::uniform_real_distribution<double> u01(0, 1);
+  std::normal_distribution<double> g;
+  V3 lo = m.v[0], hi = m.v[0];
+  for (const V3& p : m.v) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double diag = (hi - lo).norm();
+  std::vector<Scene> out = base;
+  for (std::size_t k = 0; k < base.size(); ++k) {
+    Scene s = base[k];
+    const V3 dir = V3(g(rng), g(rng), g(rng)).normalized();
+    s.cyl_tf.translation() += dir * diag * std::pow(10.0, -12 * u01(rng));
+    s.kind = "apart";
+    out.push_back(s);
+  }
+  for (std::size_t k = 0; k < out.size(); k += 2)
+    out[k].mesh_tf = Tf::Identity();  // the raw-vertex paths
+  return out;
+}
+
+V3 fclPoint(const Vec3<double>& p) { return V3(p.x, p.y, p.z); }
+
+template <class BV>
+struct BvTag {
+  using type = BV;
+};
+
+/// A length of the scene (for absolute tolerances on FCL's own traversal).
+double sceneScale(const Mesh& m, const Scene& s) {
+  double a = s.r + s.lz + s.cyl_tf.translation().cwiseAbs().maxCoeff() +
+             s.mesh_tf.translation().cwiseAbs().maxCoeff();
+  for (const V3& p : m.v) a = std::max(a, p.cwiseAbs().maxCoeff());
+  return a;
+}
+
+template <class BV>
+class FclDistanceTest : public ::testing::Test {};
+TYPED_TEST_SUITE(FclDistanceTest, fcltest::AllBvs);
+
+// The wrapper (own traversal) gives exactly the brute-force minimum, the
+// triangle reaching it and its nearest points, in both argument orders, and
+// prunes; fcl::distance with tricyl::Solver gives the same minimum (FCL's
+// own traversals for RSS/kIOS/OBBRSS round their BV distances: within
+// 1e-12 relative there) and the points of the triangle it reports; both
+// are <= 0 exactly when brute force finds a colliding triangle.
+TYPED_TEST(FclDistanceTest, MinimumAndNearestPointsEqualBruteForce) {
+  using BV = TypeParam;
+  const std::uint64_t seed = test::baseSeed() ^ 0x64697374u;
+  SCOPED_TRACE(test::seedTrace(seed));
+  const Solver<double> solver;
+  long checked = 0, apart = 0;
+  TraversalStats stats;
+  for (const Mesh& m : meshes()) {
+    SCOPED_TRACE(m.name);
+    auto model = fcltest::makeModel<BV>(m);
+    for (const Scene& s : scenes(m, seed, 2)) {
+      SCOPED_TRACE(fcltest::describe(s));
+      const Brute b = bruteForce<BV>(m, s);
+      auto cyl = std::make_shared<fcl::Cylinderd>(s.r, s.lz);
+      const fcl::CollisionObjectd mesh_obj(model, s.mesh_tf);
+      const fcl::CollisionObjectd cyl_obj(cyl, s.cyl_tf);
+      for (int order = 0; order < 2; ++order) {
+        const fcl::CollisionObjectd* o1 = order ? &cyl_obj : &mesh_obj;
+        const fcl::CollisionObjectd* o2 = order ? &mesh_obj : &cyl_obj;
+        fcl::DistanceRequestd req(true);
+        fcl::DistanceResultd w;
+        const double ret = tricyl::distance(o1, o2, req, w);
+        EXPECT_EQ(ret, w.min_distance);
+        fcl::DistanceResultd f;
+        fcl::distance(o1, o2, &solver, req, f);
+        ++checked;
+        if (b.collides) {
+          EXPECT_LT(w.min_distance, 0);
+          // FCL's RSS/kIOS/OBBRSS traversals prune with rounded BV
+          // distances: a grazing triangle may be missed by rounding.
+          EXPECT_LE(f.min_distance, 1e-12 * sceneScale(m, s));
+          EXPECT_TRUE(b.colliding.count(std::size_t(w.b1))) << w.b1;
+          EXPECT_EQ(w.nearest_points[0], w.nearest_points[1]);
+          continue;
+        }
+        ++apart;
+        ASSERT_EQ(w.min_distance, b.min) << "order " << order;
+        ASSERT_GE(w.b1, 0);
+        const Cylinder<double> c{s.r, s.lz};
+        const Pose<double> pose = toPose(s.cyl_tf);
+        const DistanceResult<double> at =
+            tricyl::distance(c, pose, worldTri<BV>(m, s.mesh_tf, w.b1));
+        EXPECT_EQ(at.distance, b.min);
+        EXPECT_EQ(w.nearest_points[0], fclPoint(at.point_on_triangle));
+        EXPECT_EQ(w.nearest_points[1], fclPoint(at.point_on_cylinder));
+        // fcl::distance with the Solver.
+        EXPECT_NEAR(f.min_distance, b.min,
+                    1e-12 * b.min + 1e-14 * sceneScale(m, s));
+        ASSERT_GE(f.b1, 0);
+        const DistanceResult<double> atf =
+            tricyl::distance(c, pose, worldTri<BV>(m, s.mesh_tf, f.b1));
+        EXPECT_EQ(atf.distance, f.min_distance);
+        EXPECT_EQ(f.nearest_points[0], fclPoint(atf.point_on_triangle));
+        EXPECT_EQ(f.nearest_points[1], fclPoint(atf.point_on_cylinder));
+      }
+      fcl::DistanceResultd w;
+      distanceMeshCylinder(model.get(), s.mesh_tf, cyl.get(), s.cyl_tf,
+                           fcl::DistanceRequestd(), w, &stats);
+    }
+  }
+  EXPECT_GT(apart, checked / 4);
+  // The node bound prunes: far fewer triangles measured than exist.
+  EXPECT_GT(stats.nodes_skipped, 0u);
+  std::printf(
+      "[ info ] %ld queries (%ld apart); traversal: %zu bounds, %zu "
+      "pruned, %zu triangles measured\n",
+      checked, apart, stats.nodes_tested, stats.nodes_skipped, stats.leaves);
+}
+
+// enable_signed_distance: minus the depth of the contact tricyl::collide
+// reports (FCL's signed step, with the same contact), and both points at it.
+TYPED_TEST(FclDistanceTest, SignedDistanceIsMinusTheContactDepth) {
+  using BV = TypeParam;
+  const std::uint64_t seed = test::baseSeed() ^ 0x7369676eu;
+  SCOPED_TRACE(test::seedTrace(seed));
+  const Solver<double> solver;
+  long colliding = 0;
+  for (const Mesh& m : meshes()) {
+    SCOPED_TRACE(m.name);
+    auto model = fcltest::makeModel<BV>(m);
+    for (const Scene& s : fcltest::makeScenes(m, seed, 3)) {
+      SCOPED_TRACE(fcltest::describe(s));
+      auto cyl = std::make_shared<fcl::Cylinderd>(s.r, s.lz);
+      const fcl::CollisionObjectd mesh_obj(model, s.mesh_tf);
+      const fcl::CollisionObjectd cyl_obj(cyl, s.cyl_tf);
+      fcl::CollisionRequestd creq;
+      creq.enable_contact = true;
+      fcl::CollisionResultd cres;
+      tricyl::collide(&mesh_obj, &cyl_obj, creq, cres);
+      fcl::DistanceRequestd req(true, true);
+      fcl::DistanceResultd w, f;
+      tricyl::distance(&cyl_obj, &mesh_obj, req, w);
+      fcl::distance(&mesh_obj, &cyl_obj, &solver, req, f);
+      if (!cres.isCollision()) {
+        EXPECT_GT(w.min_distance, 0);
+        EXPECT_GT(f.min_distance, 0);
+        continue;
+      }
+      ++colliding;
+      const fcl::Contactd& c = cres.getContact(0);
+      EXPECT_GT(c.penetration_depth, 0);
+      EXPECT_EQ(w.min_distance, -c.penetration_depth);
+      EXPECT_EQ(w.nearest_points[0], c.pos);
+      EXPECT_EQ(w.nearest_points[1], c.pos);
+      // FCL's own step: minus the depth of the first contact of
+      // fcl::collide with the Solver (for AABB/KDOP with a moved mesh,
+      // possibly another colliding triangle's).
+      EXPECT_LT(f.min_distance, 0);
+      EXPECT_EQ(f.nearest_points[0], f.nearest_points[1]);
+    }
+  }
+  EXPECT_GT(colliding, 0);
+}
+
+// The margin collide: exactly the triangles tricyl::withinDistance accepts
+// (margins 0 .. 10 % of the cylinder's size, and 1, 4, 2^20 ulps either side
+// of a triangle's distance), in both argument orders; margin 0 is
+// tricyl::collide; contact data: depth > 0 for a triangle that meets the
+// cylinder, in [-margin, 0) for one only within the margin.
+TYPED_TEST(FclDistanceTest, MarginCollideEqualsBruteForceWithinDistance) {
+  using BV = TypeParam;
+  const std::uint64_t seed = test::baseSeed() ^ 0x6d61726727u;
+  SCOPED_TRACE(test::seedTrace(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u01(0, 1);
+  long with_margin_only = 0;
+  for (const Mesh& m : meshes()) {
+    SCOPED_TRACE(m.name);
+    auto model = fcltest::makeModel<BV>(m);
+    for (const Scene& s : scenes(m, seed, 1)) {
+      SCOPED_TRACE(fcltest::describe(s));
+      const Cylinder<double> c{s.r, s.lz};
+      const Pose<double> pose = toPose(s.cyl_tf);
+      const double size = std::max(s.r, s.lz);
+      std::vector<double> margins = {0, 0.001 * size, 0.01 * size,
+                                     0.1 * size * u01(rng)};
+      // Ties: margins at a triangle's distance, 1, 4, 2^20 ulps either side.
+      const Brute b = bruteForce<BV>(m, s);
+      if (!b.collides && b.min < size) {
+        for (double k : {1.0, 4.0, 1048576.0}) {
+          const double ulp = std::nextafter(b.min, 2 * b.min + 1) - b.min;
+          margins.push_back(b.min - k * ulp);
+          margins.push_back(b.min + k * ulp);
+        }
+        margins.push_back(b.min);
+      }
+      auto cyl = std::make_shared<fcl::Cylinderd>(s.r, s.lz);
+      const fcl::CollisionObjectd mesh_obj(model, s.mesh_tf);
+      const fcl::CollisionObjectd cyl_obj(cyl, s.cyl_tf);
+      for (double margin : margins) {
+        if (!(margin >= 0)) continue;
+        std::set<std::size_t> expect;
+        for (std::size_t i = 0; i < m.t.size(); ++i)
+          if (tryWithinDistance(c, pose, worldTri<BV>(m, s.mesh_tf, i),
+                                margin) != Answer::kDisjoint)
+            expect.insert(i);
+        for (int order = 0; order < 2; ++order) {
+          fcl::CollisionRequestd req(std::numeric_limits<int>::max(),
+                                     order == 1);
+          fcl::CollisionResultd res;
+          tricyl::collide(order ? &cyl_obj : &mesh_obj,
+                          order ? &mesh_obj : &cyl_obj, req, res,
+                          CollideOptions<double>{margin});
+          std::set<std::size_t> got;
+          for (std::size_t i = 0; i < res.numContacts(); ++i) {
+            const fcl::Contactd& ct = res.getContact(i);
+            got.insert(std::size_t(ct.b1));
+            if (!req.enable_contact) continue;
+            const Answer a =
+                tryIntersect(c, pose, worldTri<BV>(m, s.mesh_tf, ct.b1));
+            if (a == Answer::kIntersect) {
+              EXPECT_GT(ct.penetration_depth, 0);
+            } else {
+              ++with_margin_only;
+              EXPECT_LT(ct.penetration_depth, 0);
+              // -distance, the computed distance within its error bound of
+              // the true one, which withinDistance (exact) puts <= margin.
+              DistanceResult<double> d;
+              const Triangle<double> tri = worldTri<BV>(m, s.mesh_tf, ct.b1);
+              ASSERT_EQ(tryDistance(c, pose, tri, &d), Answer::kDisjoint);
+              EXPECT_EQ(ct.penetration_depth, -d.distance);
+              EXPECT_GE(ct.penetration_depth, -(margin + d.error_bound))
+                  << std::hexfloat << "margin " << margin << " distance "
+                  << d.distance << " bound " << d.error_bound << " triangle "
+                  << tri.a.x << " " << tri.a.y << " " << tri.a.z << " "
+                  << tri.b.x << " " << tri.b.y << " " << tri.b.z << " "
+                  << tri.c.x << " " << tri.c.y << " " << tri.c.z;
+              EXPECT_NEAR(ct.normal.norm(), 1, 1e-12);
+            }
+          }
+          ASSERT_EQ(got, expect) << "margin " << margin << " order " << order;
+          if (margin == 0) {
+            fcl::CollisionResultd plain;
+            tricyl::collide(&mesh_obj, &cyl_obj, req, plain);
+            EXPECT_EQ(plain.numContacts(), res.numContacts());
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(with_margin_only, 0);
+}
+
+// TriangleP vs Cylinder, both orders: fcl::distance with the Solver (the
+// entries this solver registers), the wrapper, and the margin collide give
+// tricyl::distance / withinDistance's answers for the world triangle.
+TEST(FclDistanceShapes, TrianglePBothOrders) {
+  const std::uint64_t seed = test::baseSeed() ^ 0x74726970u;
+  SCOPED_TRACE(test::seedTrace(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Solver<double> solver;
+  long apart = 0, meeting = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const double scale = std::pow(10.0, 3 * u(rng));
+    auto tri = std::make_shared<fcl::TrianglePd>(
+        V3(u(rng), u(rng), u(rng)) * scale, V3(u(rng), u(rng), u(rng)) * scale,
+        V3(u(rng), u(rng), u(rng)) * scale);
+    auto cyl = std::make_shared<fcl::Cylinderd>(0.5 + 0.5 * u(rng),
+                                                1.0 + 0.9 * u(rng));
+    Tf tf_tri = Tf::Identity(), tf_cyl = Tf::Identity();
+    tf_tri.linear() = fcltest::randomRotation(rng);
+    tf_tri.translation() = V3(u(rng), u(rng), u(rng));
+    tf_cyl.linear() = fcltest::randomRotation(rng);
+    tf_cyl.translation() = V3(u(rng), u(rng), u(rng));
+    const Triangle<double> world =
+        fcltest::toTri(tf_tri * tri->a, tf_tri * tri->b, tf_tri * tri->c);
+    const Cylinder<double> c{cyl->radius, cyl->lz};
+    const Pose<double> pose = toPose(tf_cyl);
+    DistanceResult<double> d;
+    const Answer a = tryDistance(c, pose, world, &d);
+    const fcl::CollisionObjectd ot(tri, tf_tri), oc(cyl, tf_cyl);
+    for (int order = 0; order < 2; ++order) {
+      SCOPED_TRACE("case " + std::to_string(k) + " order " +
+                   std::to_string(order));
+      const fcl::CollisionObjectd* o1 = order ? &oc : &ot;
+      const fcl::CollisionObjectd* o2 = order ? &ot : &oc;
+      fcl::DistanceRequestd req(true);
+      fcl::DistanceResultd f, w;
+      fcl::distance(o1, o2, &solver, req, f);
+      tricyl::distance(o1, o2, req, w);
+      EXPECT_EQ(f.min_distance, w.min_distance);
+      if (a == Answer::kDisjoint) {
+        ++apart;
+        EXPECT_EQ(f.min_distance, d.distance);
+        const V3 on_tri = fclPoint(d.point_on_triangle);
+        const V3 on_cyl = fclPoint(d.point_on_cylinder);
+        EXPECT_EQ(f.nearest_points[0], order ? on_cyl : on_tri);
+        EXPECT_EQ(f.nearest_points[1], order ? on_tri : on_cyl);
+      } else {
+        ++meeting;
+        EXPECT_LT(f.min_distance, 0);
+      }
+      // Margin collide at the distance itself and just below it.
+      if (a == Answer::kDisjoint) {
+        for (double margin :
+             {d.distance, std::nextafter(d.distance, 0.0), 0.5 * d.distance}) {
+          fcl::CollisionRequestd creq(1, true);
+          fcl::CollisionResultd cres;
+          tricyl::collide(o1, o2, creq, cres, CollideOptions<double>{margin});
+          EXPECT_EQ(
+              cres.isCollision(),
+              tryWithinDistance(c, pose, world, margin) != Answer::kDisjoint)
+              << margin;
+          if (cres.isCollision()) {
+            const fcl::Contactd& ct = cres.getContact(0);
+            EXPECT_EQ(ct.penetration_depth, -d.distance);
+            // Normal from o1 toward o2.
+            const V3 to_cyl =
+                fclPoint(d.point_on_cylinder) - fclPoint(d.point_on_triangle);
+            EXPECT_GT(ct.normal.dot(order ? V3(-to_cyl) : to_cyl), 0);
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(apart, 100);
+  EXPECT_GT(meeting, 10);
+}
+
+// The broadphase callback: DynamicAABBTree manager over a mesh and a box,
+// queried with a cylinder: tricyl::DefaultDistanceFunction gives the
+// smaller of tricyl::distance to the mesh and fcl::distance to the box.
+TEST(FclDistanceShapes, BroadphaseDefaultDistanceFunction) {
+  const Mesh m = fcltest::sphereMesh(10);
+  auto model = fcltest::makeModel<fcl::OBBRSS<double>>(m);
+  auto box = std::make_shared<fcl::Boxd>(0.5, 0.5, 0.5);
+  auto cyl = std::make_shared<fcl::Cylinderd>(0.2, 0.6);
+  Tf tb = Tf::Identity(), tc = Tf::Identity();
+  tb.translation() = V3(4, 0, 0);
+  fcl::CollisionObjectd om(model, Tf::Identity()), ob(box, tb);
+  fcl::DynamicAABBTreeCollisionManagerd manager;
+  manager.registerObject(&om);
+  manager.registerObject(&ob);
+  manager.setup();
+  for (double x : {1.5, 2.0, 2.8, 3.2}) {
+    tc.translation() = V3(x, 0.1, -0.05);
+    fcl::CollisionObjectd oc(cyl, tc);
+    DefaultDistanceData<double> data;
+    manager.distance(&oc, &data, DefaultDistanceFunction<double>);
+    fcl::DistanceResultd to_mesh, to_box;
+    tricyl::distance(&om, &oc, fcl::DistanceRequestd(), to_mesh);
+    fcl::distance(&ob, &oc, fcl::DistanceRequestd(), to_box);
+    // The box pair is libccd's (tolerance 1e-6), whose answer may depend
+    // on the argument order the manager uses.
+    if (to_mesh.min_distance < to_box.min_distance - 1e-5)
+      EXPECT_EQ(data.result.min_distance, to_mesh.min_distance) << x;
+    else
+      EXPECT_NEAR(data.result.min_distance, to_box.min_distance, 1e-5) << x;
+  }
+}
+
+// Invalid margins are refused; a huge finite margin takes every triangle.
+TEST(FclDistanceShapes, MarginArgument) {
+  Mesh m = fcltest::sphereMesh(6);
+  auto model = fcltest::makeModel<fcl::OBBRSS<double>>(m);
+  auto cyl = std::make_shared<fcl::Cylinderd>(0.1, 0.2);
+  Tf tf = Tf::Identity();
+  tf.translation() = V3(5, 0, 0);
+  const fcl::CollisionObjectd om(model, Tf::Identity()), oc(cyl, tf);
+  fcl::CollisionRequestd req(100000);
+  fcl::CollisionResultd res;
+  for (double bad : {-1.0, std::numeric_limits<double>::infinity(),
+                     std::numeric_limits<double>::quiet_NaN()})
+    EXPECT_THROW(
+        tricyl::collide(&om, &oc, req, res, CollideOptions<double>{bad}),
+        InvalidInput);
+  tricyl::collide(&om, &oc, req, res, CollideOptions<double>{100.0});
+  EXPECT_EQ(res.numContacts(), m.t.size());
+  res.clear();
+  tricyl::collide(&om, &oc, req, res, CollideOptions<double>{3.5});
+  EXPECT_EQ(res.numContacts(), 0u);
+}
+
+// float: fcl::distance with Solver<float> and the wrapper (FCL's traversal
+// or, for AABB/OBB/KDOP, every triangle) give the float brute-force minimum.
+TEST(FclDistanceShapes, FloatModels) {
+  const std::uint64_t seed = test::baseSeed() ^ 0x666c6f61u;
+  SCOPED_TRACE(test::seedTrace(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> u(-1, 1);
+  const Mesh md = fcltest::sphereMesh(10);
+  std::vector<fcl::Vector3f> v;
+  for (const V3& p : md.v) v.push_back(p.cast<float>());
+  const auto check = [&](auto tag) {
+    using BV = typename decltype(tag)::type;
+    auto model = std::make_shared<fcl::BVHModel<BV>>();
+    model->beginModel(int(md.t.size()), int(v.size()));
+    model->addSubModel(v, md.t);
+    model->endModel();
+    const Solver<float> solver;
+    for (int k = 0; k < 20; ++k) {
+      auto cyl = std::make_shared<fcl::Cylinderf>(0.2f, 0.5f);
+      fcl::Transform3f tf = fcl::Transform3f::Identity();
+      tf.linear() = fcltest::randomRotation(rng).cast<float>();
+      tf.translation() = fcl::Vector3f(u(rng), u(rng), u(rng)) * 2.0f;
+      float best = std::numeric_limits<float>::max();
+      bool hit = false;
+      for (const fcl::Triangle& t : md.t) {
+        DistanceResult<float> d;
+        const Triangle<float> tri{toVec3(v[t[0]]), toVec3(v[t[1]]),
+                                  toVec3(v[t[2]])};
+        if (tryDistance(Cylinder<float>{0.2f, 0.5f}, toPose(tf), tri, &d) !=
+            Answer::kDisjoint)
+          hit = true;
+        else
+          best = std::min(best, d.distance);
+      }
+      const fcl::CollisionObjectf om(model, fcl::Transform3f::Identity()),
+          oc(cyl, tf);
+      fcl::DistanceRequestf req(true);
+      fcl::DistanceResultf f, w;
+      fcl::distance(&om, &oc, &solver, req, f);
+      tricyl::distance(&oc, &om, req, w);
+      if (hit) {
+        EXPECT_LE(f.min_distance, 0);
+        EXPECT_LE(w.min_distance, 0);
+      } else {
+        EXPECT_NEAR(f.min_distance, best, 1e-5f * best);
+        EXPECT_EQ(w.min_distance, f.min_distance);
+      }
+    }
+  };
+  check(BvTag<fcl::OBBRSS<float>>{});
+  check(BvTag<fcl::AABB<float>>{});
+  check(BvTag<fcl::OBB<float>>{});
+  check(BvTag<fcl::KDOP<float, 16>>{});
+}
+
+}  // namespace
+}  // namespace tricyl
