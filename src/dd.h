@@ -38,16 +38,6 @@ struct DDT {
 };
 using DD = DDT<false>;
 
-template <bool kFma>
-inline void twoProdT(double a, double b, double& p, double& e) {
-  if constexpr (kFma) {
-    p = a * b;
-    e = __builtin_fma(a, b, -p);
-  } else {
-    twoProd(a, b, p, e);
-  }
-}
-
 template <bool F>
 inline DDT<F> operator+(DDT<F> x, DDT<F> y) {
   const DW z = dwAdd({x.hi, x.lo}, {y.hi, y.lo});
@@ -61,18 +51,11 @@ template <bool F>
 inline DDT<F> operator-(DDT<F> x, DDT<F> y) {
   return x + (-y);
 }
-/// DWTimesDW1 (eft.h's dwMul) with twoProdT.
+/// DWTimesDW1 (eft.h's dwMulT).
 template <bool F>
 inline DDT<F> operator*(DDT<F> x, DDT<F> y) {
-  double ch, cl1;
-  twoProdT<F>(x.hi, y.hi, ch, cl1);
-  const double tl1 = x.hi * y.lo;
-  const double tl2 = x.lo * y.hi;
-  const double cl2 = tl1 + tl2;
-  const double cl3 = cl1 + cl2;
-  DDT<F> z;
-  twoSum(ch, cl3, z.hi, z.lo);
-  return z;
+  const DW z = dwMulT<F>({x.hi, x.lo}, {y.hi, y.lo});
+  return {z.hi, z.lo};
 }
 /// Long division: q1 = x/y in double, then two corrections from the
 /// residuals x - y q1 (each a double-word multiply and subtract).
