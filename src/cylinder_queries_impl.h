@@ -38,6 +38,7 @@
 #include <type_traits>
 
 #include "filter.h"
+#include "per_sign.h"
 #include "stages.h"
 #include "triangle_cylinder_impl.h"
 #include "tricyl/types.h"
@@ -172,6 +173,27 @@ Tri pointInCone(const LocalPoint<K>& q, const typename K::Num& H,
 }
 
 // ---------------------------------------------------------------------------
+// The sphere, segment and line queries: each sign a closed-form polynomial
+// in the local data of the query (its Frame<N>), written once as a generic
+// lambda and decided by a context C (src/per_sign.h): PerSign inside the
+// range gate (double, then that sign alone in double-word, expansions,
+// GMP), GMP alone outside it, or one kernel K of src/filter.h
+// (KernelCtx<K>, for runStages). Kleene logic keeps every query correct
+// for a context that may leave a sign open (KernelCtx<FilterKernel>).
+
+/// r^2 - x^2 - y^2: v is in the infinite solid cylinder (>= 0).
+template <class N>
+inline N diskGap(const Pt<N>& v, const N& r) {
+  return r * r - v.x * v.x - v.y * v.y;
+}
+/// 4 x (exact: two exact doublings; no overflow under the range gate).
+template <class N>
+inline N times4(const N& x) {
+  const N d = x + x;
+  return d + d;
+}
+
+// ---------------------------------------------------------------------------
 // Sphere vs cylinder. The sphere is the ball of radius rho about the local
 // centre c = (x, y, z) (see include/tricyl/sphere_cylinder.h for what that
 // means in the world). The closed sets meet iff dist(c, C) <= rho, and
@@ -188,49 +210,89 @@ Tri pointInCone(const LocalPoint<K>& q, const typename K::Num& H,
 //   squaring only when both sides are non-negative (T > 0). The two
 //   formulas agree at E = 0, so both branches may claim the plane Z = +-H.
 // Every branch condition is itself a certified sign (Kleene logic): an
-// undecided height only means the next stage decides.
+// undecided height (only from a context that may leave signs open) only
+// means that both branches are evaluated.
 
-template <class K>
-Tri sphereBeyondCap(const typename K::Num& E, const typename K::Num& s,
-                    const typename K::Num& r, const typename K::Num& rho) {
-  using N = typename K::Num;
-  Tri t = isNonNeg(K::sign((rho + rho) - E));
+/// The local data of a sphere query: the centre, H = lz, r, rho.
+struct SphereQuery {
+  const Cylinder<double>& cyl;
+  const Pose<double>& pose;
+  const Sphere<double>& sph;
+  double max_unitless;
+
+  template <class N>
+  struct Frame {
+    Pt<N> c;
+    N H, r, rho;
+  };
+  template <class A>
+  Frame<typename A::Num> frame() const {
+    return {A::local(pose, sph.center, max_unitless), A::lift(cyl.lz),
+            A::lift(cyl.radius), A::lift(sph.radius)};
+  }
+};
+
+/// E = Z - H (s = +1) or -Z - H (s = -1): the centre's doubled height
+/// beyond the cap plane of that side.
+template <class N>
+inline N beyondCap(const Pt<N>& c, const N& H, int side) {
+  return side > 0 ? c.Z - H : -c.Z - H;
+}
+
+/// The branch "beyond the cap of `side`" (its own condition E >= 0 not
+/// included).
+template <class C>
+Tri sphereBeyondCap(C& c, int side) {
+  // 2 rho - E >= 0: the cap plane within rho of the centre.
+  Tri t = isNonNeg(c.sign([side](const auto& f) {
+    return (f.rho + f.rho) - beyondCap(f.c, f.H, side);
+  }));
   if (t == Tri::kFalse) return t;
-  const N G = (rho * rho) * K::lift(4.0) - E * E;
-  const N T = (s - r * r) * K::lift(4.0) - G;
-  const Tri t_neg = isNonPos(K::sign(T));
+  // G = 4 rho^2 - E^2, T = 4 (s - r^2) - G.
+  auto T = [side](const auto& f) {
+    const auto E = beyondCap(f.c, f.H, side);
+    const auto G = times4(f.rho * f.rho) - E * E;
+    return times4(f.c.x * f.c.x + f.c.y * f.c.y - f.r * f.r) - G;
+  };
+  const Tri t_neg = isNonPos(c.sign(T));
   if (t_neg == Tri::kTrue) return t;
-  const Tri t_sq = isNonNeg(K::sign((r * r) * K::lift(16.0) * G - T * T));
+  const Tri t_sq = isNonNeg(c.sign([side, &T](const auto& f) {
+    const auto E = beyondCap(f.c, f.H, side);
+    const auto G = times4(f.rho * f.rho) - E * E;
+    const auto Tv = T(f);
+    return times4(times4(f.r * f.r)) * G - Tv * Tv;
+  }));
   return kAnd(t, kOr(t_neg, t_sq));
 }
 
-template <class K>
-Tri sphereCylinder(const LocalPoint<K>& c, const typename K::Num& H,
-                   const typename K::Num& r, const typename K::Num& rho,
-                   bool* early) {
-  using N = typename K::Num;
-  const N top = c.Z - H;   // E of the top branch
-  const N bot = -c.Z - H;  // E of the bottom branch
-  const N rho2 = rho + rho;
-  // Early-out: the centre is more than rho beyond a cap plane.
-  if (K::sign(top - rho2) == Sign::kPos || K::sign(bot - rho2) == Sign::kPos) {
-    *early = true;
-    return Tri::kFalse;
+template <class C>
+Tri sphereCylinder(C& c, bool* early) {
+  *early = false;
+  // Early-out: the centre more than rho beyond a cap plane (E - 2 rho > 0;
+  // the branch's own first sign says the same when the filter cannot).
+  for (int side : {1, -1})
+    if (c.cheapSign([side](const auto& f) {
+          return beyondCap(f.c, f.H, side) - (f.rho + f.rho);
+        }) == Sign::kPos) {
+      *early = true;
+      return Tri::kFalse;
+    }
+  const Sign s_top = c.sign([](const auto& f) { return f.c.Z - f.H; });
+  const Sign s_bot = c.sign([](const auto& f) { return -f.c.Z - f.H; });
+  Tri result = Tri::kFalse;
+  // Within the slab: s <= (r + rho)^2.
+  const Tri in_slab = kAnd(isNonPos(s_top), isNonPos(s_bot));
+  if (in_slab != Tri::kFalse) {
+    result = kAnd(in_slab, isNonNeg(c.sign([](const auto& f) {
+                    return diskGap(f.c, f.r + f.rho);
+                  })));
+    if (result == Tri::kTrue) return result;
   }
-  const N s = c.x * c.x + c.y * c.y;
-  const Sign s_top = K::sign(top);
-  const Sign s_bot = K::sign(bot);
-  // Within the slab.
-  Tri result = kAnd(kAnd(isNonPos(s_top), isNonPos(s_bot)),
-                    isNonNeg(K::sign((r + rho) * (r + rho) - s)));
-  if (result == Tri::kTrue) return result;
   if (isNonNeg(s_top) != Tri::kFalse)
-    result =
-        kOr(result, kAnd(isNonNeg(s_top), sphereBeyondCap<K>(top, s, r, rho)));
+    result = kOr(result, kAnd(isNonNeg(s_top), sphereBeyondCap(c, 1)));
   if (result == Tri::kTrue) return result;
   if (isNonNeg(s_bot) != Tri::kFalse)
-    result =
-        kOr(result, kAnd(isNonNeg(s_bot), sphereBeyondCap<K>(bot, s, r, rho)));
+    result = kOr(result, kAnd(isNonNeg(s_bot), sphereBeyondCap(c, -1)));
   return result;
 }
 
@@ -251,30 +313,26 @@ Tri sphereCylinder(const LocalPoint<K>& c, const typename K::Num& H,
 // the infinite-cylinder quadratic inside [0, 1] and so rejects a segment
 // entirely inside (V), never checks that the root lies between the caps
 // (the slab part of (E)), and never tests the cap disks (X).
-
-template <class K>
-struct SegLocal {
-  LocalPoint<K> p[2];  // the images of p and q
-  LocalPoint<K> e;     // R^T (q - p), from the input differences
-  typename K::Num H, r;
-};
-
+//
 // Terms shared by the segment and the line predicates, in terms of a = the
 // local image of p and the direction e = R^T (q - p) (Z doubled as
 // everywhere). e is computed from the input differences q - p (toLocal
 // with t = p), not as b - a: exactly the same value, but a short or a
 // distant pair p, q keeps its relative accuracy, which the filter sees
 // (measured on the segment's families, 10^5 cases each: near 2.15% -> 1.92%
-// exact, far 5956 -> 3340 extended-stage cases). top/bot: signs of Z - H
-// and Z + H at a point.
+// exact, far 5956 -> 3340 extended-stage cases). The exact arithmetics
+// take b - a (the same value, fewer operations).
+//
+// Every polynomial below reads a frame with the fields a (the point p's
+// image), e (the direction), H and r.
 
-/// (V): the point v is in the solid.
-template <class K>
-inline Tri vertexInside(const LocalPoint<K>& v, Sign top, Sign bot,
-                        const typename K::Num& r2) {
+/// (V): |Z| <= H (from the signs top = sign(Z - H), bot = sign(Z + H)) and
+/// x^2 + y^2 <= r^2. `gap`: the disk term's polynomial.
+template <class C, class P>
+inline Tri vertexInside(C& c, Sign top, Sign bot, const P& gap) {
   const Tri slab = kAnd(isNonPos(top), isNonNeg(bot));
   if (slab == Tri::kFalse) return slab;
-  return kAnd(slab, isNonNeg(K::sign(r2 - v.x * v.x - v.y * v.y)));
+  return kAnd(slab, isNonNeg(c.sign(gap)));
 }
 
 /// (X) without its precondition: the point where the line a + mu e meets
@@ -282,103 +340,146 @@ inline Tri vertexInside(const LocalPoint<K>& v, Sign top, Sign bot,
 /// (x_a W - e_x a0, y_a W - e_y a0) / W, lies in the cap disk:
 /// X^2 + Y^2 <= r^2 W^2. Meaningful only when W != 0 (for W = 0 the test
 /// degenerates to a0^2 |e|^2 <= 0); the caller supplies that condition.
-template <class K>
-inline Tri capCrossingInDisk(const LocalPoint<K>& a, const LocalPoint<K>& e,
-                             const typename K::Num& a0,
-                             const typename K::Num& r2) {
-  using N = typename K::Num;
-  const N& W = e.Z;
-  const N X = a.x * W - e.x * a0;
-  const N Y = a.y * W - e.y * a0;
-  return isNonNeg(K::sign(r2 * (W * W) - X * X - Y * Y));
+template <class F>
+inline auto capCrossingGap(const F& f, int side) {
+  const auto a0 = side > 0 ? f.a.Z - f.H : f.a.Z + f.H;
+  const auto& W = f.e.Z;
+  const auto X = f.a.x * W - f.e.x * a0;
+  const auto Y = f.a.y * W - f.e.y * a0;
+  return (f.r * f.r) * (W * W) - X * X - Y * Y;
 }
 
-/// The sign of r^2 L - c^2, L = e_x^2 + e_y^2, c = x_a e_y - y_a e_x: the
-/// projected line through a along e comes within r of the axis (for
-/// L > 0; its distance^2 is c^2 / L).
-template <class K>
-inline Sign axisDistance(const LocalPoint<K>& a, const LocalPoint<K>& e,
-                         const typename K::Num& r2) {
-  using N = typename K::Num;
-  const N c = a.x * e.y - a.y * e.x;
-  return K::sign(r2 * (e.x * e.x + e.y * e.y) - c * c);
+/// r^2 L - c^2, L = e_x^2 + e_y^2, c = x_a e_y - y_a e_x: the projected
+/// line through a along e comes within r of the axis (for L > 0; its
+/// distance^2 is c^2 / L).
+template <class F>
+inline auto axisDistanceGap(const F& f) {
+  const auto c = f.a.x * f.e.y - f.a.y * f.e.x;
+  return (f.r * f.r) * (f.e.x * f.e.x + f.e.y * f.e.y) - c * c;
 }
 
 /// (E): with L = |e_xy|^2 > 0, the foot of the perpendicular from the axis
 /// to the projected line is at mu = g / L, g = -a.e, within r
-/// (axisDistance); its height Z_a + mu e_Z is in the slab (times L > 0).
-/// `interior` adds 0 <= g <= L (the foot within [a, a + e]: the segment's
-/// form; the line has no such condition). `sep`, if not null, is
-/// axisDistance computed already.
-template <class K>
-inline Tri axisApproach(const LocalPoint<K>& a, const LocalPoint<K>& e,
-                        const typename K::Num& H, const typename K::Num& r2,
-                        bool interior, const Sign* sep = nullptr) {
-  using N = typename K::Num;
-  const N L = e.x * e.x + e.y * e.y;
-  Tri t = isPos(K::sign(L));
-  if (t != Tri::kFalse)
-    t = kAnd(t, isNonNeg(sep != nullptr ? *sep : axisDistance<K>(a, e, r2)));
-  N g{}, zL{}, HL{};
-  if (t != Tri::kFalse) {
-    g = -(a.x * e.x + a.y * e.y);
-    if (interior) t = kAnd(t, isNonNeg(K::sign(g)));
+/// (axisDistanceGap, whose sign is `sep`); its height Z_a + mu e_Z is in
+/// the slab (times L > 0). `interior` adds 0 <= g <= L (the foot within
+/// [a, a + e]: the segment's form; the line has no such condition).
+template <class C>
+inline Tri axisApproach(C& c, bool interior, Sign sep) {
+  Tri t = isPos(c.sign([](const auto& f) {
+    return f.e.x * f.e.x + f.e.y * f.e.y;  // L
+  }));
+  if (t != Tri::kFalse) t = kAnd(t, isNonNeg(sep));
+  auto g = [](const auto& f) { return -(f.a.x * f.e.x + f.a.y * f.e.y); };
+  if (interior && t != Tri::kFalse) t = kAnd(t, isNonNeg(c.sign(g)));
+  if (interior && t != Tri::kFalse)
+    t = kAnd(t, isNonNeg(c.sign([&g](const auto& f) {
+               return f.e.x * f.e.x + f.e.y * f.e.y - g(f);
+             })));
+  // H L -+ (Z_a L + g e_Z) >= 0.
+  for (int side : {1, -1}) {
+    if (t == Tri::kFalse) break;
+    t = kAnd(t, isNonNeg(c.sign([side, &g](const auto& f) {
+               const auto L = f.e.x * f.e.x + f.e.y * f.e.y;
+               const auto zL = f.a.Z * L + g(f) * f.e.Z;
+               return side > 0 ? f.H * L - zL : f.H * L + zL;
+             })));
   }
-  if (interior && t != Tri::kFalse) t = kAnd(t, isNonNeg(K::sign(L - g)));
-  if (t != Tri::kFalse) {
-    zL = a.Z * L + g * e.Z;
-    HL = H * L;
-    t = kAnd(t, isNonNeg(K::sign(HL - zL)));
-  }
-  if (t != Tri::kFalse) t = kAnd(t, isNonNeg(K::sign(HL + zL)));
   return t;
 }
 
-template <class K>
-Tri segmentCylinder(const SegLocal<K>& q, bool* early) {
-  using N = typename K::Num;
-  const N& H = q.H;
-  const LocalPoint<K>& a = q.p[0];
-  const LocalPoint<K>& b = q.p[1];
+/// The local data of a segment or line query: a = the image of p, b = the
+/// image of q (the segment only), e = R^T (q - p), H = lz, r.
+template <bool kSegment>
+struct LinearQuery {
+  const Cylinder<double>& cyl;
+  const Pose<double>& pose;
+  const Vec3<double>& p;
+  const Vec3<double>& q;
+  double max_unitless;
+
+  template <class N>
+  struct Frame {
+    Pt<N> a, b, e;
+    N H, r;
+  };
+  template <class A>
+  Frame<typename A::Num> frame() const {
+    Frame<typename A::Num> f;
+    f.a = A::local(pose, p, max_unitless);
+    if constexpr (A::kExact) {
+      f.b = A::local(pose, q, max_unitless);
+      f.e = {f.b.x - f.a.x, f.b.y - f.a.y, f.b.Z - f.a.Z};
+    } else {
+      Pose<double> at_p = pose;
+      at_p.t = p;
+      f.e = A::local(at_p, q, max_unitless);
+      if constexpr (kSegment) f.b = A::local(pose, q, max_unitless);
+    }
+    f.H = A::lift(cyl.lz);
+    f.r = A::lift(cyl.radius);
+    return f;
+  }
+};
+using SegmentQuery = LinearQuery<true>;
+using LineQuery = LinearQuery<false>;
+
+template <class C>
+Tri segmentCylinder(C& c, bool* early) {
   *early = false;
-  const Sign top[2] = {K::sign(a.Z - H), K::sign(b.Z - H)};
-  const Sign bot[2] = {K::sign(a.Z + H), K::sign(b.Z + H)};
+  auto top0 = [](const auto& f) { return f.a.Z - f.H; };
+  auto top1 = [](const auto& f) { return f.b.Z - f.H; };
+  auto bot0 = [](const auto& f) { return f.a.Z + f.H; };
+  auto bot1 = [](const auto& f) { return f.b.Z + f.H; };
+  const Sign top[2] = {c.sign(top0), c.sign(top1)};
   // Both endpoints strictly beyond the same cap plane.
-  if ((top[0] == Sign::kPos && top[1] == Sign::kPos) ||
-      (bot[0] == Sign::kNeg && bot[1] == Sign::kNeg)) {
+  if (top[0] == Sign::kPos && top[1] == Sign::kPos) {
     *early = true;
     return Tri::kFalse;
   }
-  // Both endpoints strictly beyond one side of the disk's bounding square.
+  const Sign bot[2] = {c.sign(bot0), c.sign(bot1)};
+  if (bot[0] == Sign::kNeg && bot[1] == Sign::kNeg) {
+    *early = true;
+    return Tri::kFalse;
+  }
+  // Both endpoints strictly beyond one side of the disk's bounding square
+  // (from the filter only: the terms below decide what it cannot).
   {
-    const N& r = q.r;
-    auto beyond = [&](const N& u, const N& v) {
-      return K::sign(u - r) == Sign::kPos && K::sign(v - r) == Sign::kPos;
+    auto beyond = [&c](auto u) {
+      return c.cheapSign([&u](const auto& f) { return u(f.a) - f.r; }) ==
+                 Sign::kPos &&
+             c.cheapSign([&u](const auto& f) { return u(f.b) - f.r; }) ==
+                 Sign::kPos;
     };
-    if (beyond(a.x, b.x) || beyond(-a.x, -b.x) || beyond(a.y, b.y) ||
-        beyond(-a.y, -b.y)) {
+    if (beyond([](const auto& v) { return v.x; }) ||
+        beyond([](const auto& v) { return -v.x; }) ||
+        beyond([](const auto& v) { return v.y; }) ||
+        beyond([](const auto& v) { return -v.y; })) {
       *early = true;
       return Tri::kFalse;
     }
   }
-  const N r2 = q.r * q.r;
   AnyOf any;
   // (V)
-  for (int i = 0; i < 2; ++i)
-    if (any.add(vertexInside<K>(q.p[i], top[i], bot[i], r2))) return Tri::kTrue;
-  const LocalPoint<K>& e = q.e;
+  if (any.add(vertexInside(c, top[0], bot[0],
+                           [](const auto& f) { return diskGap(f.a, f.r); })))
+    return Tri::kTrue;
+  if (any.add(vertexInside(c, top[1], bot[1],
+                           [](const auto& f) { return diskGap(f.b, f.r); })))
+    return Tri::kTrue;
   // (X) a strict crossing of Z = sH at a point of the cap disk.
-  for (int side = 0; side < 2; ++side) {
-    const Sign* sa = side == 0 ? top : bot;
+  for (int side : {1, -1}) {
+    const Sign* sa = side > 0 ? top : bot;
     const Tri crossing =
         kOr(kAnd(isNeg(sa[0]), isPos(sa[1])), kAnd(isPos(sa[0]), isNeg(sa[1])));
     if (crossing == Tri::kFalse) continue;
-    const N a0 = side == 0 ? N(a.Z - H) : N(a.Z + H);
-    if (any.add(kAnd(crossing, capCrossingInDisk<K>(a, e, a0, r2))))
+    if (any.add(kAnd(crossing, isNonNeg(c.sign([side](const auto& f) {
+                       return capCrossingGap(f, side);
+                     })))))
       return Tri::kTrue;
   }
   // (E) the closest approach to the axis, interior to the segment.
-  if (any.add(axisApproach<K>(a, e, H, r2, true))) return Tri::kTrue;
+  const Sign sep = c.sign([](const auto& f) { return axisDistanceGap(f); });
+  if (any.add(axisApproach(c, true, sep))) return Tri::kTrue;
   return any.result();
 }
 
@@ -407,45 +508,36 @@ Tri segmentCylinder(const SegLocal<K>& q, bool* early) {
 // as the segment's terms (e has the degree, depth and gate magnitude of a
 // local coordinate).
 
-template <class K>
-struct LineLocal {
-  LocalPoint<K> a, e;  // a point of the line, its direction (Z doubled)
-  typename K::Num H, r;
-};
-
-template <class K>
-Tri lineCylinder(const LineLocal<K>& q, bool* early) {
-  using N = typename K::Num;
-  const N& H = q.H;
-  const LocalPoint<K>& a = q.a;
-  const LocalPoint<K>& e = q.e;
+template <class C>
+Tri lineCylinder(C& c, bool* early) {
   *early = false;
-  const N r2 = q.r * q.r;
-  const Sign sep = axisDistance<K>(a, e, r2);
+  const Sign sep = c.sign([](const auto& f) { return axisDistanceGap(f); });
   if (sep == Sign::kNeg) {
     *early = true;
     return Tri::kFalse;
   }
   AnyOf any;
   // (V)
-  if (any.add(vertexInside<K>(a, K::sign(a.Z - H), K::sign(a.Z + H), r2)))
+  if (any.add(vertexInside(c, c.sign([](const auto& f) { return f.a.Z - f.H; }),
+                           c.sign([](const auto& f) { return f.a.Z + f.H; }),
+                           [](const auto& f) { return diskGap(f.a, f.r); })))
     return Tri::kTrue;
   // (X) the crossing with Z = sH, if the line is not parallel to it, in the
   // cap disk.
   Tri slanted = Tri::kUnknown;
   bool have_slanted = false;
-  for (int side = 0; side < 2; ++side) {
-    const N a0 = side == 0 ? N(a.Z - H) : N(a.Z + H);
-    Tri t = capCrossingInDisk<K>(a, e, a0, r2);
+  for (int side : {1, -1}) {
+    const Tri t = isNonNeg(
+        c.sign([side](const auto& f) { return capCrossingGap(f, side); }));
     if (t == Tri::kFalse) continue;
     if (!have_slanted) {
-      slanted = kNot(isZero(K::sign(e.Z)));
+      slanted = kNot(isZero(c.sign([](const auto& f) { return f.e.Z; })));
       have_slanted = true;
     }
     if (any.add(kAnd(t, slanted))) return Tri::kTrue;
   }
   // (E) the closest approach to the axis, anywhere on the line.
-  if (any.add(axisApproach<K>(a, e, H, r2, false, &sep))) return Tri::kTrue;
+  if (any.add(axisApproach(c, false, sep))) return Tri::kTrue;
   return any.result();
 }
 

@@ -15,7 +15,7 @@ namespace {
 using detail::LinearInputs;
 
 Decision decide(LinearInputs& in) {
-  return detail::decideLinear<detail::LinePred>(in);
+  return detail::decideLinear<false>(in);
 }
 
 template <class S>

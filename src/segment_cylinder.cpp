@@ -18,7 +18,7 @@ namespace {
 using detail::LinearInputs;
 
 Decision decide(LinearInputs& in) {
-  return detail::decideLinear<detail::SegmentPred>(in);
+  return detail::decideLinear<true>(in);
 }
 
 template <class S>

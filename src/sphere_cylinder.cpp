@@ -17,15 +17,11 @@ Decision decide(const Cylinder<double>& cyl, const Pose<double>& pose,
                           &max_len, &max_unitless) ||
       !(cyl.radius >= 0 && cyl.lz >= 0 && sph.radius >= 0))
     return {Answer::kInvalidInput, Stage::kInvalid};
-  return detail::runStages(
-      [&](auto tag, bool* early) {
-        using K = typename decltype(tag)::type;
-        const auto q = detail::localPoint<K>(pose, c, max_unitless);
-        return detail::sphereCylinder<K>(q, K::lift(cyl.lz),
-                                         K::lift(cyl.radius),
-                                         K::lift(sph.radius), early);
-      },
-      max_len, max_unitless);
+  const detail::SphereQuery q{cyl, pose, sph, max_unitless};
+  return detail::runPerSign(q, detail::rangeGateOk(max_len, max_unitless),
+                            [](auto& ctx, bool* early) {
+                              return detail::sphereCylinder(ctx, early);
+                            });
 }
 
 template <class S>

@@ -1,0 +1,344 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Escalation per sign for the cylinder queries (sphere, segment, line):
+// the policy of the stage driver for queries whose predicates are short
+// closed-form polynomials in the local coordinates of a few points.
+//
+// A query of this kind is written once against a context C with
+//   C::sign(pred)       the certified sign of pred(frame), never kUnknown
+//                       from PerSign below;
+//   C::cheapSign(pred)  the same, but only from the double filter (may be
+//                       kUnknown): for early-outs, which the later signs
+//                       decide anyway;
+// where pred is a generic lambda from a frame (the query's local data:
+// local points and sizes, Frame<N> for a number type N with +, -, *) to
+// the value of one polynomial. The query describes its frame (Q below):
+//   template <class N> struct Frame;                    the local data;
+//   template <class A> Frame<typename A::Num> frame();  built in arithmetic
+//                                                       A (lift, local).
+//
+// PerSign (inside the range gate) evaluates pred in double on a frame
+// computed once (FilterKernel's Fd: value and magnitude, certified by the
+// a-priori bound of src/filter.h); only a sign that bound leaves open is
+// re-decided, by itself, in the next arithmetic, from a frame of that
+// arithmetic computed when first needed, while the query goes on in double
+// with the certified sign (CGAL's Filtered_predicate, Shewchuk's adaptive
+// predicates: the expensive evaluation only for the expression that
+// failed). The arithmetics, in order:
+//   1. double-word (about 106 bits, src/eft.h) with the a-priori bound
+//      derived at DwNum below, from the filter's own magnitude: no running
+//      bound, no tape;
+//   2. exact stack expansions (src/expansion.h);
+//   3. GMP dyadics (ExactKernel), where the expansions give up.
+// Outside the range gate the query runs on GMP dyadics alone (ExactCtx
+// below), as in runStages (src/stages.h). KernelCtx<K> runs the same query
+// code with one kernel K of src/filter.h, for runStages itself (the
+// triangle's degenerate hand-off calls the segment query that way).
+#pragma once
+
+#include <cmath>
+#include <optional>
+
+#include "adaptive.h"
+#include "eft.h"
+#include "expansion.h"
+#include "filter.h"
+#include "stages.h"
+#include "triangle_cylinder_impl.h"
+#include "tricyl/types.h"
+
+namespace tricyl::detail {
+
+/// A local point (x, y, Z), Z = 2 z (the frame of the triangle kernel).
+template <class N>
+struct Pt {
+  N x, y, Z;
+};
+
+// ---------------------------------------------------------------------------
+// Double-word values with a running error bound (the rules of the adaptive
+// kernel's double-word stage, derived in src/adaptive.cpp): each value
+// carries a double word v and a bound e >= |v - E| on its distance to the
+// exact value E, so that a product of two small values (the square of a
+// nearly cancelling term: c^2 in r^2 L - c^2 for a grazing line) keeps a
+// bound relative to its own size, which no a-priori bound does.
+struct DwE {
+  DW v;
+  double e;
+};
+inline DwE operator+(const DwE& a, const DwE& b) {
+  return {dwAdd(a.v, b.v),
+          a.e + b.e + kDwAddRel * (std::fabs(a.v.hi) + std::fabs(b.v.hi))};
+}
+inline DwE operator-(const DwE& a) { return {dwNeg(a.v), a.e}; }
+inline DwE operator-(const DwE& a, const DwE& b) { return a + (-b); }
+inline DwE operator*(const DwE& a, const DwE& b) {
+  const DW v = dwMul(a.v, b.v);
+  const double ma = std::fabs(a.v.hi) + std::fabs(a.v.lo);
+  const double mb = std::fabs(b.v.hi) + std::fabs(b.v.lo);
+  return {v,
+          ma * b.e + mb * a.e + a.e * b.e + kDwRel * std::fabs(v.hi) + kDwTiny};
+}
+
+/// The certified sign of a double-word value (src/adaptive.cpp: the bound
+/// inflated for its own rounding, and the absolute slack of the range
+/// gate), or kUnknown.
+inline Sign dwSign(const DwE& d) {
+  const double b = (d.e + std::fabs(d.v.lo)) * (1 + 0x1p-40) + 0x1p-600;
+  if (d.v.hi > b) return Sign::kPos;
+  if (d.v.hi < -b) return Sign::kNeg;
+  return Sign::kUnknown;
+}
+
+struct DwArith {
+  using Num = DwE;
+  static constexpr bool kExact = false;
+  static Num lift(double x) { return {{x, 0.0}, 0.0}; }
+  /// y = R^T (p - t), Z doubled, each within e = 2^-100 M + kDwTiny of the
+  /// exact value, M = sum_k |R_kj| |D_k|: (D_k, l_k) = TwoSum(p_k, -t_k),
+  /// (P_k, e_k) = TwoProd(R_kj, D_k), q_k = fl(R_kj l_k), the P_k summed
+  /// by two TwoSums and the low-order terms in double; an exact 0 (every
+  /// term with a zero factor) has e = 0. The same sequence and bound as
+  /// the adaptive kernel's (src/adaptive.cpp, Tape::dwCoord, derives it).
+  static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
+                       double /*rho*/) {
+    const double pp[3] = {p.x, p.y, p.z};
+    const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
+    double D[3], l[3];
+    for (int k = 0; k < 3; ++k) twoSum(pp[k], -tt[k], D[k], l[k]);
+    Num out[3];
+    for (int j = 0; j < 3; ++j) {
+      double P[3], e[3], q[3], m = 0;
+      bool zero = true;
+      for (int k = 0; k < 3; ++k) {
+        const double R = pose.R[k][j];
+        twoProd(R, D[k], P[k], e[k]);
+        q[k] = R * l[k];
+        m += std::fabs(R) * std::fabs(D[k]);
+        zero = zero && (R == 0 || D[k] == 0);
+      }
+      double s1, f1, s, f2;
+      twoSum(P[0], P[1], s1, f1);
+      twoSum(s1, P[2], s, f2);
+      const double low =
+          ((((f1 + f2) + (e[0] + e[1])) + e[2]) + (q[0] + q[1])) + q[2];
+      twoSum(s, low, out[j].v.hi, out[j].v.lo);
+      out[j].e = zero ? 0.0 : 0x1p-100 * m + kDwTiny;
+    }
+    out[2] = {{out[2].v.hi * 2, out[2].v.lo * 2}, out[2].e * 2};  // exact
+    return {out[0], out[1], out[2]};
+  }
+};
+
+// ---------------------------------------------------------------------------
+// Exact in double? For a sign whose double value is exactly 0 (almost
+// always a true tie: exact data in an exact pose), the double evaluation
+// is re-done with every operation checked: a sum by its TwoSum error being
+// 0, a product by its TwoProduct error being 0 with the product at least
+// kProdExactMin (so that the error term is itself exact, src/eft.h), or by
+// an exact 0 factor. If every operation was exact, the double value is the
+// exact value (the adaptive kernel's exactInDouble, src/adaptive.cpp, does
+// the same on its tape).
+struct Xd {
+  double v;
+  bool exact;
+};
+inline Xd operator+(const Xd& a, const Xd& b) {
+  double s, e;
+  twoSum(a.v, b.v, s, e);
+  return {s, a.exact && b.exact && e == 0 && std::isfinite(s)};
+}
+inline Xd operator-(const Xd& a) { return {-a.v, a.exact}; }
+inline Xd operator-(const Xd& a, const Xd& b) { return a + (-b); }
+inline Xd operator*(const Xd& a, const Xd& b) {
+  if ((a.exact && a.v == 0) || (b.exact && b.v == 0)) return {0.0, true};
+  double p, e;
+  twoProd(a.v, b.v, p, e);
+  return {p, a.exact && b.exact && e == 0 && std::fabs(p) >= kProdExactMin &&
+                 std::isfinite(p)};
+}
+
+struct ExactDoubleArith {
+  using Num = Xd;
+  static constexpr bool kExact = false;
+  static Num lift(double x) { return {x, true}; }
+  static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
+                       double /*rho*/) {
+    const Xd d[3] = {Xd{p.x, true} - Xd{pose.t.x, true},
+                     Xd{p.y, true} - Xd{pose.t.y, true},
+                     Xd{p.z, true} - Xd{pose.t.z, true}};
+    Xd out[3];
+    for (int j = 0; j < 3; ++j)
+      out[j] = (Xd{pose.R[0][j], true} * d[0] + Xd{pose.R[1][j], true} * d[1]) +
+               Xd{pose.R[2][j], true} * d[2];
+    return {out[0], out[1], out[2] + out[2]};
+  }
+};
+
+// ---------------------------------------------------------------------------
+// Stage 2: exact stack expansions; stage 3: GMP.
+
+struct ExpansionArith {
+  using Num = Expansion;
+  static constexpr bool kExact = true;
+  static Num lift(double x) { return Expansion(x); }
+  static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
+                       double /*rho*/) {
+    const double pp[3] = {p.x, p.y, p.z};
+    const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
+    Expansion d[3];
+    for (int k = 0; k < 3; ++k) d[k] = Expansion::difference(pp[k], tt[k]);
+    Expansion out[3];
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+        out[j] = out[j] + Expansion(pose.R[k][j]) * d[k];
+    return {out[0], out[1], out[2] + out[2]};
+  }
+};
+
+/// The arithmetic of a kernel K of src/filter.h (its own toLocal).
+template <class K>
+struct KernelArith {
+  using Num = typename K::Num;
+  static constexpr bool kExact = K::kExact;
+  static Num lift(double x) { return K::lift(x); }
+  static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
+                       double rho) {
+    Pt<Num> q;
+    toLocal<K>(pose, p, rho, q.x, q.y, q.Z);
+    return q;
+  }
+};
+
+/// One kernel K for every sign (runStages' stages; outside the range gate,
+/// K = ExactKernel).
+template <class K, class Q>
+class KernelCtx {
+ public:
+  explicit KernelCtx(const Q& q) : f_(q.template frame<KernelArith<K>>()) {}
+  template <class P>
+  Sign sign(const P& pred) const {
+    return K::sign(pred(f_));
+  }
+  template <class P>
+  Sign cheapSign(const P& pred) const {
+    return K::sign(pred(f_));
+  }
+
+ private:
+  typename Q::template Frame<typename K::Num> f_;
+};
+
+/// FilterKernel::sign (src/filter.h) for the shallow predicates of the
+/// cylinder queries. Its bound |v - E| <= D u / ((1 - D u)(1 - u)^D) m holds
+/// for any depth D (the longest chain of operations from an input); the
+/// filter's 2^-47 covers D <= 56, and every predicate of the sphere, the
+/// segment and the line has D <= 12 (counted in src/cylinder_queries_impl.h),
+/// for which the factor is below 13 u < 2^-49. Four times tighter, at no
+/// cost: the same Fd values, another constant. The absolute slack is the
+/// filter's (underflow under the range gate).
+inline Sign shallowSign(const Fd& a) {
+  const double bound = a.m * 0x1p-49 + FilterKernel::kAbs;
+  if (a.v > bound) return Sign::kPos;
+  if (a.v < -bound) return Sign::kNeg;
+  return Sign::kUnknown;
+}
+
+/// Inside the range gate: double, then each open sign by itself in
+/// double-word, expansions, GMP.
+template <class Q>
+class PerSign {
+ public:
+  explicit PerSign(const Q& q)
+      : q_(q), fd_(q.template frame<KernelArith<FilterKernel>>()) {}
+  PerSign(const PerSign&) = delete;
+  PerSign& operator=(const PerSign&) = delete;
+
+  template <class P>
+  Sign sign(const P& pred) {
+    const Fd v = pred(fd_);
+    const Sign s = shallowSign(v);
+    if (s != Sign::kUnknown) return s;
+    return escalate(pred, v);
+  }
+  template <class P>
+  Sign cheapSign(const P& pred) const {
+    return shallowSign(pred(fd_));
+  }
+  /// The strongest arithmetic any sign needed: 0 double, 1 double-word,
+  /// 2 expansions, 3 GMP.
+  int level() const { return level_; }
+
+ private:
+  template <class N>
+  using Frame = typename Q::template Frame<N>;
+
+  template <class P>
+  TRICYL_ADAPTIVE_NOINLINE Sign escalate(const P& pred, const Fd& v) {
+#ifdef TRICYL_PER_SIGN_TRACE
+    TRICYL_PER_SIGN_TRACE(typeid(P).name(), v.v == 0);
+#endif
+    // A double value that is exactly 0 is almost always a true tie (exact
+    // data in an exact pose), which no bound certifies: straight to the
+    // exact stage. Either order gives the same sign.
+    if (v.v != 0) {
+      // The same double values with a running bound (src/filter.h,
+      // RunningDoubleKernel): it follows the values, where the filter's
+      // bound follows the magnitudes. Still the double stage.
+      if (!rd_)
+        rd_.emplace(q_.template frame<KernelArith<RunningDoubleKernel>>());
+      Sign s = RunningDoubleKernel::sign(pred(*rd_));
+      if (s != Sign::kUnknown) return s;
+      if (!dw_) dw_.emplace(q_.template frame<DwArith>());
+      if (level_ < 1) level_ = 1;
+      s = dwSign(pred(*dw_));
+      if (s != Sign::kUnknown) return s;
+    } else {
+      if (!xd_) xd_.emplace(q_.template frame<ExactDoubleArith>());
+      const Xd x = pred(*xd_);
+      if (x.exact) {
+        if (level_ < 2) level_ = 2;
+        return x.v > 0 ? Sign::kPos : (x.v < 0 ? Sign::kNeg : Sign::kZero);
+      }
+    }
+    if (!ex_) ex_.emplace(q_.template frame<ExpansionArith>());
+    const Expansion x = pred(*ex_);
+    if (x.ok()) {
+      if (level_ < 2) level_ = 2;
+      const int s = x.sign();
+      return s > 0 ? Sign::kPos : (s < 0 ? Sign::kNeg : Sign::kZero);
+    }
+    if (!gmp_) gmp_.emplace(q_.template frame<KernelArith<ExactKernel>>());
+    level_ = 3;
+    return ExactKernel::sign(pred(*gmp_));
+  }
+
+  const Q& q_;
+  Frame<Fd> fd_;
+  int level_ = 0;
+  std::optional<Frame<Rd>> rd_;
+  std::optional<Frame<DwE>> dw_;
+  std::optional<Frame<Xd>> xd_;
+  std::optional<Frame<Expansion>> ex_;
+  std::optional<Frame<Dyadic>> gmp_;
+};
+
+/// The driver's per-sign policy (runStages' counterpart, src/stages.h):
+/// inside the range gate one run of `query(ctx, &early)` with PerSign,
+/// which always decides; outside it one run on GMP dyadics.
+template <class Q, class Query>
+Decision runPerSign(const Q& q, bool gate, const Query& query) {
+  bool early = false;
+  if (!gate) {
+    KernelCtx<ExactKernel, Q> ctx(q);
+    return {toAnswer(query(ctx, &early)), Stage::kExactGmp};
+  }
+  PerSign<Q> ctx(q);
+  const Tri t = query(ctx, &early);
+  // Never kUnknown: every sign of PerSign is decided.
+  const int level = ctx.level();
+  if (level == 0)
+    return {toAnswer(t), early ? Stage::kEarlyOut : Stage::kFastPath};
+  return {toAnswer(t), stageOfLevel(level)};
+}
+
+}  // namespace tricyl::detail
