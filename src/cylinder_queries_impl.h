@@ -201,17 +201,24 @@ inline N times4(const N& x) {
 //                               e  = max(0, |z| - lz/2).
 // The source's case split on the centre's height (beyond the top cap,
 // within the slab, beyond the bottom cap), squared with care:
-// * Within the slab (e = 0): sqrt(s) <= r + rho  <=>  s <= (r + rho)^2.
-// * Beyond a cap (e >= 0, in doubled units E = 2e = Z - H or -Z - H):
-//   first e <= rho, i.e. 2 rho - E >= 0. Then with the source's slice
-//   radius f = sqrt(rho^2 - e^2) the test is sqrt(s) <= r + f, and with
-//   g = f^2, G = 4 g = 4 rho^2 - E^2 >= 0 and T = 4 (s - r^2) - G:
+// In doubled units (Z = 2 z, H = lz) let E = |Z| - H = 2 (|z| - lz/2): the
+// centre's doubled height beyond the nearer cap plane, <= 0 in the slab.
+// |.| rounds nothing and keeps every error bound and magnitude (||a| - |b||
+// <= |a - b|), so E is as good a value as Z - H in every arithmetic.
+// * E > 2 rho: the centre is more than rho beyond a cap plane: disjoint
+//   (the early-out, and the first sign of the cap branch).
+// * Within the slab (E <= 0): sqrt(s) <= r + rho  <=>  s <= (r + rho)^2.
+// * Beyond a cap (E >= 0) and E <= 2 rho: with the source's slice radius
+//   f = sqrt(rho^2 - e^2) the test is sqrt(s) <= r + f, and with g = f^2,
+//   G = 4 g = 4 rho^2 - E^2 >= 0 and T = 4 (s - r^2) - G:
 //     s <= r^2 + g + 2 r sqrt(g)  <=>  T <= 0  or  T^2 <= 16 r^2 G,
 //   squaring only when both sides are non-negative (T > 0). The two
-//   formulas agree at E = 0, so both branches may claim the plane Z = +-H.
-// Every branch condition is itself a certified sign (Kleene logic): an
-// undecided height (only from a context that may leave signs open) only
-// means that both branches are evaluated.
+//   formulas agree at E = 0, so both branches may claim the plane E = 0.
+// Signs, in order: 2 rho - E, E, then s - (r + rho)^2 or T and
+// 16 r^2 G - T^2. Every branch condition is itself a certified sign
+// (Kleene logic: a context that may leave a sign open only evaluates both
+// branches). Degree <= 8, depth <= 12 (16 r^2 G - T^2: Z at 5, E 6, E^2 7,
+// G 8, T 10, T^2 11, the difference 12; the doublings of times4 are exact).
 
 /// The local data of a sphere query: the centre, H = lz, r, rho.
 struct SphereQuery {
@@ -232,68 +239,49 @@ struct SphereQuery {
   }
 };
 
-/// E = Z - H (s = +1) or -Z - H (s = -1): the centre's doubled height
-/// beyond the cap plane of that side.
-template <class N>
-inline N beyondCap(const Pt<N>& c, const N& H, int side) {
-  return side > 0 ? c.Z - H : -c.Z - H;
+/// E = |Z| - H.
+template <class F>
+inline auto sphereHeight(const F& f) {
+  return absolute(f.c.Z) - f.H;
 }
-
-/// The branch "beyond the cap of `side`" (its own condition E >= 0 not
-/// included).
-template <class C>
-Tri sphereBeyondCap(C& c, int side) {
-  // 2 rho - E >= 0: the cap plane within rho of the centre.
-  Tri t = isNonNeg(c.sign([side](const auto& f) {
-    return (f.rho + f.rho) - beyondCap(f.c, f.H, side);
-  }));
-  if (t == Tri::kFalse) return t;
-  // G = 4 rho^2 - E^2, T = 4 (s - r^2) - G.
-  auto T = [side](const auto& f) {
-    const auto E = beyondCap(f.c, f.H, side);
-    const auto G = times4(f.rho * f.rho) - E * E;
-    return times4(f.c.x * f.c.x + f.c.y * f.c.y - f.r * f.r) - G;
-  };
-  const Tri t_neg = isNonPos(c.sign(T));
-  if (t_neg == Tri::kTrue) return t;
-  const Tri t_sq = isNonNeg(c.sign([side, &T](const auto& f) {
-    const auto E = beyondCap(f.c, f.H, side);
-    const auto G = times4(f.rho * f.rho) - E * E;
-    const auto Tv = T(f);
-    return times4(times4(f.r * f.r)) * G - Tv * Tv;
-  }));
-  return kAnd(t, kOr(t_neg, t_sq));
+/// G = 4 rho^2 - E^2 and T = 4 (s - r^2) - G.
+template <class F>
+inline auto sphereT(const F& f) {
+  const auto E = sphereHeight(f);
+  const auto G = times4(f.rho * f.rho) - E * E;
+  return times4(f.c.x * f.c.x + f.c.y * f.c.y - f.r * f.r) - G;
 }
 
 template <class C>
 Tri sphereCylinder(C& c, bool* early) {
   *early = false;
-  // Early-out: the centre more than rho beyond a cap plane (E - 2 rho > 0;
-  // the branch's own first sign says the same when the filter cannot).
-  for (int side : {1, -1})
-    if (c.cheapSign([side](const auto& f) {
-          return beyondCap(f.c, f.H, side) - (f.rho + f.rho);
-        }) == Sign::kPos) {
-      *early = true;
-      return Tri::kFalse;
-    }
-  const Sign s_top = c.sign([](const auto& f) { return f.c.Z - f.H; });
-  const Sign s_bot = c.sign([](const auto& f) { return -f.c.Z - f.H; });
+  const Sign near_cap =
+      c.sign([](const auto& f) { return (f.rho + f.rho) - sphereHeight(f); });
+  if (near_cap == Sign::kNeg) {
+    *early = true;
+    return Tri::kFalse;
+  }
+  const Sign height = c.sign([](const auto& f) { return sphereHeight(f); });
   Tri result = Tri::kFalse;
-  // Within the slab: s <= (r + rho)^2.
-  const Tri in_slab = kAnd(isNonPos(s_top), isNonPos(s_bot));
-  if (in_slab != Tri::kFalse) {
-    result = kAnd(in_slab, isNonNeg(c.sign([](const auto& f) {
+  if (isNonPos(height) != Tri::kFalse) {  // within the slab
+    result = kAnd(isNonPos(height), isNonNeg(c.sign([](const auto& f) {
                     return diskGap(f.c, f.r + f.rho);
                   })));
-    if (result == Tri::kTrue) return result;
+    if (result == Tri::kTrue || isPos(height) == Tri::kFalse) return result;
   }
-  if (isNonNeg(s_top) != Tri::kFalse)
-    result = kOr(result, kAnd(isNonNeg(s_top), sphereBeyondCap(c, 1)));
-  if (result == Tri::kTrue) return result;
-  if (isNonNeg(s_bot) != Tri::kFalse)
-    result = kOr(result, kAnd(isNonNeg(s_bot), sphereBeyondCap(c, -1)));
-  return result;
+  // Beyond a cap: 2 rho - E >= 0, and T <= 0 or 16 r^2 G - T^2 >= 0.
+  Tri t = kAnd(isNonNeg(height), isNonNeg(near_cap));
+  const Tri t_neg = isNonPos(c.sign([](const auto& f) { return sphereT(f); }));
+  if (t_neg != Tri::kTrue) {
+    const Tri t_sq = isNonNeg(c.sign([](const auto& f) {
+      const auto E = sphereHeight(f);
+      const auto G = times4(f.rho * f.rho) - E * E;
+      const auto T = sphereT(f);
+      return times4(times4(f.r * f.r)) * G - T * T;
+    }));
+    t = kAnd(t, kOr(t_neg, t_sq));
+  }
+  return kOr(result, t);
 }
 
 // ---------------------------------------------------------------------------

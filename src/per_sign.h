@@ -61,36 +61,89 @@ struct Pt {
 // exact value E, so that a product of two small values (the square of a
 // nearly cancelling term: c^2 in r^2 L - c^2 for a grazing line) keeps a
 // bound relative to its own size, which no a-priori bound does.
-struct DwE {
+//
+// TwoProduct: src/eft.h's (FMA where the compiler may use it, Dekker's split
+// otherwise), or, on x86-64 built without FMA, the CPU's fused multiply-add
+// where it has one (chosen at run time, TRICYL_FMA_DISPATCH). Both are
+// error-free under the same conditions (src/eft.h), so both give the same
+// double words, bit for bit: the choice changes the speed, never a value.
+struct EftTwoProd {
+  static void twoProd(double a, double b, double& p, double& e) {
+    detail::twoProd(a, b, p, e);
+  }
+  static DW mul(DW x, DW y) { return dwMul(x, y); }
+};
+#if !TRICYL_HAVE_FMA && defined(__x86_64__) && \
+    (defined(__GNUC__) || defined(__clang__))
+#define TRICYL_FMA_DISPATCH 1
+#define TRICYL_TARGET_FMA __attribute__((target("fma"), flatten))
+struct FmaTwoProd {
+  static void twoProd(double a, double b, double& p, double& e) {
+    p = a * b;
+    e = __builtin_fma(a, b, -p);
+  }
+  /// dwMul (src/eft.h, Algorithm 10) with this TwoProduct: the same
+  /// operations, so the same bits.
+  static DW mul(DW x, DW y) {
+    double ch, cl1;
+    twoProd(x.hi, y.hi, ch, cl1);
+    const double cl3 = cl1 + (x.hi * y.lo + x.lo * y.hi);
+    DW z;
+    twoSum(ch, cl3, z.hi, z.lo);
+    return z;
+  }
+};
+inline bool cpuHasFma() { return __builtin_cpu_supports("fma"); }
+#else
+#define TRICYL_FMA_DISPATCH 0
+#endif
+
+template <class TP>
+struct DwEt {
   DW v;
   double e;
 };
-inline DwE operator+(const DwE& a, const DwE& b) {
+template <class TP>
+inline DwEt<TP> operator+(const DwEt<TP>& a, const DwEt<TP>& b) {
   return {dwAdd(a.v, b.v),
           a.e + b.e + kDwAddRel * (std::fabs(a.v.hi) + std::fabs(b.v.hi))};
 }
-inline DwE operator-(const DwE& a) { return {dwNeg(a.v), a.e}; }
-inline DwE operator-(const DwE& a, const DwE& b) { return a + (-b); }
-inline DwE operator*(const DwE& a, const DwE& b) {
-  const DW v = dwMul(a.v, b.v);
+template <class TP>
+inline DwEt<TP> operator-(const DwEt<TP>& a) {
+  return {dwNeg(a.v), a.e};
+}
+template <class TP>
+inline DwEt<TP> operator-(const DwEt<TP>& a, const DwEt<TP>& b) {
+  return a + (-b);
+}
+template <class TP>
+inline DwEt<TP> operator*(const DwEt<TP>& a, const DwEt<TP>& b) {
+  const DW v = TP::mul(a.v, b.v);
   const double ma = std::fabs(a.v.hi) + std::fabs(a.v.lo);
   const double mb = std::fabs(b.v.hi) + std::fabs(b.v.lo);
   return {v,
           ma * b.e + mb * a.e + a.e * b.e + kDwRel * std::fabs(v.hi) + kDwTiny};
 }
+template <class TP>
+inline DwEt<TP> absolute(const DwEt<TP>& a) {
+  return a.v.hi < 0 ? -a : a;
+}
+using DwE = DwEt<EftTwoProd>;
 
 /// The certified sign of a double-word value (src/adaptive.cpp: the bound
 /// inflated for its own rounding, and the absolute slack of the range
 /// gate), or kUnknown.
-inline Sign dwSign(const DwE& d) {
+template <class TP>
+inline Sign dwSign(const DwEt<TP>& d) {
   const double b = (d.e + std::fabs(d.v.lo)) * (1 + 0x1p-40) + 0x1p-600;
   if (d.v.hi > b) return Sign::kPos;
   if (d.v.hi < -b) return Sign::kNeg;
   return Sign::kUnknown;
 }
 
+template <class TP>
 struct DwArith {
-  using Num = DwE;
+  using Num = DwEt<TP>;
   static constexpr bool kExact = false;
   static Num lift(double x) { return {{x, 0.0}, 0.0}; }
   /// y = R^T (p - t), Z doubled, each within e = 2^-100 M + kDwTiny of the
@@ -111,7 +164,7 @@ struct DwArith {
       bool zero = true;
       for (int k = 0; k < 3; ++k) {
         const double R = pose.R[k][j];
-        twoProd(R, D[k], P[k], e[k]);
+        TP::twoProd(R, D[k], P[k], e[k]);
         q[k] = R * l[k];
         m += std::fabs(R) * std::fabs(D[k]);
         zero = zero && (R == 0 || D[k] == 0);
@@ -195,6 +248,14 @@ struct ExpansionArith {
   }
 };
 
+/// |x| in each arithmetic: no rounding, the same error bound and magnitude
+/// (||a| - |b|| <= |a - b|).
+inline Fd absolute(const Fd& a) { return {std::fabs(a.v), a.m}; }
+inline Rd absolute(const Rd& a) { return {std::fabs(a.v), a.e}; }
+inline Xd absolute(const Xd& a) { return {std::fabs(a.v), a.exact}; }
+inline Expansion absolute(const Expansion& a) { return a.sign() < 0 ? -a : a; }
+inline Dyadic absolute(const Dyadic& a) { return sgn(a.m) < 0 ? -a : a; }
+
 /// The arithmetic of a kernel K of src/filter.h (its own toLocal).
 template <class K>
 struct KernelArith {
@@ -274,25 +335,20 @@ class PerSign {
 
   template <class P>
   TRICYL_ADAPTIVE_NOINLINE Sign escalate(const P& pred, const Fd& v) {
-#ifdef TRICYL_PER_SIGN_TRACE
-    TRICYL_PER_SIGN_TRACE(typeid(P).name(), v.v == 0);
-#endif
-    // A double value that is exactly 0 is almost always a true tie (exact
-    // data in an exact pose), which no bound certifies: straight to the
-    // exact stage. Either order gives the same sign.
+    Sign s = Sign::kUnknown;
     if (v.v != 0) {
       // The same double values with a running bound (src/filter.h,
-      // RunningDoubleKernel): it follows the values, where the filter's
-      // bound follows the magnitudes. Still the double stage.
+      // RunningDoubleKernel): it follows the values where the filter's
+      // bound follows the magnitudes (a small value after cancellation).
+      // Still the double stage.
       if (!rd_)
         rd_.emplace(q_.template frame<KernelArith<RunningDoubleKernel>>());
-      Sign s = RunningDoubleKernel::sign(pred(*rd_));
-      if (s != Sign::kUnknown) return s;
-      if (!dw_) dw_.emplace(q_.template frame<DwArith>());
-      if (level_ < 1) level_ = 1;
-      s = dwSign(pred(*dw_));
+      s = RunningDoubleKernel::sign(pred(*rd_));
       if (s != Sign::kUnknown) return s;
     } else {
+      // A double value that is exactly 0 is most often a true tie (exact
+      // data in an exact pose), which no bound certifies: was the double
+      // evaluation exact?
       if (!xd_) xd_.emplace(q_.template frame<ExactDoubleArith>());
       const Xd x = pred(*xd_);
       if (x.exact) {
@@ -300,17 +356,41 @@ class PerSign {
         return x.v > 0 ? Sign::kPos : (x.v < 0 ? Sign::kNeg : Sign::kZero);
       }
     }
+    if (level_ < 1) level_ = 1;
+#if TRICYL_FMA_DISPATCH
+    s = cpuHasFma() ? dwSignFma(pred) : dwSignWith<EftTwoProd>(pred, dw_);
+#else
+    s = dwSignWith<EftTwoProd>(pred, dw_);
+#endif
+    if (s != Sign::kUnknown) return s;
     if (!ex_) ex_.emplace(q_.template frame<ExpansionArith>());
     const Expansion x = pred(*ex_);
     if (x.ok()) {
       if (level_ < 2) level_ = 2;
-      const int s = x.sign();
-      return s > 0 ? Sign::kPos : (s < 0 ? Sign::kNeg : Sign::kZero);
+      s = Sign(x.sign());
+      return s;
     }
     if (!gmp_) gmp_.emplace(q_.template frame<KernelArith<ExactKernel>>());
     level_ = 3;
     return ExactKernel::sign(pred(*gmp_));
   }
+
+  /// The double-word stage with TwoProduct TP, on a frame built when first
+  /// needed.
+  template <class TP, class P>
+  Sign dwSignWith(const P& pred, std::optional<Frame<DwEt<TP>>>& frame) {
+    if (!frame) frame.emplace(q_.template frame<DwArith<TP>>());
+    return dwSign(pred(*frame));
+  }
+#if TRICYL_FMA_DISPATCH
+  /// The same, compiled for a CPU with FMA (everything it calls inlined,
+  /// so that __builtin_fma is one instruction).
+  template <class P>
+  TRICYL_TARGET_FMA Sign dwSignFma(const P& pred) {
+    return dwSignWith<FmaTwoProd>(pred, dwf_);
+  }
+  std::optional<Frame<DwEt<FmaTwoProd>>> dwf_;
+#endif
 
   const Q& q_;
   Frame<Fd> fd_;
