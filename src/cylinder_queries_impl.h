@@ -255,32 +255,48 @@ inline auto sphereT(const F& f) {
 template <class C>
 Tri sphereCylinder(C& c, bool* early) {
   *early = false;
-  const Sign near_cap =
-      c.sign([](const auto& f) { return (f.rho + f.rho) - sphereHeight(f); });
+  auto near_cap_p = [](const auto& f) {
+    return (f.rho + f.rho) - sphereHeight(f);
+  };
+  auto height_p = [](const auto& f) { return sphereHeight(f); };
+  auto gap_p = [](const auto& f) { return diskGap(f.c, f.r + f.rho); };
+  auto t_p = [](const auto& f) { return sphereT(f); };
+  auto q_p = [](const auto& f) {
+    const auto E = sphereHeight(f);
+    const auto G = times4(f.rho * f.rho) - E * E;
+    const auto T = sphereT(f);
+    return times4(times4(f.r * f.r)) * G - T * T;
+  };
+  if constexpr (C::kEagerFilter) {
+    // First the whole formula below in double, all five signs at once and
+    // combined without a branch (the near family's outcomes are coin
+    // flips, which a branch per sign pays for); only where that leaves the
+    // answer open, the signs one by one, each escalated if it must be.
+    const Bits a = c.filterBits(near_cap_p), e = c.filterBits(height_p);
+    const KBool in_slab = kbAnd(nonPos(e), nonNeg(c.filterBits(gap_p)));
+    const KBool cap = kbAnd(
+        nonNeg(e), kbOr(nonPos(c.filterBits(t_p)), nonNeg(c.filterBits(q_p))));
+    const KBool r = kbAnd(nonNeg(a), kbOr(in_slab, cap));
+    if (r.t | r.f) {
+      *early = a.neg;
+      return toTri(r.t);
+    }
+  }
+  const Sign near_cap = c.sign(near_cap_p);
   if (near_cap == Sign::kNeg) {
     *early = true;
     return Tri::kFalse;
   }
-  const Sign height = c.sign([](const auto& f) { return sphereHeight(f); });
+  const Sign height = c.sign(height_p);
   Tri result = Tri::kFalse;
   if (isNonPos(height) != Tri::kFalse) {  // within the slab
-    result = kAnd(isNonPos(height), isNonNeg(c.sign([](const auto& f) {
-                    return diskGap(f.c, f.r + f.rho);
-                  })));
+    result = kAnd(isNonPos(height), isNonNeg(c.sign(gap_p)));
     if (result == Tri::kTrue || isPos(height) == Tri::kFalse) return result;
   }
   // Beyond a cap: 2 rho - E >= 0, and T <= 0 or 16 r^2 G - T^2 >= 0.
   Tri t = kAnd(isNonNeg(height), isNonNeg(near_cap));
-  const Tri t_neg = isNonPos(c.sign([](const auto& f) { return sphereT(f); }));
-  if (t_neg != Tri::kTrue) {
-    const Tri t_sq = isNonNeg(c.sign([](const auto& f) {
-      const auto E = sphereHeight(f);
-      const auto G = times4(f.rho * f.rho) - E * E;
-      const auto T = sphereT(f);
-      return times4(times4(f.r * f.r)) * G - T * T;
-    }));
-    t = kAnd(t, kOr(t_neg, t_sq));
-  }
+  const Tri t_neg = isNonPos(c.sign(t_p));
+  if (t_neg != Tri::kTrue) t = kAnd(t, kOr(t_neg, isNonNeg(c.sign(q_p))));
   return kOr(result, t);
 }
 

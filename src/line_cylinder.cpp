@@ -14,9 +14,7 @@ namespace {
 
 using detail::LinearInputs;
 
-Decision decide(LinearInputs& in) {
-  return detail::decideLinear<false>(in);
-}
+Decision decide(LinearInputs& in) { return detail::decideLinear<false>(in); }
 
 template <class S>
 Answer clipAs(const Cylinder<S>& cyl, const Pose<S>& pose, const Line<S>& line,
@@ -40,8 +38,7 @@ Answer clipAs(const Cylinder<S>& cyl, const Pose<S>& pose, const Line<S>& line,
 template <class S>
 Decision decideIntersect(const Cylinder<S>& cylinder, const Pose<S>& pose,
                          const Line<S>& line) noexcept {
-  LinearInputs in = detail::widenLinear(cylinder, pose, line.p, line.q);
-  return decide(in);
+  return detail::decideLinearAs<false>(cylinder, pose, line.p, line.q);
 }
 
 template <class S>

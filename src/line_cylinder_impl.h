@@ -64,19 +64,46 @@ struct SegmentPred {
   }
 };
 
-/// The exact Boolean of the segment (kSegment) or the line: validation,
-/// then the per-sign stages (src/per_sign.h).
+/// The exact Boolean of the segment (kSegment) or the line in double:
+/// validation, then the per-sign stages (src/per_sign.h). No copy of the
+/// inputs (decideIntersect in double calls it directly).
 template <bool kSegment>
-Decision decideLinear(LinearInputs& in) {
-  if (!validateLinear(in)) return {Answer::kInvalidInput, Stage::kInvalid};
-  const LinearQuery<kSegment> q{in.cyl, in.pose, in.p, in.q, in.max_unitless};
-  return runPerSign(q, rangeGateOk(in.max_len, in.max_unitless),
+Decision decideLinear(const Cylinder<double>& cyl, const Pose<double>& pose,
+                      const Vec3<double>& p, const Vec3<double>& q) {
+  double max_len = 0, max_unitless = 0;
+  if (!scanFinite({cyl.radius, cyl.lz, p.x, p.y, p.z, q.x, q.y, q.z}, pose,
+                  &max_len, &max_unitless) ||
+      !(cyl.radius >= 0 && cyl.lz >= 0))
+    return {Answer::kInvalidInput, Stage::kInvalid};
+  const LinearQuery<kSegment> lq{cyl, pose, p, q, max_unitless};
+  return runPerSign(lq, rangeGateOk(max_len, max_unitless),
                     [](auto& c, bool* early) {
                       if constexpr (kSegment)
                         return segmentCylinder(c, early);
                       else
                         return lineCylinder(c, early);
                     });
+}
+
+/// The same on widened inputs (float, and the interval queries, which keep
+/// them for linearInterval); sets in's magnitudes.
+template <bool kSegment>
+Decision decideLinear(LinearInputs& in) {
+  if (!validateLinear(in)) return {Answer::kInvalidInput, Stage::kInvalid};
+  return decideLinear<kSegment>(in.cyl, in.pose, in.p, in.q);
+}
+
+/// decideIntersect for a segment or line {p, q} of S (float: validated by
+/// its bits, then widened).
+template <bool kSegment, class S>
+Decision decideLinearAs(const Cylinder<S>& cyl, const Pose<S>& pose,
+                        const Vec3<S>& p, const Vec3<S>& q) {
+  if constexpr (std::is_same_v<S, double>) {
+    return decideLinear<kSegment>(cyl, pose, p, q);
+  } else {
+    LinearInputs in = widenLinear(cyl, pose, p, q);
+    return decideLinear<kSegment>(in);
+  }
 }
 
 /// The entry/exit interval of a query whose exact Boolean said "intersect"

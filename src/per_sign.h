@@ -270,6 +270,24 @@ struct KernelArith {
   }
 };
 
+/// A sign as two certain facts, for Kleene logic without branches: pos
+/// (certainly > 0) and neg (certainly < 0); neither: open.
+struct Bits {
+  bool pos, neg;
+};
+/// Kleene's and/or on {certainly true, certainly false} pairs.
+struct KBool {
+  bool t, f;
+};
+inline KBool kbAnd(KBool a, KBool b) {
+  return {bool(a.t & b.t), bool(a.f | b.f)};
+}
+inline KBool kbOr(KBool a, KBool b) {
+  return {bool(a.t | b.t), bool(a.f & b.f)};
+}
+inline KBool nonNeg(Bits b) { return {b.pos, b.neg}; }  // >= 0 (never 0)
+inline KBool nonPos(Bits b) { return {b.neg, b.pos}; }  // <= 0
+
 /// One kernel K for every sign (runStages' stages; outside the range gate,
 /// K = ExactKernel).
 template <class K, class Q>
@@ -284,6 +302,7 @@ class KernelCtx {
   Sign cheapSign(const P& pred) const {
     return K::sign(pred(f_));
   }
+  static constexpr bool kEagerFilter = false;
 
  private:
   typename Q::template Frame<typename K::Num> f_;
@@ -324,6 +343,15 @@ class PerSign {
   template <class P>
   Sign cheapSign(const P& pred) const {
     return shallowSign(pred(fd_));
+  }
+  /// The filter's verdict on pred without a branch: {certainly > 0,
+  /// certainly < 0} (shallowSign's test; both false: open).
+  static constexpr bool kEagerFilter = true;
+  template <class P>
+  Bits filterBits(const P& pred) const {
+    const Fd v = pred(fd_);
+    const double bound = v.m * 0x1p-49 + FilterKernel::kAbs;
+    return {v.v > bound, v.v < -bound};
   }
   /// The strongest arithmetic any sign needed: 0 double, 1 double-word,
   /// 2 expansions, 3 GMP.

@@ -17,9 +17,7 @@ namespace {
 
 using detail::LinearInputs;
 
-Decision decide(LinearInputs& in) {
-  return detail::decideLinear<true>(in);
-}
+Decision decide(LinearInputs& in) { return detail::decideLinear<true>(in); }
 
 template <class S>
 Answer clipAs(const Cylinder<S>& cyl, const Pose<S>& pose,
@@ -43,8 +41,7 @@ Answer clipAs(const Cylinder<S>& cyl, const Pose<S>& pose,
 template <class S>
 Decision decideIntersect(const Cylinder<S>& cylinder, const Pose<S>& pose,
                          const Segment<S>& segment) noexcept {
-  LinearInputs in = detail::widenLinear(cylinder, pose, segment.p, segment.q);
-  return decide(in);
+  return detail::decideLinearAs<true>(cylinder, pose, segment.p, segment.q);
 }
 
 template <class S>

@@ -27,11 +27,14 @@ Decision decide(const Cylinder<double>& cyl, const Pose<double>& pose,
 template <class S>
 Decision decideAs(const Cylinder<S>& cyl, const Pose<S>& pose,
                   const Sphere<S>& sph) {
-  if constexpr (std::is_same_v<S, float>)
+  if constexpr (std::is_same_v<S, double>) {
+    return decide(cyl, pose, sph);  // no copy
+  } else {
     if (!detail::floatBitsFinite(cyl, pose, sph))  // before widening (issue 20)
       return {Answer::kInvalidInput, Stage::kInvalid};
-  return decide({double(cyl.radius), double(cyl.lz)}, detail::widen(pose),
-                {detail::widen(sph.center), double(sph.radius)});
+    return decide({double(cyl.radius), double(cyl.lz)}, detail::widen(pose),
+                  {detail::widen(sph.center), double(sph.radius)});
+  }
 }
 
 }  // namespace
