@@ -227,16 +227,17 @@ struct SphereQuery {
   const Sphere<double>& sph;
   double max_unitless;
 
-  template <class N>
+  template <class A>
   struct Frame {
+    using N = typename A::Num;
+    explicit Frame(const SphereQuery& q)
+        : c(A::local(q.pose, q.sph.center, q.max_unitless)),
+          H(A::lift(q.cyl.lz)),
+          r(A::lift(q.cyl.radius)),
+          rho(A::lift(q.sph.radius)) {}
     Pt<N> c;
     N H, r, rho;
   };
-  template <class A>
-  Frame<typename A::Num> frame() const {
-    return {A::local(pose, sph.center, max_unitless), A::lift(cyl.lz),
-            A::lift(cyl.radius), A::lift(sph.radius)};
-  }
 };
 
 /// E = |Z| - H.
@@ -346,10 +347,10 @@ inline Tri vertexInside(C& c, Sign top, Sign bot, const P& gap) {
 /// degenerates to a0^2 |e|^2 <= 0); the caller supplies that condition.
 template <class F>
 inline auto capCrossingGap(const F& f, int side) {
-  const auto a0 = side > 0 ? f.a.Z - f.H : f.a.Z + f.H;
-  const auto& W = f.e.Z;
-  const auto X = f.a.x * W - f.e.x * a0;
-  const auto Y = f.a.y * W - f.e.y * a0;
+  const auto a0 = side > 0 ? f.a().Z - f.H : f.a().Z + f.H;
+  const auto& W = f.e().Z;
+  const auto X = f.a().x * W - f.e().x * a0;
+  const auto Y = f.a().y * W - f.e().y * a0;
   return (f.r * f.r) * (W * W) - X * X - Y * Y;
 }
 
@@ -358,8 +359,8 @@ inline auto capCrossingGap(const F& f, int side) {
 /// distance^2 is c^2 / L).
 template <class F>
 inline auto axisDistanceGap(const F& f) {
-  const auto c = f.a.x * f.e.y - f.a.y * f.e.x;
-  return (f.r * f.r) * (f.e.x * f.e.x + f.e.y * f.e.y) - c * c;
+  const auto c = f.a().x * f.e().y - f.a().y * f.e().x;
+  return (f.r * f.r) * (f.e().x * f.e().x + f.e().y * f.e().y) - c * c;
 }
 
 /// (E): with L = |e_xy|^2 > 0, the foot of the perpendicular from the axis
@@ -370,21 +371,23 @@ inline auto axisDistanceGap(const F& f) {
 template <class C>
 inline Tri axisApproach(C& c, bool interior, Sign sep) {
   Tri t = isPos(c.sign([](const auto& f) {
-    return f.e.x * f.e.x + f.e.y * f.e.y;  // L
+    return f.e().x * f.e().x + f.e().y * f.e().y;  // L
   }));
   if (t != Tri::kFalse) t = kAnd(t, isNonNeg(sep));
-  auto g = [](const auto& f) { return -(f.a.x * f.e.x + f.a.y * f.e.y); };
+  auto g = [](const auto& f) {
+    return -(f.a().x * f.e().x + f.a().y * f.e().y);
+  };
   if (interior && t != Tri::kFalse) t = kAnd(t, isNonNeg(c.sign(g)));
   if (interior && t != Tri::kFalse)
     t = kAnd(t, isNonNeg(c.sign([&g](const auto& f) {
-               return f.e.x * f.e.x + f.e.y * f.e.y - g(f);
+               return f.e().x * f.e().x + f.e().y * f.e().y - g(f);
              })));
   // H L -+ (Z_a L + g e_Z) >= 0.
   for (int side : {1, -1}) {
     if (t == Tri::kFalse) break;
     t = kAnd(t, isNonNeg(c.sign([side, &g](const auto& f) {
-               const auto L = f.e.x * f.e.x + f.e.y * f.e.y;
-               const auto zL = f.a.Z * L + g(f) * f.e.Z;
+               const auto L = f.e().x * f.e().x + f.e().y * f.e().y;
+               const auto zL = f.a().Z * L + g(f) * f.e().Z;
                return side > 0 ? f.H * L - zL : f.H * L + zL;
              })));
   }
@@ -395,34 +398,87 @@ inline Tri axisApproach(C& c, bool interior, Sign sep) {
 /// image of q (the segment only), e = R^T (q - p), H = lz, r.
 template <bool kSegment>
 struct LinearQuery {
+  LinearQuery(const Cylinder<double>& cyl_, const Pose<double>& pose_,
+              const Vec3<double>& p_, const Vec3<double>& q_,
+              double max_unitless_)
+      : cyl(cyl_),
+        pose(pose_),
+        p(p_),
+        q(q_),
+        max_unitless(max_unitless_),
+        at_p(pose_) {
+    at_p.t = p_;
+  }
   const Cylinder<double>& cyl;
   const Pose<double>& pose;
   const Vec3<double>& p;
   const Vec3<double>& q;
   double max_unitless;
+  Pose<double> at_p;  // the pose moved to p: toLocal(at_p, q) = R^T (q - p)
 
-  template <class N>
-  struct Frame {
-    Pt<N> a, b, e;
+  /// The double filter's frame: every point at once (every query reads
+  /// them all).
+  template <class A>
+  class EagerFrame {
+   public:
+    using N = typename A::Num;
+    explicit EagerFrame(const LinearQuery& q)
+        : H(A::lift(q.cyl.lz)),
+          r(A::lift(q.cyl.radius)),
+          a_(A::local(q.pose, q.p, q.max_unitless)),
+          b_(kSegment ? A::local(q.pose, q.q, q.max_unitless) : Pt<N>{}),
+          e_(A::local(q.at_p, q.q, q.max_unitless)) {}
+    const Pt<N>& a() const { return a_; }
+    const Pt<N>& b() const { return b_; }
+    const Pt<N>& e() const { return e_; }
     N H, r;
+
+   private:
+    Pt<N> a_, b_, e_;
+  };
+  /// The later stages' frames: each point computed when first read (an
+  /// escalated sign usually reads one or two of the three).
+  template <class A>
+  class LazyFrame {
+   public:
+    using N = typename A::Num;
+    explicit LazyFrame(const LinearQuery& q)
+        : H(A::lift(q.cyl.lz)), r(A::lift(q.cyl.radius)), q_(q) {}
+    const Pt<N>& a() const {
+      if (!(have_ & 1)) {
+        a_ = A::local(q_.pose, q_.p, q_.max_unitless);
+        have_ |= 1;
+      }
+      return a_;
+    }
+    const Pt<N>& b() const {
+      if (!(have_ & 2)) {
+        b_ = A::local(q_.pose, q_.q, q_.max_unitless);
+        have_ |= 2;
+      }
+      return b_;
+    }
+    const Pt<N>& e() const {
+      if (!(have_ & 4)) {
+        if constexpr (A::kExact) {  // the same value, three subtractions
+          e_ = {b().x - a().x, b().y - a().y, b().Z - a().Z};
+        } else {
+          e_ = A::local(q_.at_p, q_.q, q_.max_unitless);
+        }
+        have_ |= 4;
+      }
+      return e_;
+    }
+    N H, r;
+
+   private:
+    const LinearQuery& q_;
+    mutable Pt<N> a_, b_, e_;
+    mutable unsigned have_ = 0;
   };
   template <class A>
-  Frame<typename A::Num> frame() const {
-    Frame<typename A::Num> f;
-    f.a = A::local(pose, p, max_unitless);
-    if constexpr (A::kExact) {
-      f.b = A::local(pose, q, max_unitless);
-      f.e = {f.b.x - f.a.x, f.b.y - f.a.y, f.b.Z - f.a.Z};
-    } else {
-      Pose<double> at_p = pose;
-      at_p.t = p;
-      f.e = A::local(at_p, q, max_unitless);
-      if constexpr (kSegment) f.b = A::local(pose, q, max_unitless);
-    }
-    f.H = A::lift(cyl.lz);
-    f.r = A::lift(cyl.radius);
-    return f;
-  }
+  using Frame = std::conditional_t<std::is_same_v<A, KernelArith<FilterKernel>>,
+                                   EagerFrame<A>, LazyFrame<A>>;
 };
 using SegmentQuery = LinearQuery<true>;
 using LineQuery = LinearQuery<false>;
@@ -430,10 +486,10 @@ using LineQuery = LinearQuery<false>;
 template <class C>
 Tri segmentCylinder(C& c, bool* early) {
   *early = false;
-  auto top0 = [](const auto& f) { return f.a.Z - f.H; };
-  auto top1 = [](const auto& f) { return f.b.Z - f.H; };
-  auto bot0 = [](const auto& f) { return f.a.Z + f.H; };
-  auto bot1 = [](const auto& f) { return f.b.Z + f.H; };
+  auto top0 = [](const auto& f) { return f.a().Z - f.H; };
+  auto top1 = [](const auto& f) { return f.b().Z - f.H; };
+  auto bot0 = [](const auto& f) { return f.a().Z + f.H; };
+  auto bot1 = [](const auto& f) { return f.b().Z + f.H; };
   const Sign top[2] = {c.sign(top0), c.sign(top1)};
   // Both endpoints strictly beyond the same cap plane.
   if (top[0] == Sign::kPos && top[1] == Sign::kPos) {
@@ -449,9 +505,9 @@ Tri segmentCylinder(C& c, bool* early) {
   // (from the filter only: the terms below decide what it cannot).
   {
     auto beyond = [&c](auto u) {
-      return c.cheapSign([&u](const auto& f) { return u(f.a) - f.r; }) ==
+      return c.cheapSign([&u](const auto& f) { return u(f.a()) - f.r; }) ==
                  Sign::kPos &&
-             c.cheapSign([&u](const auto& f) { return u(f.b) - f.r; }) ==
+             c.cheapSign([&u](const auto& f) { return u(f.b()) - f.r; }) ==
                  Sign::kPos;
     };
     if (beyond([](const auto& v) { return v.x; }) ||
@@ -465,10 +521,10 @@ Tri segmentCylinder(C& c, bool* early) {
   AnyOf any;
   // (V)
   if (any.add(vertexInside(c, top[0], bot[0],
-                           [](const auto& f) { return diskGap(f.a, f.r); })))
+                           [](const auto& f) { return diskGap(f.a(), f.r); })))
     return Tri::kTrue;
   if (any.add(vertexInside(c, top[1], bot[1],
-                           [](const auto& f) { return diskGap(f.b, f.r); })))
+                           [](const auto& f) { return diskGap(f.b(), f.r); })))
     return Tri::kTrue;
   // (X) a strict crossing of Z = sH at a point of the cap disk.
   for (int side : {1, -1}) {
@@ -522,9 +578,10 @@ Tri lineCylinder(C& c, bool* early) {
   }
   AnyOf any;
   // (V)
-  if (any.add(vertexInside(c, c.sign([](const auto& f) { return f.a.Z - f.H; }),
-                           c.sign([](const auto& f) { return f.a.Z + f.H; }),
-                           [](const auto& f) { return diskGap(f.a, f.r); })))
+  if (any.add(vertexInside(c,
+                           c.sign([](const auto& f) { return f.a().Z - f.H; }),
+                           c.sign([](const auto& f) { return f.a().Z + f.H; }),
+                           [](const auto& f) { return diskGap(f.a(), f.r); })))
     return Tri::kTrue;
   // (X) the crossing with Z = sH, if the line is not parallel to it, in the
   // cap disk.
@@ -535,7 +592,7 @@ Tri lineCylinder(C& c, bool* early) {
         c.sign([side](const auto& f) { return capCrossingGap(f, side); }));
     if (t == Tri::kFalse) continue;
     if (!have_slanted) {
-      slanted = kNot(isZero(c.sign([](const auto& f) { return f.e.Z; })));
+      slanted = kNot(isZero(c.sign([](const auto& f) { return f.e().Z; })));
       have_slanted = true;
     }
     if (any.add(kAnd(t, slanted))) return Tri::kTrue;

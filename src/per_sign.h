@@ -37,6 +37,7 @@
 
 #include <cmath>
 #include <optional>
+#include <type_traits>
 
 #include "adaptive.h"
 #include "eft.h"
@@ -293,7 +294,7 @@ inline KBool nonPos(Bits b) { return {b.neg, b.pos}; }  // <= 0
 template <class K, class Q>
 class KernelCtx {
  public:
-  explicit KernelCtx(const Q& q) : f_(q.template frame<KernelArith<K>>()) {}
+  explicit KernelCtx(const Q& q) : f_(q) {}
   template <class P>
   Sign sign(const P& pred) const {
     return K::sign(pred(f_));
@@ -305,7 +306,7 @@ class KernelCtx {
   static constexpr bool kEagerFilter = false;
 
  private:
-  typename Q::template Frame<typename K::Num> f_;
+  typename Q::template Frame<KernelArith<K>> f_;
 };
 
 /// FilterKernel::sign (src/filter.h) for the shallow predicates of the
@@ -328,8 +329,7 @@ inline Sign shallowSign(const Fd& a) {
 template <class Q>
 class PerSign {
  public:
-  explicit PerSign(const Q& q)
-      : q_(q), fd_(q.template frame<KernelArith<FilterKernel>>()) {}
+  explicit PerSign(const Q& q) : q_(q), fd_(q) {}
   PerSign(const PerSign&) = delete;
   PerSign& operator=(const PerSign&) = delete;
 
@@ -358,8 +358,8 @@ class PerSign {
   int level() const { return level_; }
 
  private:
-  template <class N>
-  using Frame = typename Q::template Frame<N>;
+  template <class A>
+  using Frame = typename Q::template Frame<A>;
 
   template <class P>
   TRICYL_ADAPTIVE_NOINLINE Sign escalate(const P& pred, const Fd& v) {
@@ -369,15 +369,14 @@ class PerSign {
       // RunningDoubleKernel): it follows the values where the filter's
       // bound follows the magnitudes (a small value after cancellation).
       // Still the double stage.
-      if (!rd_)
-        rd_.emplace(q_.template frame<KernelArith<RunningDoubleKernel>>());
+      if (!rd_) build(rd_);
       s = RunningDoubleKernel::sign(pred(*rd_));
       if (s != Sign::kUnknown) return s;
     } else {
       // A double value that is exactly 0 is most often a true tie (exact
       // data in an exact pose), which no bound certifies: was the double
       // evaluation exact?
-      if (!xd_) xd_.emplace(q_.template frame<ExactDoubleArith>());
+      if (!xd_) build(xd_);
       const Xd x = pred(*xd_);
       if (x.exact) {
         if (level_ < 2) level_ = 2;
@@ -391,14 +390,14 @@ class PerSign {
     s = dwSignWith<EftTwoProd>(pred, dw_);
 #endif
     if (s != Sign::kUnknown) return s;
-    if (!ex_) ex_.emplace(q_.template frame<ExpansionArith>());
+    if (!ex_) build(ex_);
     const Expansion x = pred(*ex_);
     if (x.ok()) {
       if (level_ < 2) level_ = 2;
       s = Sign(x.sign());
       return s;
     }
-    if (!gmp_) gmp_.emplace(q_.template frame<KernelArith<ExactKernel>>());
+    if (!gmp_) build(gmp_);
     level_ = 3;
     return ExactKernel::sign(pred(*gmp_));
   }
@@ -406,8 +405,8 @@ class PerSign {
   /// The double-word stage with TwoProduct TP, on a frame built when first
   /// needed.
   template <class TP, class P>
-  Sign dwSignWith(const P& pred, std::optional<Frame<DwEt<TP>>>& frame) {
-    if (!frame) frame.emplace(q_.template frame<DwArith<TP>>());
+  Sign dwSignWith(const P& pred, std::optional<Frame<DwArith<TP>>>& frame) {
+    if (!frame) build(frame);
     return dwSign(pred(*frame));
   }
 #if TRICYL_FMA_DISPATCH
@@ -415,19 +414,30 @@ class PerSign {
   /// so that __builtin_fma is one instruction).
   template <class P>
   TRICYL_TARGET_FMA Sign dwSignFma(const P& pred) {
-    return dwSignWith<FmaTwoProd>(pred, dwf_);
+    if (!dwf_) buildFma();
+    return dwSign(pred(*dwf_));
   }
-  std::optional<Frame<DwEt<FmaTwoProd>>> dwf_;
+  TRICYL_TARGET_FMA TRICYL_ADAPTIVE_NOINLINE void buildFma() {
+    dwf_.emplace(q_);
+  }
+  std::optional<Frame<DwArith<FmaTwoProd>>> dwf_;
 #endif
 
+  // The frames of the later stages, built when a sign first needs them;
+  // one copy of the code for all the query's signs.
+  template <class F>
+  TRICYL_ADAPTIVE_NOINLINE void build(std::optional<F>& frame) {
+    frame.emplace(q_);
+  }
+
   const Q& q_;
-  Frame<Fd> fd_;
+  Frame<KernelArith<FilterKernel>> fd_;
   int level_ = 0;
-  std::optional<Frame<Rd>> rd_;
-  std::optional<Frame<DwE>> dw_;
-  std::optional<Frame<Xd>> xd_;
-  std::optional<Frame<Expansion>> ex_;
-  std::optional<Frame<Dyadic>> gmp_;
+  std::optional<Frame<KernelArith<RunningDoubleKernel>>> rd_;
+  std::optional<Frame<DwArith<EftTwoProd>>> dw_;
+  std::optional<Frame<ExactDoubleArith>> xd_;
+  std::optional<Frame<ExpansionArith>> ex_;
+  std::optional<Frame<KernelArith<ExactKernel>>> gmp_;
 };
 
 /// The driver's per-sign policy (runStages' counterpart, src/stages.h):
