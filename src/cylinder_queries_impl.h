@@ -577,12 +577,9 @@ Tri lineCylinder(C& c, bool* early) {
     return Tri::kFalse;
   }
   AnyOf any;
-  // (V)
-  if (any.add(vertexInside(c,
-                           c.sign([](const auto& f) { return f.a().Z - f.H; }),
-                           c.sign([](const auto& f) { return f.a().Z + f.H; }),
-                           [](const auto& f) { return diskGap(f.a(), f.r); })))
-    return Tri::kTrue;
+  // (E) the closest approach to the axis, anywhere on the line: first, as
+  // it decides most hits with a few low-degree signs.
+  if (any.add(axisApproach(c, false, sep))) return Tri::kTrue;
   // (X) the crossing with Z = sH, if the line is not parallel to it, in the
   // cap disk.
   Tri slanted = Tri::kUnknown;
@@ -597,8 +594,13 @@ Tri lineCylinder(C& c, bool* early) {
     }
     if (any.add(kAnd(t, slanted))) return Tri::kTrue;
   }
-  // (E) the closest approach to the axis, anywhere on the line.
-  if (any.add(axisApproach(c, false, sep))) return Tri::kTrue;
+  // (V): needed only for e = 0 (the line is the point a), where (E) and (X)
+  // are false.
+  if (any.add(vertexInside(c,
+                           c.sign([](const auto& f) { return f.a().Z - f.H; }),
+                           c.sign([](const auto& f) { return f.a().Z + f.H; }),
+                           [](const auto& f) { return diskGap(f.a(), f.r); })))
+    return Tri::kTrue;
   return any.result();
 }
 
