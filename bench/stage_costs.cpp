@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "scenes.h"
+#include "stage_report.h"
 #include "tricyl/triangle_cylinder.h"
 #include "walk.h"
 
@@ -31,55 +32,23 @@
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using tricyl::Stage;
+using tricyl::bench::Clock;
+using tricyl::bench::ns;
+using tricyl::bench::quantile;
+using tricyl::bench::stageName;
 using tricyl::bench::Walk;
 using tricyl::scenes::Family;
 using tricyl::scenes::TriCase;
 
 constexpr int kCases = 4096;
 
-double ns(Clock::duration d) {
-  return std::chrono::duration<double, std::nano>(d).count();
-}
-
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  const std::size_t k =
-      std::min(v.size() - 1, std::size_t(q * double(v.size())));
-  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
-  return v[k];
-}
-
-const char* stageName(Stage s) {
-  switch (s) {
-    case Stage::kEarlyOut:
-      return "early-out";
-    case Stage::kFastPath:
-      return "double filter";
-    case Stage::kExtended:
-      return "double-word";
-    case Stage::kExact:
-      return "exact (stack)";
-    case Stage::kExactGmp:
-      return "exact (GMP)";
-    case Stage::kInvalid:
-      return "invalid";
-  }
-  return "?";
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   const int passes = argc > 1 ? std::max(1, std::atoi(argv[1])) : 20;
   // The clock's own cost, subtracted from every single-query time.
-  double clock_ns = 1e300;
-  for (int i = 0; i < 20000; ++i) {
-    const auto a = Clock::now();
-    const auto b = Clock::now();
-    clock_ns = std::min(clock_ns, ns(b - a));
-  }
+  const double clock_ns = tricyl::bench::clockOverheadNs();
   std::printf(
       "# tricyl-stage-costs\n\n%d cases per family, %d passes; "
       "clock overhead %.1f ns (subtracted from single-query "
