@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The cylinder query family, each predicate written ONCE over a kernel K of
-// src/filter.h and decided by the same driver as the triangle kernel
-// (runStages, src/stages.h): FilterKernel (certified double), then, for a
-// query it leaves open, AdaptiveKernel (src/adaptive.h), which re-decides
-// only the open signs in double-word, then exactly.
+// The cylinder query family, each predicate written ONCE. The point and
+// cone queries are written over a kernel K of src/filter.h and decided by
+// runStages (src/stages.h): FilterKernel (certified double), then, for a
+// query it leaves open, AdaptiveKernel (src/adaptive.h). The sphere, segment
+// and line queries are written against a context (src/per_sign.h), each
+// sign a closed-form polynomial of the query's frame: decided in double,
+// and each sign the double bound leaves open re-decided by itself in the
+// next arithmetic (runPerSign, the driver's per-sign policy).
 //
 // Frame: the cylinder frame of the triangle kernel, produced by the same
 // toLocal<K> (src/triangle_cylinder_impl.h): y = R^T (x - t) evaluated
@@ -22,14 +25,17 @@
 //   slab   Z -+ H                                 2      6      2^45
 //   disk   r^2 - x^2 - y^2                        4      7      2^90
 //   cone   r^2 (H - Z)^2 - 4 H^2 (x^2 + y^2)      6      9      2^172
-//   sphere 2 rho - (Z -+ H), s - (r + rho)^2      4      7      2^91
-//   sphere T, 16 r^2 G - T^2                      8     11      2^190
+//   sphere 2 rho - E, E = |Z| - H, s - (r+rho)^2  4      7      2^91
+//   sphere T, 16 r^2 G - T^2                      8     12      2^190
 //   segment (V), (X), (E): as the triangle kernel's (V), (X), (E):
 //          degree <= 8, depth <= 11, magnitude <= 2^370 (docs/exactness.md)
 //   line   (V), (X), (E) and its early-out r^2 L - c^2: the segment's
 //          terms with the direction R^T (q - p) for b - a (the same
 //          degree, depth and magnitude as a local coordinate), same bounds
-// All inside the budget; no division and no square root anywhere.
+// All inside the budget; no division and no square root anywhere. The
+// per-sign filter of the sphere, segment and line (shallowSign,
+// src/per_sign.h) uses their largest depth, 12, for a bound four times
+// tighter than the filter's general one (depth <= 56).
 #pragma once
 
 #include <cstdint>

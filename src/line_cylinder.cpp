@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Line vs cylinder: the exact Boolean (three stages of src/filter.h,
-// predicate lineCylinder<K> in src/cylinder_queries_impl.h) and the
+// Line vs cylinder: the exact Boolean (lineCylinder in
+// src/cylinder_queries_impl.h, decided sign by sign, src/per_sign.h) and the
 // entry/exit interval along the unbounded line (the segment's interval
 // code without the [0, 1] restriction: src/line_cylinder_interval.cpp).
 #include "tricyl/line_cylinder.h"

@@ -9,30 +9,40 @@
 //   C::cheapSign(pred)  the same, but only from the double filter (may be
 //                       kUnknown): for early-outs, which the later signs
 //                       decide anyway;
-// where pred is a generic lambda from a frame (the query's local data:
-// local points and sizes, Frame<N> for a number type N with +, -, *) to
+//   C::kEagerFilter, C::filterBits(pred)  (PerSign only) the filter's
+//                       verdict without a branch, for a query that first
+//                       tries its whole formula in double at once;
+// where pred is a generic lambda from a frame (the query's local data) to
 // the value of one polynomial. The query describes its frame (Q below):
-//   template <class N> struct Frame;                    the local data;
-//   template <class A> Frame<typename A::Num> frame();  built in arithmetic
-//                                                       A (lift, local).
+//   template <class A> struct/class Frame, constructed from the query, in
+//   arithmetic A (A::Num with +, -, * and absolute(); A::lift, A::local).
 //
 // PerSign (inside the range gate) evaluates pred in double on a frame
 // computed once (FilterKernel's Fd: value and magnitude, certified by the
-// a-priori bound of src/filter.h); only a sign that bound leaves open is
-// re-decided, by itself, in the next arithmetic, from a frame of that
-// arithmetic computed when first needed, while the query goes on in double
-// with the certified sign (CGAL's Filtered_predicate, Shewchuk's adaptive
-// predicates: the expensive evaluation only for the expression that
-// failed). The arithmetics, in order:
-//   1. double-word (about 106 bits, src/eft.h) with the a-priori bound
-//      derived at DwNum below, from the filter's own magnitude: no running
-//      bound, no tape;
-//   2. exact stack expansions (src/expansion.h);
-//   3. GMP dyadics (ExactKernel), where the expansions give up.
-// Outside the range gate the query runs on GMP dyadics alone (ExactCtx
-// below), as in runStages (src/stages.h). KernelCtx<K> runs the same query
-// code with one kernel K of src/filter.h, for runStages itself (the
-// triangle's degenerate hand-off calls the segment query that way).
+// a-priori bound of src/filter.h with the constant of the queries' depth,
+// shallowSign); only a sign that bound leaves open is re-decided, by
+// itself, in the next arithmetic, from a frame of that arithmetic computed
+// when first needed (for the segment and the line, point by point), while
+// the query goes on in double with the certified sign (CGAL's
+// Filtered_predicate, Shewchuk's adaptive predicates: the expensive
+// evaluation only for the expression that failed). No tape, no second run
+// of the query. The arithmetics, in order:
+//   1. the same double values with a running error bound
+//      (RunningDoubleKernel, src/filter.h), which follows the values where
+//      the filter's bound follows the magnitudes; a double value that is
+//      exactly 0 (most often a true tie) instead re-done with every
+//      operation checked for exactness (Xd below);
+//   2. double word (about 106 bits, src/eft.h) with the running bound of
+//      the adaptive kernel (src/adaptive.cpp), with the CPU's FMA chosen at
+//      run time on x86-64 builds without it (the same bits either way);
+//   3. exact stack expansions (src/expansion.h);
+//   4. GMP dyadics (ExactKernel), where the expansions give up.
+// Outside the range gate the query runs on GMP dyadics alone
+// (KernelCtx<ExactKernel>), as in runStages (src/stages.h). KernelCtx<K>
+// runs the same query code with one kernel K of src/filter.h, for
+// runStages itself (the triangle's degenerate hand-off calls the segment
+// query that way). tests/per_sign_test.cpp checks every stage's signs
+// against GMP.
 #pragma once
 
 #include <cmath>

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Sphere vs cylinder: validate, then the three stages of src/filter.h.
+// Sphere vs cylinder: validate, then sphereCylinder
+// (src/cylinder_queries_impl.h), decided sign by sign (src/per_sign.h).
 #include "tricyl/sphere_cylinder.h"
 
 #include <type_traits>
