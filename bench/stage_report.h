@@ -7,9 +7,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cstddef>
+#include <cstdio>
+#include <string>
 #include <vector>
 
 #include "tricyl/types.h"
+#include "walk.h"
 
 namespace tricyl::bench {
 
@@ -55,6 +58,65 @@ inline const char* stageName(Stage s) {
       return "invalid";
   }
   return "?";
+}
+
+/// One family's costs as decideIntersect sees them: the mean per query of
+/// whole passes (no clock inside the loop), and every query timed one by
+/// one (the clock's cost subtracted), overall and by the deciding stage.
+struct FamilyCosts {
+  double mean = 0;
+  std::vector<double> all;
+  std::vector<double> by[8];  // by Stage
+  long hits = 0;              // keeps the answers alive
+};
+
+/// `decide(case) -> Decision` over `cases` (a power-of-two count), visited
+/// in an order the branch predictor cannot learn (walk.h).
+template <class Case, class Decide>
+FamilyCosts measureFamily(const std::vector<Case>& cases, int passes,
+                          double clock_ns, const Decide& decide) {
+  FamilyCosts fc;
+  Walk walk(cases.size());
+  const auto t0 = Clock::now();
+  for (int p = 0; p < passes; ++p)
+    for (std::size_t n = 0; n < cases.size(); ++n)
+      fc.hits += decide(cases[walk.next()]).answer == Answer::kIntersect;
+  fc.mean = ns(Clock::now() - t0) / double(passes * cases.size());
+  Walk w1(cases.size());
+  for (int p = 0; p < passes; ++p)
+    for (std::size_t n = 0; n < cases.size(); ++n) {
+      const Case& c = cases[w1.next()];
+      const auto a = Clock::now();
+      const Decision d = decide(c);
+      const double t = std::max(0.0, ns(Clock::now() - a) - clock_ns);
+      fc.hits += d.answer == Answer::kIntersect;
+      fc.all.push_back(t);
+      fc.by[int(d.stage)].push_back(t);
+    }
+  return fc;
+}
+
+/// The markdown rows "| <prefix> | stage | share | mean | p99 | max |" of
+/// the stages that decided some query.
+inline std::vector<std::string> stageRows(const std::string& prefix,
+                                          const FamilyCosts& fc) {
+  std::vector<std::string> rows;
+  for (Stage s : {Stage::kEarlyOut, Stage::kFastPath, Stage::kExtended,
+                  Stage::kExact, Stage::kExactGmp}) {
+    const auto& b = fc.by[int(s)];
+    if (b.empty()) continue;
+    double sum = 0;
+    for (double t : b) sum += t;
+    char row[256];
+    std::snprintf(row, sizeof row,
+                  "| %s | %s | %.3f %% | %.0f ns | %.0f ns | %.0f ns |\n",
+                  prefix.c_str(), stageName(s),
+                  100.0 * double(b.size()) / double(fc.all.size()),
+                  sum / double(b.size()), quantile(b, 0.99),
+                  *std::max_element(b.begin(), b.end()));
+    rows.push_back(row);
+  }
+  return rows;
 }
 
 }  // namespace tricyl::bench
