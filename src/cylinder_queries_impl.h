@@ -374,27 +374,38 @@ inline auto axisDistanceGap(const F& f) {
 /// (axisDistanceGap, whose sign is `sep`); its height Z_a + mu e_Z is in
 /// the slab (times L > 0). `interior` adds 0 <= g <= L (the foot within
 /// [a, a + e]: the segment's form; the line has no such condition).
+/// L = e_x^2 + e_y^2.
+template <class F>
+inline auto axisLen(const F& f) {
+  return f.e().x * f.e().x + f.e().y * f.e().y;
+}
+/// g = -a.e (in the xy-plane): the foot of the perpendicular is at g / L.
+template <class F>
+inline auto axisFoot(const F& f) {
+  return -(f.a().x * f.e().x + f.a().y * f.e().y);
+}
+/// H L -+ (Z_a L + g e_Z): the foot's height (times L) below the top cap
+/// (side +1) or above the bottom one (side -1).
+template <class F>
+inline auto axisFootHeight(const F& f, int side) {
+  const auto L = axisLen(f);
+  const auto zL = f.a().Z * L + axisFoot(f) * f.e().Z;
+  return side > 0 ? f.H * L - zL : f.H * L + zL;
+}
+
 template <class C>
 inline Tri axisApproach(C& c, bool interior, Sign sep) {
-  Tri t = isPos(c.sign([](const auto& f) {
-    return f.e().x * f.e().x + f.e().y * f.e().y;  // L
-  }));
+  Tri t = isPos(c.sign([](const auto& f) { return axisLen(f); }));
   if (t != Tri::kFalse) t = kAnd(t, isNonNeg(sep));
-  auto g = [](const auto& f) {
-    return -(f.a().x * f.e().x + f.a().y * f.e().y);
-  };
-  if (interior && t != Tri::kFalse) t = kAnd(t, isNonNeg(c.sign(g)));
   if (interior && t != Tri::kFalse)
-    t = kAnd(t, isNonNeg(c.sign([&g](const auto& f) {
-               return f.e().x * f.e().x + f.e().y * f.e().y - g(f);
-             })));
-  // H L -+ (Z_a L + g e_Z) >= 0.
+    t = kAnd(t, isNonNeg(c.sign([](const auto& f) { return axisFoot(f); })));
+  if (interior && t != Tri::kFalse)
+    t = kAnd(t, isNonNeg(c.sign(
+                    [](const auto& f) { return axisLen(f) - axisFoot(f); })));
   for (int side : {1, -1}) {
     if (t == Tri::kFalse) break;
-    t = kAnd(t, isNonNeg(c.sign([side, &g](const auto& f) {
-               const auto L = f.e().x * f.e().x + f.e().y * f.e().y;
-               const auto zL = f.a().Z * L + g(f) * f.e().Z;
-               return side > 0 ? f.H * L - zL : f.H * L + zL;
+    t = kAnd(t, isNonNeg(c.sign([side](const auto& f) {
+               return axisFootHeight(f, side);
              })));
   }
   return t;
@@ -581,6 +592,33 @@ Tri lineCylinder(C& c, bool* early) {
   if (sep == Sign::kNeg) {
     *early = true;
     return Tri::kFalse;
+  }
+  if constexpr (C::kEagerFilter) {
+    // The terms below in double at once, combined without a branch per
+    // sign (as the sphere's); only an open answer goes on sign by sign.
+    const KBool approach =
+        kbAnd(nonNeg(c.filterBits([](const auto& f) { return axisLen(f); })),
+              kbAnd(nonNeg(c.filterBits(
+                        [](const auto& f) { return axisFootHeight(f, 1); })),
+                    nonNeg(c.filterBits(
+                        [](const auto& f) { return axisFootHeight(f, -1); }))));
+    const Bits ez = c.filterBits([](const auto& f) { return f.e().Z; });
+    const KBool slanted = {bool(ez.pos | ez.neg), false};
+    const KBool cross =
+        kbAnd(slanted, kbOr(nonNeg(c.filterBits([](const auto& f) {
+                              return capCrossingGap(f, 1);
+                            })),
+                            nonNeg(c.filterBits([](const auto& f) {
+                              return capCrossingGap(f, -1);
+                            }))));
+    const KBool inside = kbAnd(
+        kbAnd(
+            nonPos(c.filterBits([](const auto& f) { return f.a().Z - f.H; })),
+            nonNeg(c.filterBits([](const auto& f) { return f.a().Z + f.H; }))),
+        nonNeg(
+            c.filterBits([](const auto& f) { return diskGap(f.a(), f.r); })));
+    const KBool r = kbOr(approach, kbOr(cross, inside));
+    if (r.t | r.f) return toTri(r.t);
   }
   AnyOf any;
   // (E) the closest approach to the axis, anywhere on the line: first, as
