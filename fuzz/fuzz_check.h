@@ -6,6 +6,7 @@
 
 #include <fenv.h>
 
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 
@@ -69,6 +70,16 @@ Pose<double> widen(const Pose<S>& p) {
 template <class S>
 Vec3<S> neg(const Vec3<S>& v) {
   return {-v.x, -v.y, -v.z};
+}
+
+/// The five other orders of a triangle's vertices.
+template <class S>
+std::array<Triangle<S>, 5> otherVertexOrders(const Triangle<S>& t) {
+  return {{{t.a, t.c, t.b},
+           {t.b, t.a, t.c},
+           {t.b, t.c, t.a},
+           {t.c, t.a, t.b},
+           {t.c, t.b, t.a}}};
 }
 
 /// The pose of the point reflection of the whole scene (t negated; the

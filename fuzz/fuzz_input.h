@@ -208,20 +208,27 @@ Vec3<S> toWorld(const Pose<S>& pose, const Vec3<S>& v) {
 ///              mapped to the world by the pose in S arithmetic (rounded),
 ///              which puts them near the cylinder under any rotation.
 /// Order: radius, lz, R (if free), t (unless identity), a, b, c.
+/// decodeCase reads from a reader and decoder that the caller may go on
+/// reading (fuzz_triangle_cylinder_margin reads the margin after it).
+template <class S>
+Case<S> decodeCase(ByteReader* in, ScalarDecoder<S>* dec) {
+  Case<S> c;
+  const std::uint8_t flags = in->byte();
+  c.cyl.radius = dec->next();
+  c.cyl.lz = dec->next();
+  c.pose = readPose(in, dec, flags, &c.identity_pose);
+  Vec3<S>* verts[3] = {&c.tri.a, &c.tri.b, &c.tri.c};
+  for (Vec3<S>* v : verts) *v = {dec->next(), dec->next(), dec->next()};
+  if ((flags & 4) && !c.identity_pose)
+    for (Vec3<S>* v : verts) *v = toWorld(c.pose, *v);
+  return c;
+}
+
 template <class S>
 Case<S> decode(const std::uint8_t* data, std::size_t size) {
   ByteReader in(data, size);
   ScalarDecoder<S> dec(&in);
-  Case<S> c;
-  const std::uint8_t flags = in.byte();
-  c.cyl.radius = dec.next();
-  c.cyl.lz = dec.next();
-  c.pose = readPose(&in, &dec, flags, &c.identity_pose);
-  Vec3<S>* verts[3] = {&c.tri.a, &c.tri.b, &c.tri.c};
-  for (Vec3<S>* v : verts) *v = {dec.next(), dec.next(), dec.next()};
-  if ((flags & 4) && !c.identity_pose)
-    for (Vec3<S>* v : verts) *v = toWorld(c.pose, *v);
-  return c;
+  return decodeCase(&in, &dec);
 }
 
 template <class S>

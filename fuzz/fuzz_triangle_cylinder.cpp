@@ -79,11 +79,7 @@ void run(const Case<S>& c) {
       threw = true;
     }
     const auto& t = c.tri;
-    const tricyl::Triangle<S> orders[5] = {{t.a, t.c, t.b},
-                                           {t.b, t.a, t.c},
-                                           {t.b, t.c, t.a},
-                                           {t.c, t.a, t.b},
-                                           {t.c, t.b, t.a}};
+    const auto orders = tricyl::fuzz::otherVertexOrders(t);
     for (int i = 0; i < 5; ++i)
       perm[i] = tricyl::tryIntersect(c.cyl, c.pose, orders[i]);
     tricyl::Pose<S> p = c.pose;

@@ -17,7 +17,7 @@ cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DTRICYL_BUILD_BENCH=ON >
 cmake --build build/release -j "$(nproc)"
 mkdir -p bench/results build/bench-json
 suites=()
-for b in bench_triangle_cylinder bench_queries bench_mesh_cylinder bench_fcl_collide; do
+for b in bench_triangle_cylinder bench_queries bench_mesh_cylinder bench_fcl_collide bench_margin; do
   exe=build/release/bench/$b
   [ -x "$exe" ] || continue
   echo "== $b" >&2
@@ -26,7 +26,7 @@ for b in bench_triangle_cylinder bench_queries bench_mesh_cylinder bench_fcl_col
   # drifts by tens of percent within a minute: its rows run as 9
   # repetitions in random interleaving, and the ratio is read from the
   # medians (bench/results/README.md).
-  if [ "$b" = bench_triangle_cylinder ]; then
+  if [ "$b" = bench_triangle_cylinder ] || [ "$b" = bench_margin ]; then
     extra=(--benchmark_repetitions=9 --benchmark_enable_random_interleaving=true)
   fi
   "$exe" --benchmark_min_time="$MIN_TIME" --benchmark_out="build/bench-json/$b.json" \

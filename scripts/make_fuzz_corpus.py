@@ -507,7 +507,34 @@ def write_corpus(query, seeds):
     print(f"{len(seeds)} seeds in {os.path.relpath(out, ROOT)}")
 
 
+# fuzz_triangle_cylinder_margin: the triangle layout, then the margin.
+def with_margin(data, m):
+    return data + b"\x00" + struct.pack("<f" if data[0] & 8 else "<d", m)
+
+
+mg = {name + "_m0.5": with_margin(data, 0.5) for name, data in seeds.items()}
+# Exact ties at distance 5/16 from the rim circle of r = 1, lz = 2: a vertex,
+# an edge tangent to the tube, a face whose interior alone comes near
+# (tests/triangle_cylinder_margin_test.cpp, ExactTies); at d and 1 ulp below.
+for name, tri in [
+        ("vertex_rim", [(1.1875, 0, 1.25), (4.1875, 1, 5.25), (4.1875, -1, 5.25)]),
+        ("edge_rim", [(1.1875, -0.5, 1.25), (1.1875, 0.5, 1.25), (4.1875, 0, 5.25)]),
+        ("face_rim", [(9.1875, 0, -4.75), (-6.8125, 10, 7.25), (-6.8125, -10, 7.25)])]:
+    mg[name + "_tie"] = with_margin(ident((1, 2), tri), 0.3125)
+    mg[name + "_one_ulp_below"] = with_margin(ident((1, 2), tri), down(0.3125))
+    mg[name + "_float_tie"] = with_margin(ident((1, 2), tri, flags=2 | 8), 0.3125)
+mg["corner_box_says_yes"] = with_margin(ident((1, 2), [(1.5, 0, 1.5), (3, 0, 3), (3, 1, 3)]), 0.5)
+mg["perm_corner"] = with_margin(perm((1, 2), 17, (1, 2, 3), [(1.5, 0, 1.5), (3, 0, 3), (3, 1, 3)], flags=1 | 4), 0.75)
+mg["margin_nan"] = with_margin(ident((1, 2), [(0, 0, 0), (1, 0, 0), (0, 1, 0)]), NAN)
+mg["margin_inf"] = with_margin(ident((1, 2), [(0, 0, 0), (1, 0, 0), (0, 1, 0)]), INF)
+mg["margin_negative"] = with_margin(ident((1, 2), [(0, 0, 0), (1, 0, 0), (0, 1, 0)]), -0.5)
+mg["margin_minus_zero"] = with_margin(ident((1, 2), [(5, 0, 0), (6, 0, 0), (5, 1, 0)]), -0.0)
+mg["margin_huge"] = with_margin(ident((1e300, 1e300), [(1.7e308, 0, 0), (1.7e308, 1, 0), (1.7e308, 0, 1)]), 1.7e308)
+mg["margin_subnormal"] = with_margin(ident((1, 2), [(up(1), -1, 0), (up(1), 1, 0), (up(1), 0, 0.5)]), 5e-324)
+
+
 write_corpus("triangle_cylinder", seeds)
+write_corpus("triangle_cylinder_margin", mg)
 write_corpus("point_cylinder", pc)
 write_corpus("point_cone", pk)
 write_corpus("sphere_cylinder", ss)

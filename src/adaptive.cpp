@@ -4,6 +4,21 @@
 #include "adaptive.h"
 
 #include <cmath>
+#include <cstdlib>
+
+// On x86-64 builds that do not assume FMA (the default: SSE2), the
+// double-word stage picks an FMA-compiled copy at run time (Tape::dw).
+#if (defined(__x86_64__) || defined(__i386__)) && \
+    (defined(__GNUC__) || defined(__clang__)) && !TRICYL_HAVE_FMA
+#define TRICYL_DW_FMA_DISPATCH 1
+#else
+#define TRICYL_DW_FMA_DISPATCH 0
+#endif
+#if defined(__GNUC__) || defined(__clang__)
+#define TRICYL_EFT_INLINE inline __attribute__((always_inline))
+#else
+#define TRICYL_EFT_INLINE inline
+#endif
 
 namespace tricyl::detail {
 
@@ -44,9 +59,10 @@ inline DwRun runAdd(const DwRun& a, const DwRun& b) {
   r.e = a.e + b.e + kDwAddRel * (std::fabs(a.v.hi) + std::fabs(b.v.hi));
   return r;
 }
+template <bool kFma>
 inline DwRun runMul(const DwRun& a, const DwRun& b) {
   DwRun r;
-  r.v = dwMul(a.v, b.v);
+  r.v = dwMulT<kFma>(a.v, b.v);
   const double ma = std::fabs(a.v.hi) + std::fabs(a.v.lo);
   const double mb = std::fabs(b.v.hi) + std::fabs(b.v.lo);
   r.e = ma * b.e + mb * a.e + a.e * b.e + kDwRel * std::fabs(r.v.hi) + kDwTiny;
@@ -72,6 +88,7 @@ inline DwRun runMul(const DwRun& a, const DwRun& b) {
 // magnitude (three roundings of non-negative terms, (1 - u)^3 M <= M').
 // Underflow (a product or an error term below the normal range) adds at
 // most a few 2^-1075 absolutely: kDwTiny. Z = 2 z: the same, doubled.
+template <bool kFma>
 DwRun Tape::dwCoord(const Node& nd) const {
   const Point& P = pts_[nd.a];
   const int j = nd.b;
@@ -79,7 +96,7 @@ DwRun Tape::dwCoord(const Node& nd) const {
   double m = 0;
   for (int k = 0; k < 3; ++k) {
     twoSum(P.p[k], -P.t[k], D[k], l[k]);
-    twoProd(P.R[k][j], D[k], Pk[k], e[k]);
+    twoProdT<kFma>(P.R[k][j], D[k], Pk[k], e[k]);
     q[k] = P.R[k][j] * l[k];
     m += std::fabs(P.R[k][j]) * std::fabs(D[k]);
   }
@@ -104,10 +121,21 @@ DwRun Tape::dwCoord(const Node& nd) const {
   return r;
 }
 
-DwRun Tape::dw(std::uint32_t id) {
-  std::uint64_t& word = memo_[id >> 6];
-  const std::uint64_t bit = std::uint64_t(1) << (id & 63);
-  if (word & bit) return dw_[id];
+// Node `id`'s double-word value, into dw_[id] (not memoised yet). Its
+// operands are looked up in the memo first, so that a memoised operand
+// (about half of them) costs no call; the recursion returns nothing and
+// the values are read from dw_ in place.
+template <bool kFma>
+TRICYL_EFT_INLINE void Tape::dwNode(std::uint32_t id) {
+  auto get = [this](std::uint32_t c) -> const DwRun& {
+    if ((memo_[c >> 6] >> (c & 63) & 1) == 0) {
+      if constexpr (kFma)
+        dwFma(c);
+      else
+        dwPlain(c);
+    }
+    return dw_[c];
+  };
   const Node nd = nodes_[id];
   DwRun r;
   switch (nd.code) {
@@ -119,30 +147,73 @@ DwRun Tape::dw(std::uint32_t id) {
       r.e = 0;
       break;
     case kCoord:
-      r = dwCoord(nd);
+      r = dwCoord<kFma>(nd);
       break;
     case kNeg: {
-      const DwRun a = dw(nd.a);
+      const DwRun& a = get(nd.a);
       r = {dwNeg(a.v), a.e};
       break;
     }
-    case kAdd:
-      r = runAdd(dw(nd.a), dw(nd.b));
+    case kAdd: {
+      const DwRun& a = get(nd.a);
+      const DwRun& b = get(nd.b);
+      r = runAdd(a, b);
       break;
+    }
     case kSub: {
-      const DwRun a = dw(nd.a);
-      DwRun b = dw(nd.b);
+      const DwRun& a = get(nd.a);
+      DwRun b = get(nd.b);
       b.v = dwNeg(b.v);
       r = runAdd(a, b);
       break;
     }
-    default:  // kMul
-      r = runMul(dw(nd.a), dw(nd.b));
+    default: {  // kMul
+      const DwRun& a = get(nd.a);
+      const DwRun& b = get(nd.b);
+      r = runMul<kFma>(a, b);
       break;
+    }
   }
   dw_[id] = r;
-  word |= bit;
-  return r;
+  memo_[id >> 6] |= std::uint64_t(1) << (id & 63);
+}
+
+void Tape::dwPlain(std::uint32_t id) { dwNode<TRICYL_HAVE_FMA != 0>(id); }
+
+#if TRICYL_DW_FMA_DISPATCH
+// The same evaluation compiled for FMA (dwNode, dwCoord, runMul and the
+// double-word operations inline into it), for CPUs that have it; chosen
+// once per process, and never with TRICYL_SCALAR_BASELINE=1 in the
+// environment (tests/answers_digest_check.sh compares the two paths'
+// digests, which include the bits of interval ends computed from these
+// values). Before this flag is initialised (a static constructor of
+// another translation unit calling in) it reads false: the same bits.
+namespace {
+bool cpuHasFma() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("fma") != 0 &&
+         std::getenv("TRICYL_SCALAR_BASELINE") == nullptr;
+}
+const bool kHasFma = cpuHasFma();
+}  // namespace
+
+__attribute__((target("fma"))) void Tape::dwFma(std::uint32_t id) {
+  dwNode<true>(id);
+}
+#else
+void Tape::dwFma(std::uint32_t id) { dwPlain(id); }
+#endif
+
+DwRun Tape::dw(std::uint32_t id) {
+  if ((memo_[id >> 6] >> (id & 63) & 1) == 0) {
+#if TRICYL_DW_FMA_DISPATCH
+    if (kHasFma)
+      dwFma(id);
+    else
+#endif
+      dwPlain(id);
+  }
+  return dw_[id];
 }
 
 // ---------------------------------------------------------------------------
@@ -213,7 +284,27 @@ Expansion Tape::expansion(std::uint32_t id) {
 // factor (then the product is an exact 0 whatever the other factor is). The
 // operations and their order are those of the adaptive run, so the value
 // found is that run's value.
-bool Tape::exactInDouble(std::uint32_t id, double* value) const {
+bool Tape::exactInDouble(std::uint32_t id, double* value) {
+  // Memoised per node: the signs of one tie share their sub-DAGs.
+  const std::uint64_t bit = std::uint64_t(1) << (id & 63);
+  std::uint64_t& done = edone_[id >> 6];
+  std::uint64_t& ok = eok_[id >> 6];
+  if (done & bit) {
+    *value = ev_[id];
+    return (ok & bit) != 0;
+  }
+  const bool exact = exactInDoubleNode(id, value);
+  done |= bit;
+  if (exact) {
+    ok |= bit;
+    ev_[id] = *value;
+  } else {
+    ok &= ~bit;
+  }
+  return exact;
+}
+
+bool Tape::exactInDoubleNode(std::uint32_t id, double* value) {
   const Node nd = nodes_[id];
   auto sumOk = [](double a, double b, double* out) {
     double s, e;
@@ -318,73 +409,115 @@ Dyadic Tape::dyadic(std::uint32_t id) const {
 
 void Tape::toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x,
                    An& y, An& Z) {
-  const double pp[3] = {p.x, p.y, p.z};
-  const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
   // The double values of the generic toLocal: d_k = fl(p_k - t_k), then
   // ((R_0j d_0 + R_1j d_1) + R_2j d_2), and the folded running bound of
   // toLocalRunning (src/triangle_cylinder_impl.h, derived there) from
   // S = sum_k |R_kj| |d_k|.
-  double d[3], a[3];
-  for (int k = 0; k < 3; ++k) {
-    d[k] = pp[k] - tt[k];
-    a[k] = std::fabs(d[k]);
-  }
-  An* out[3] = {&x, &y, &Z};
+  const double d0 = p.x - pose.t.x, d1 = p.y - pose.t.y, d2 = p.z - pose.t.z;
+  const double a0 = std::fabs(d0), a1 = std::fabs(d1), a2 = std::fabs(d2);
   std::uint32_t point = 0;
-  const bool room = points_ < kMaxPoints;
-  if (room) {
+  if (points_ < kMaxPoints) {
     Point& P = pts_[points_];
     point = std::uint32_t(points_++);
-    for (int k = 0; k < 3; ++k) {
-      P.p[k] = pp[k];
-      P.t[k] = tt[k];
-      for (int j = 0; j < 3; ++j) P.R[k][j] = pose.R[k][j];
-    }
+    P.p[0] = p.x;
+    P.p[1] = p.y;
+    P.p[2] = p.z;
+    P.t[0] = pose.t.x;
+    P.t[1] = pose.t.y;
+    P.t[2] = pose.t.z;
+    P.R = pose.R;
   } else {
     overflow_ = true;
   }
-  for (int j = 0; j < 3; ++j) {
-    const double* R0 = pose.R[0];
-    const double* R1 = pose.R[1];
-    const double* R2 = pose.R[2];
-    const double s1 = R0[j] * d[0] + R1[j] * d[1];
-    double v = s1 + R2[j] * d[2];
-    double m = (std::fabs(R0[j]) * a[0] + std::fabs(R1[j]) * a[1]) +
-               std::fabs(R2[j]) * a[2];  // S, then the bound
-    {
-      constexpr double c = 0x1p-53 + 0x1p-53 * 0x1p-40;
-      const bool zero = (R0[j] == 0 || d[0] == 0) &&
-                        (R1[j] == 0 || d[1] == 0) && (R2[j] == 0 || d[2] == 0);
-      m = (((m + m) + std::fabs(s1)) + std::fabs(v)) * c +
-          (zero ? 0.0 : 4 * 0x1p-1074);
-    }
-    if (j == 2) {
-      v = v + v;
-      m = m + m;
-    }
-    *out[j] = {v, m, this, op(kCoord, point, std::uint32_t(j))};
+  auto coord = [&](int j) {
+    const double r0 = pose.R[0][j], r1 = pose.R[1][j], r2 = pose.R[2][j];
+    const double s1 = r0 * d0 + r1 * d1;
+    const double v = s1 + r2 * d2;
+    const double S =
+        (std::fabs(r0) * a0 + std::fabs(r1) * a1) + std::fabs(r2) * a2;
+    constexpr double c = 0x1p-53 + 0x1p-53 * 0x1p-40;
+    const bool zero =
+        (r0 == 0 || d0 == 0) & (r1 == 0 || d1 == 0) & (r2 == 0 || d2 == 0);
+    const double m = (((S + S) + std::fabs(s1)) + std::fabs(v)) * c +
+                     (zero ? 0.0 : 4 * 0x1p-1074);
+    return An{v, m, this, op(kCoord, point, std::uint32_t(j))};
+  };
+  x = coord(0);
+  y = coord(1);
+  Z = coord(2);
+  Z.v = Z.v + Z.v;
+  Z.m = Z.m + Z.m;
+}
+
+// The bound from M. With S_j = sum_k |R_kj| |d_k| (the exact sum of the
+// computed differences' terms), toLocal's derivation (toLocalRunning,
+// src/triangle_cylinder_impl.h) gives
+//   |x^ - x| <= u (1 + 8.5 u) (2 S_j + |s1| + |x^|) + 2 eta,
+// and |s1| <= (1 + u)^2 S_j. M = fl(rho fl(fl(|d_0| + |d_1|) + |d_2|))
+// >= (1 - u)^3 rho sum_k |d_k| >= (1 - u)^3 S_j, so 2 S_j + |s1| <=
+// 3 (1 + 2u) S_j <= 3 (1 + 6u) M, and
+//   e = fl(fl(fl(3 M) + |x^|) c) + 4 eta,   c = u (1 + 2^-40),
+// covers it: the three roundings of e and every (1 + k u) factor above
+// stay far inside the 2^-40 slack. An exact zero (every term with a zero
+// factor) keeps e = 0, as in toLocal; it is checked only when x^ = 0.
+void Tape::coordinates(const Pose<double>& pose, const Vec3<double>& p,
+                       double x, double y, double Z, double M, An& ax, An& ay,
+                       An& aZ) {
+  std::uint32_t point = 0;
+  if (points_ < kMaxPoints) {
+    Point& P = pts_[points_];
+    point = std::uint32_t(points_++);
+    P.p[0] = p.x;
+    P.p[1] = p.y;
+    P.p[2] = p.z;
+    P.t[0] = pose.t.x;
+    P.t[1] = pose.t.y;
+    P.t[2] = pose.t.z;
+    P.R = pose.R;
+  } else {
+    overflow_ = true;
   }
+  constexpr double c = 0x1p-53 + 0x1p-53 * 0x1p-40;
+  const double M3 = 3 * M;
+  auto leaf = [&](int j, double v) {
+    double m = (M3 + std::fabs(v)) * c + 4 * 0x1p-1074;
+    if (v == 0) {  // an exact zero? (rare: the check only then)
+      const double d[3] = {p.x - pose.t.x, p.y - pose.t.y, p.z - pose.t.z};
+      bool zero = true;
+      for (int k = 0; k < 3; ++k)
+        zero = zero && (pose.R[k][j] == 0 || d[k] == 0);
+      if (zero) m = 0;
+    }
+    return An{v, m, this, op(kCoord, point, std::uint32_t(j))};
+  };
+  ax = leaf(0, x);
+  ay = leaf(1, y);
+  aZ = leaf(2, Z * 0.5);
+  aZ.v = Z;
+  aZ.m = aZ.m + aZ.m;
 }
 
 Sign Tape::escalate(std::uint32_t id, double v) {
   if (overflow_) return Sign::kZero;  // the driver discards this run
-  // A double value that is exactly 0 is almost always a true tie (an exact
-  // pose and exact data: the double arithmetic did not round), which no
-  // bound certifies: straight to the exact stage. Otherwise double-word
-  // first. Either order gives the same sign.
-  if (v != 0) {
-    const DwRun d = dw(id);
-    const double b = (d.e + std::fabs(d.v.lo)) * (1 + 0x1p-40) + 0x1p-600;
-    if (level_ < 1) level_ = 1;
-    if (d.v.hi > b) return Sign::kPos;
-    if (d.v.hi < -b) return Sign::kNeg;
-  } else {
+  // A double value that is exactly 0 may be a true tie that the double
+  // arithmetic computed without rounding (an exact pose and exact data),
+  // which no bound certifies: checked first, at the cost of a pass over
+  // the sign's sub-DAG in double. Otherwise (and when that check fails:
+  // in the aligned family most zeros are cancellations that rounded to 0,
+  // with a non-zero exact value) double-word, and the exact stage only
+  // for what double-word cannot decide. Any order gives the same sign.
+  if (v == 0) {
     double exact = 0;
     if (exactInDouble(id, &exact)) {
       if (level_ < 2) level_ = 2;
       return exact > 0 ? Sign::kPos : (exact < 0 ? Sign::kNeg : Sign::kZero);
     }
   }
+  const DwRun d = dw(id);
+  const double b = (d.e + std::fabs(d.v.lo)) * (1 + 0x1p-40) + 0x1p-600;
+  if (level_ < 1) level_ = 1;
+  if (d.v.hi > b) return Sign::kPos;
+  if (d.v.hi < -b) return Sign::kNeg;
   const Expansion x = expansion(id);
   if (x.ok()) {
     if (level_ < 2) level_ = 2;

@@ -39,6 +39,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 
 #include "eft.h"
 #include "expansion.h"
@@ -88,8 +89,11 @@ class Tape {
   /// double-word stage's absolute slack rest on it, and under it nothing
   /// overflows (magnitudes <= 2^380, docs/exactness.md).
   Tape() {
-    for (auto& w : memo_) w = 0;
-    for (auto& w : xmemo_) w = 0;
+    // Fixed-size clears (a few vector stores; a loop here became two
+    // `rep stos`, a third of the cost of setting up a run).
+    std::memset(memo_, 0, sizeof memo_);
+    std::memset(xmemo_, 0, sizeof xmemo_);
+    std::memset(edone_, 0, sizeof edone_);
   }
   Tape(const Tape&) = delete;
   Tape& operator=(const Tape&) = delete;
@@ -127,6 +131,14 @@ class Tape {
   void toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x, An& y,
                An& Z);
 
+  /// As toLocal, from double values the caller already computed exactly as
+  /// toLocal does (x, y and Z = 2 z: the scalar fast path's), with `M` >=
+  /// rho (|d_0| + |d_1| + |d_2|) rounded as that path rounds it (rho >=
+  /// every |R_jk|, d_k = fl(p_k - t_k)). The running bound is then derived
+  /// from M (src/adaptive.cpp) instead of per-coordinate sums.
+  void coordinates(const Pose<double>& pose, const Vec3<double>& p, double x,
+                   double y, double Z, double M, An& ax, An& ay, An& aZ);
+
   /// The sign of node `id`, which the running double bound could not
   /// certify.
   /// `v`: its double value.
@@ -151,16 +163,27 @@ class Tape {
     std::uint16_t a, b;  // operands; a leaf's index; a coordinate's point
                          // and axis (b: 0 x, 1 y, 2 Z)
   };
-  /// A point's data for its coordinate leaves: p - t and column j of R.
+  /// A point's data for its coordinate leaves: p, t and R (the pose's own
+  /// rotation: the pose outlives the run, which is one call of the query).
   struct Point {
-    double p[3], t[3], R[3][3];
+    double p[3], t[3];
+    const double (*R)[3];
   };
+  // Double-word values: dw dispatches once per escalation to dwFma (x86-64
+  // CPUs with FMA, in builds that do not assume it) or dwPlain; both run
+  // dwNode, whose TwoProducts are exact either way: the same bits.
   DwRun dw(std::uint32_t id);
+  void dwPlain(std::uint32_t id);
+  void dwFma(std::uint32_t id);
+  template <bool kFma>
+  void dwNode(std::uint32_t id);
+  template <bool kFma>
   DwRun dwCoord(const Node& nd) const;
   Expansion expansionCoord(const Node& nd) const;
   Dyadic dyadicCoord(const Node& nd) const;
   Expansion expansion(std::uint32_t id);
-  bool exactInDouble(std::uint32_t id, double* value) const;
+  bool exactInDouble(std::uint32_t id, double* value);
+  bool exactInDoubleNode(std::uint32_t id, double* value);
   Dyadic dyadic(std::uint32_t id) const;
 
   bool overflow_ = false;
@@ -173,6 +196,10 @@ class Tape {
   Point pts_[kMaxPoints];
   std::uint64_t memo_[kMaxNodes / 64];
   DwRun dw_[kMaxNodes];
+  // exactInDouble's memo: checked (edone_), and if so whether the double
+  // value was exact (eok_) and that value (ev_).
+  std::uint64_t edone_[kMaxNodes / 64], eok_[kMaxNodes / 64];
+  double ev_[kMaxNodes];
   // The exact stage's memo: node -> its expansion's components in arena_
   // (a true tie usually needs several signs of the same coordinates and
   // sub-expressions). Nodes whose expansion does not fit are not memoised.

@@ -56,16 +56,24 @@ inline void split(double a, double& hi, double& lo) {
 /// that condition (Expansion); the double-word operations below count a
 /// possible violation as an absolute error instead (kDwTiny).
 inline constexpr double kProdExactMin = 0x1p-900;
-inline void twoProd(double a, double b, double& p, double& e) {
+/// kFma: with a fused multiply-add (call it with true only from code
+/// compiled for a CPU that has one: src/adaptive.cpp dispatches), else
+/// Dekker's product of splits. Both give the exact error term, so the same
+/// bits.
+template <bool kFma>
+inline void twoProdT(double a, double b, double& p, double& e) {
   p = a * b;
-#if TRICYL_HAVE_FMA
-  e = std::fma(a, b, -p);
-#else
-  double ah, al, bh, bl;
-  split(a, ah, al);
-  split(b, bh, bl);
-  e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
-#endif
+  if constexpr (kFma) {
+    e = std::fma(a, b, -p);
+  } else {
+    double ah, al, bh, bl;
+    split(a, ah, al);
+    split(b, bh, bl);
+    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+  }
+}
+inline void twoProd(double a, double b, double& p, double& e) {
+  twoProdT<TRICYL_HAVE_FMA != 0>(a, b, p, e);
 }
 
 /// A double-word number hi + lo with |lo| <= ulp(hi) / 2 (normalised by a
@@ -104,9 +112,10 @@ inline DW dwNeg(DW x) { return {-x.hi, -x.lo}; }
 /// product x y, without underflow). Its TwoProduct is exact with or without
 /// FMA, and nothing else in it could be fused (-ffp-contract=off), so the
 /// result is the same bits on every platform.
-inline DW dwMul(DW x, DW y) {
+template <bool kFma>
+inline DW dwMulT(DW x, DW y) {
   double ch, cl1;
-  twoProd(x.hi, y.hi, ch, cl1);
+  twoProdT<kFma>(x.hi, y.hi, ch, cl1);
   const double tl1 = x.hi * y.lo;
   const double tl2 = x.lo * y.hi;
   const double cl2 = tl1 + tl2;
@@ -115,6 +124,7 @@ inline DW dwMul(DW x, DW y) {
   twoSum(ch, cl3, z.hi, z.lo);
   return z;
 }
+inline DW dwMul(DW x, DW y) { return dwMulT<TRICYL_HAVE_FMA != 0>(x, y); }
 
 /// The relative error bound of dwMul used by the running bound of
 /// src/adaptive.cpp: 2^-103 = 8u^2 covers 7u^2 with room for the (1 + u)

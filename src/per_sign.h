@@ -46,6 +46,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdlib>
 #include <optional>
 #include <type_traits>
 
@@ -82,88 +83,79 @@ struct Pt {
 // nearly cancelling term: c^2 in r^2 L - c^2 for a grazing line) keeps a
 // bound relative to its own size, which no a-priori bound does.
 //
-// TwoProduct: src/eft.h's (FMA where the compiler may use it, Dekker's split
-// otherwise), or, on x86-64 built without FMA, the CPU's fused multiply-add
-// where it has one (chosen at run time, TRICYL_FMA_DISPATCH). Both are
-// error-free under the same conditions (src/eft.h), so both give the same
-// double words, bit for bit: the choice changes the speed, never a value.
-struct EftTwoProd {
-  static void twoProd(double a, double b, double& p, double& e) {
-    detail::twoProd(a, b, p, e);
-  }
-  static DW mul(DW x, DW y) { return dwMul(x, y); }
-};
-#if !TRICYL_HAVE_FMA && defined(__x86_64__) && \
-    (defined(__GNUC__) || defined(__clang__))
-#define TRICYL_FMA_DISPATCH 1
-#define TRICYL_TARGET_FMA __attribute__((target("fma"), flatten))
-struct FmaTwoProd {
-  static void twoProd(double a, double b, double& p, double& e) {
-    p = a * b;
-    e = __builtin_fma(a, b, -p);
-  }
-  /// dwMul (src/eft.h, Algorithm 10) with this TwoProduct: the same
-  /// operations, so the same bits.
-  static DW mul(DW x, DW y) {
-    double ch, cl1;
-    twoProd(x.hi, y.hi, ch, cl1);
-    const double cl3 = cl1 + (x.hi * y.lo + x.lo * y.hi);
-    DW z;
-    twoSum(ch, cl3, z.hi, z.lo);
-    return z;
-  }
-};
-inline bool cpuHasFma() { return __builtin_cpu_supports("fma"); }
+// TwoProduct and the double-word product with or without a fused
+// multiply-add (src/eft.h, twoProdT and dwMulT): error-free either way, so
+// both give the same double words, bit for bit; the choice changes the
+// speed, never a value. On x86-64 built without FMA
+// the FMA copy of the double-word stage is chosen at run time, as the
+// adaptive kernel's (the same condition as its TRICYL_DW_FMA_DISPATCH,
+// src/adaptive.cpp).
+#if (defined(__x86_64__) || defined(__i386__)) && \
+    (defined(__GNUC__) || defined(__clang__)) && !TRICYL_HAVE_FMA
+#define TRICYL_PER_SIGN_FMA_DISPATCH 1
 #else
-#define TRICYL_FMA_DISPATCH 0
+#define TRICYL_PER_SIGN_FMA_DISPATCH 0
+#endif
+#if TRICYL_PER_SIGN_FMA_DISPATCH
+#define TRICYL_TARGET_FMA __attribute__((target("fma"), flatten))
+/// Once per process; never with TRICYL_SCALAR_BASELINE=1 in the environment
+/// (tests/answers_digest_check.sh runs both paths).
+inline bool perSignHasFma() {
+  static const bool k = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("fma") != 0 &&
+           std::getenv("TRICYL_SCALAR_BASELINE") == nullptr;
+  }();
+  return k;
+}
 #endif
 
-template <class TP>
+template <bool kFma>
 struct DwEt {
   DW v;
   double e;
 };
-template <class TP>
-inline DwEt<TP> operator+(const DwEt<TP>& a, const DwEt<TP>& b) {
+template <bool kFma>
+inline DwEt<kFma> operator+(const DwEt<kFma>& a, const DwEt<kFma>& b) {
   return {dwAdd(a.v, b.v),
           a.e + b.e + kDwAddRel * (std::fabs(a.v.hi) + std::fabs(b.v.hi))};
 }
-template <class TP>
-inline DwEt<TP> operator-(const DwEt<TP>& a) {
+template <bool kFma>
+inline DwEt<kFma> operator-(const DwEt<kFma>& a) {
   return {dwNeg(a.v), a.e};
 }
-template <class TP>
-inline DwEt<TP> operator-(const DwEt<TP>& a, const DwEt<TP>& b) {
+template <bool kFma>
+inline DwEt<kFma> operator-(const DwEt<kFma>& a, const DwEt<kFma>& b) {
   return a + (-b);
 }
-template <class TP>
-inline DwEt<TP> operator*(const DwEt<TP>& a, const DwEt<TP>& b) {
-  const DW v = TP::mul(a.v, b.v);
+template <bool kFma>
+inline DwEt<kFma> operator*(const DwEt<kFma>& a, const DwEt<kFma>& b) {
+  const DW v = dwMulT<kFma>(a.v, b.v);
   const double ma = std::fabs(a.v.hi) + std::fabs(a.v.lo);
   const double mb = std::fabs(b.v.hi) + std::fabs(b.v.lo);
   return {v,
           ma * b.e + mb * a.e + a.e * b.e + kDwRel * std::fabs(v.hi) + kDwTiny};
 }
-template <class TP>
-inline DwEt<TP> absolute(const DwEt<TP>& a) {
+template <bool kFma>
+inline DwEt<kFma> absolute(const DwEt<kFma>& a) {
   return a.v.hi < 0 ? -a : a;
 }
-using DwE = DwEt<EftTwoProd>;
+using DwE = DwEt<TRICYL_HAVE_FMA != 0>;
 
 /// The certified sign of a double-word value (src/adaptive.cpp: the bound
 /// inflated for its own rounding, and the absolute slack of the range
 /// gate), or kUnknown.
-template <class TP>
-inline Sign dwSign(const DwEt<TP>& d) {
+template <bool kFma>
+inline Sign dwSign(const DwEt<kFma>& d) {
   const double b = (d.e + std::fabs(d.v.lo)) * (1 + 0x1p-40) + 0x1p-600;
   if (d.v.hi > b) return Sign::kPos;
   if (d.v.hi < -b) return Sign::kNeg;
   return Sign::kUnknown;
 }
 
-template <class TP>
+template <bool kFma>
 struct DwArith {
-  using Num = DwEt<TP>;
+  using Num = DwEt<kFma>;
   static constexpr bool kExact = false;
   static Num lift(double x) { return {{x, 0.0}, 0.0}; }
   /// y = R^T (p - t), Z doubled, each within e = 2^-100 M + kDwTiny of the
@@ -184,7 +176,7 @@ struct DwArith {
       bool zero = true;
       for (int k = 0; k < 3; ++k) {
         const double R = pose.R[k][j];
-        TP::twoProd(R, D[k], P[k], e[k]);
+        twoProdT<kFma>(R, D[k], P[k], e[k]);
         q[k] = R * l[k];
         m += std::fabs(R) * std::fabs(D[k]);
         zero = zero && (R == 0 || D[k] == 0);
@@ -403,10 +395,10 @@ class PerSign {
       }
     }
     if (level_ < 1) level_ = 1;
-#if TRICYL_FMA_DISPATCH
-    s = cpuHasFma() ? dwSignFma(pred) : dwSignWith<EftTwoProd>(pred, dw_);
+#if TRICYL_PER_SIGN_FMA_DISPATCH
+    s = perSignHasFma() ? dwSignFma(pred) : dwSignWith<false>(pred, dw_);
 #else
-    s = dwSignWith<EftTwoProd>(pred, dw_);
+    s = dwSignWith<TRICYL_HAVE_FMA != 0>(pred, dw_);
 #endif
     if (s != Sign::kUnknown) return s;
     if (!ex_) build(ex_);
@@ -421,14 +413,14 @@ class PerSign {
     return ExactKernel::sign(pred(*gmp_));
   }
 
-  /// The double-word stage with TwoProduct TP, on a frame built when first
+  /// The double-word stage (with FMA or not), on a frame built when first
   /// needed.
-  template <class TP, class P>
-  Sign dwSignWith(const P& pred, std::optional<Frame<DwArith<TP>>>& frame) {
+  template <bool kFma, class P>
+  Sign dwSignWith(const P& pred, std::optional<Frame<DwArith<kFma>>>& frame) {
     if (!frame) build(frame);
     return dwSign(pred(*frame));
   }
-#if TRICYL_FMA_DISPATCH
+#if TRICYL_PER_SIGN_FMA_DISPATCH
   /// The same, compiled for a CPU with FMA (everything it calls inlined,
   /// so that __builtin_fma is one instruction).
   template <class P>
@@ -439,7 +431,7 @@ class PerSign {
   TRICYL_TARGET_FMA TRICYL_PER_SIGN_NOINLINE void buildFma() {
     dwf_.emplace(q_);
   }
-  std::optional<Frame<DwArith<FmaTwoProd>>> dwf_;
+  std::optional<Frame<DwArith<true>>> dwf_;
 #endif
 
   // The frames of the later stages, built when a sign first needs them;
@@ -453,7 +445,7 @@ class PerSign {
   Frame<KernelArith<FilterKernel>> fd_;
   int level_ = 0;
   std::optional<Frame<KernelArith<RunningDoubleKernel>>> rd_;
-  std::optional<Frame<DwArith<EftTwoProd>>> dw_;
+  std::optional<Frame<DwArith<TRICYL_HAVE_FMA != 0>>> dw_;
   std::optional<Frame<ExactDoubleArith>> xd_;
   std::optional<Frame<ExpansionArith>> ex_;
   std::optional<Frame<KernelArith<ExactKernel>>> gmp_;

@@ -160,23 +160,31 @@ Segment<double> collinearHull(const Triangle<double>& t) {
 
 // The whole sequence for validated inputs (src/stages.h): the double filter
 // (unless the fast path already ran it and it could not decide), the
-// degenerate hand-off, the adaptive run.
-Decision decide(const Inputs& in, bool filter_done) {
+// degenerate hand-off, the adaptive run. `undecided`: 0, or the tests the
+// fast path's filter left undecided (detail::TestMask); the adaptive run
+// re-decides only those.
+struct Local;
+detail::TriCylLocal<detail::AdaptiveKernel> adaptiveLocal(const Inputs& in,
+                                                          const Local& L);
+
+Decision decide(const Inputs& in, std::uint32_t undecided,
+                const Local* fast = nullptr) {
   double max_len = 0, max_unitless = 0;
   if (!validate(in, &max_len, &max_unitless))
     return {Answer::kInvalidInput, Stage::kInvalid};
-  auto triangle = [&](auto tag, bool* early) {
-    using K = typename decltype(tag)::type;
-    const auto q = detail::makeLocal<K>(in.cyl, in.pose, in.tri, max_unitless);
-    return detail::triangleCylinder<K>(q, early);
-  };
   const bool gate = detail::rangeGateOk(max_len, max_unitless);
-  if (gate && !filter_done) {
+  if (gate && undecided == 0) {
     bool early = false;
-    const Tri t = triangle(detail::KernelTag<FilterKernel>{}, &early);
+    detail::TestMask mask;
+    const auto q =
+        detail::makeLocal<FilterKernel>(in.cyl, in.pose, in.tri, max_unitless);
+    const Tri t = detail::triangleCylinder<FilterKernel>(q, &early, &mask);
     if (t != Tri::kUnknown)
       return {detail::toAnswer(t), early ? Stage::kEarlyOut : Stage::kFastPath};
+    undecided = mask.unknown;
   }
+  // Outside the gate no filter ran: every test.
+  if (undecided == 0) undecided = detail::kAllTests;
   const Decision degenerate = detail::runStages(
       [&](auto tag, bool*) {
         return collinear<typename decltype(tag)::type>(in.tri);
@@ -199,7 +207,21 @@ Decision decide(const Inputs& in, bool filter_done) {
         },
         max_len, max_unitless);
   }
-  return detail::runAdaptive(triangle, gate);
+  return detail::runAdaptive(
+      [&](auto tag, bool*) {
+        using K = typename decltype(tag)::type;
+        if constexpr (std::is_same_v<K, detail::AdaptiveKernel>) {
+          // The fast path's local frame, when it ran: the same values, not
+          // computed twice (Tape::coordinates).
+          if (fast != nullptr)
+            return detail::triangleCylinderUndecided<K>(
+                adaptiveLocal(in, *fast), undecided);
+        }
+        const auto q =
+            detail::makeLocal<K>(in.cyl, in.pose, in.tri, max_unitless);
+        return detail::triangleCylinderUndecided<K>(q, undecided);
+      },
+      gate);
 }
 
 // Widening a signalling NaN raises FE_INVALID: float inputs are checked by
@@ -221,17 +243,19 @@ bool floatBitsFinite(const Cylinder<float>& cylinder, const Pose<float>& pose,
 TRICYL_NOINLINE Decision decideSlow(const Cylinder<double>& cylinder,
                                     const Pose<double>& pose,
                                     const Triangle<double>& triangle,
-                                    bool filter_done) {
-  return decide(Inputs{cylinder, pose, triangle}, filter_done);
+                                    std::uint32_t undecided, const Local* L) {
+  return decide(Inputs{cylinder, pose, triangle}, undecided,
+                undecided != 0 ? L : nullptr);
 }
 TRICYL_NOINLINE Decision decideSlow(const Cylinder<float>& cylinder,
                                     const Pose<float>& pose,
                                     const Triangle<float>& triangle,
-                                    bool filter_done) {
+                                    std::uint32_t undecided,
+                                    const Local* /*L*/) {
   if (!floatBitsFinite(cylinder, pose, triangle))
     return {Answer::kInvalidInput, Stage::kInvalid};
   const Widened w = widen(cylinder, pose, triangle);
-  return decide(Inputs{w.cyl, w.pose, w.tri}, filter_done);
+  return decide(Inputs{w.cyl, w.pose, w.tri}, undecided);
 }
 
 // ---------------------------------------------------------------------------
@@ -266,6 +290,20 @@ struct Local {
   double x[4], y[4], Z[4], m[4];  // [3]: scratch (the AVX2 lane 3)
   double r, H;
 };
+
+// The adaptive run's local frame from the fast path's (double inputs).
+detail::TriCylLocal<detail::AdaptiveKernel> adaptiveLocal(const Inputs& in,
+                                                          const Local& L) {
+  detail::TriCylLocal<detail::AdaptiveKernel> q;
+  detail::Tape* tape = detail::tls_tape;
+  const Vec3<double>* P[3] = {&in.tri.a, &in.tri.b, &in.tri.c};
+  for (int i = 0; i < 3; ++i)
+    tape->coordinates(in.pose, *P[i], L.x[i], L.y[i], L.Z[i], L.m[i], q.x[i],
+                      q.y[i], q.Z[i]);
+  q.H = detail::AdaptiveKernel::lift(in.cyl.lz);
+  q.r = detail::AdaptiveKernel::lift(in.cyl.radius);
+  return q;
+}
 
 // Early-outs, the certified signs of triangleCylinder: Z_i - H and Z_i + H
 // have magnitude fl(2 m_i + lz), x_i - r, -x_i - r, y_i - r and -y_i - r
@@ -1007,7 +1045,9 @@ inline bool directionSeparates(const detail::TriCylLocal<FilterKernel>& q) {
 
 // The rest of the double filter after the early-outs (not inlined: the
 // early-outs decide most queries).
-TRICYL_NOINLINE Tri filterTests(const Local& L) {
+// `undecided`: set to the tests left undecided when it returns kUnknown
+// (detail::TestMask).
+TRICYL_NOINLINE Tri filterTests(const Local& L, std::uint32_t* undecided) {
   // FilterKernel::sign, branch-free: kPos (1), kNeg (-1) or kUnknown (2).
   auto sgn = [](double v, double b) {
     const int pos = v > b, neg = v < -b;
@@ -1033,7 +1073,10 @@ TRICYL_NOINLINE Tri filterTests(const Local& L) {
   // prologues' use the looser 2 s).
   if (detail::certainlyBeyond<FilterKernel>(q, top, bot)) return Tri::kFalse;
   if (edgeSeparates(q)) return Tri::kFalse;
-  return detail::triangleCylinderTests<FilterKernel>(q, top, bot);
+  detail::TestMask mask;
+  const Tri t = detail::triangleCylinderTests<FilterKernel>(q, top, bot, &mask);
+  *undecided = mask.unknown;
+  return t;
 }
 
 // The scalar fast path: the double filter (FilterKernel) with validation and
@@ -1044,8 +1087,9 @@ TRICYL_NOINLINE Tri filterTests(const Local& L) {
 template <bool kAvx2, class S>
 TRICYL_ALWAYS_INLINE Fast decideFast(const Cylinder<S>& cyl,
                                      const Pose<S>& pose,
-                                     const Triangle<S>& tri, Decision* out) {
-  Local L;
+                                     const Triangle<S>& tri, Decision* out,
+                                     std::uint32_t* undecided, Local* Lout) {
+  Local& L = *Lout;
 #if TRICYL_FAST_AVX2
   const Pre f =
       kAvx2 ? prologueAvx2(cyl, pose, tri, &L) : prologue(cyl, pose, tri, &L);
@@ -1063,7 +1107,7 @@ TRICYL_ALWAYS_INLINE Fast decideFast(const Cylinder<S>& cyl,
     return Fast::kDecided;
   }
   if (f == Pre::kGateMiss) return Fast::kGateMiss;
-  const Tri t = filterTests(L);
+  const Tri t = filterTests(L, undecided);
   if (t == Tri::kUnknown) return Fast::kUnknown;
   *out = {detail::toAnswer(t), Stage::kFastPath};
   return Fast::kDecided;
@@ -1074,9 +1118,13 @@ TRICYL_ALWAYS_INLINE Decision decideBody(const Cylinder<S>& cylinder,
                                          const Pose<S>& pose,
                                          const Triangle<S>& triangle) {
   Decision d;
-  const Fast f = decideFast<kAvx2>(cylinder, pose, triangle, &d);
+  std::uint32_t undecided = 0;
+  Local L;
+  const Fast f =
+      decideFast<kAvx2>(cylinder, pose, triangle, &d, &undecided, &L);
   if (f == Fast::kDecided) return d;
-  return decideSlow(cylinder, pose, triangle, f == Fast::kUnknown);
+  return decideSlow(cylinder, pose, triangle,
+                    f == Fast::kUnknown ? undecided : 0, &L);
 }
 
 #if TRICYL_FAST_AVX2

@@ -186,6 +186,21 @@ class AnyOf {
   bool unknown_ = false;
 };
 
+/// The 15 tests of triangleCylinderTests, one bit each: (V) vertex i,
+/// (X) cap s and edge e, (E) edge e, (A), (B) cap s.
+constexpr int kTestV = 0, kTestX = 3, kTestE = 9, kTestA = 12, kTestB = 13;
+constexpr std::uint32_t kAllTests = (std::uint32_t(1) << 15) - 1;
+
+/// Which tests to run (`run`), and which of them the kernel left undecided
+/// (`unknown`, filled in). The query's answer is the disjunction of the
+/// tests, so after a run that decided no test true, the tests it decided
+/// false (certified) can be dropped: a second run in stronger arithmetic
+/// needs only the undecided ones (triangleCylinderUndecided below).
+struct TestMask {
+  std::uint32_t run = kAllTests;
+  std::uint32_t unknown = 0;
+};
+
 /// Closest point of the 2D segment between the homogeneous points
 /// (X1, Y1)/W1 and (X2, Y2)/W2 (W1, W2 > 0) to the origin is interior to the
 /// segment and within r of the origin. Endpoints are tested elsewhere.
@@ -217,7 +232,7 @@ inline Tri chordWithinR(const typename K::Num& X1, const typename K::Num& Y1,
 
 template <class K>
 Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
-                          const Sign* bot);
+                          const Sign* bot, TestMask* mask = nullptr);
 
 /// The early-outs: cases 0a/0b (the triangle strictly below or above the
 /// slab, from the slab signs top[i] = sign(Z_i - H), bot[i] = sign(Z_i + H)),
@@ -243,8 +258,10 @@ bool certainlyBeyond(const TriCylLocal<K>& q, const Sign* top,
 }
 
 /// The test itself. `early` is set when a certified early-out decided.
+/// `mask` (optional): which tests were left undecided (TestMask).
 template <class K>
-Tri triangleCylinder(const TriCylLocal<K>& q, bool* early) {
+Tri triangleCylinder(const TriCylLocal<K>& q, bool* early,
+                     TestMask* mask = nullptr) {
   using N = typename K::Num;
   const N* Z = q.Z;
   const N& H = q.H;
@@ -261,7 +278,51 @@ Tri triangleCylinder(const TriCylLocal<K>& q, bool* early) {
     *early = true;
     return Tri::kFalse;
   }
-  return triangleCylinderTests<K>(q, top, bot);
+  return triangleCylinderTests<K>(q, top, bot, mask);
+}
+
+/// The disjunction of the tests in `tests` alone (the ones an earlier run
+/// left undecided, TestMask), with only the slab signs they read: (V) i
+/// reads top[i] and bot[i], (X) on cap s the two ends' signs on that cap,
+/// (B) on cap s all three; (E) and (A) none. The early-outs first: a
+/// certified rejection is the answer whatever the tests say.
+template <class K>
+Tri triangleCylinderUndecided(const TriCylLocal<K>& q, std::uint32_t tests) {
+  static constexpr int kEnds[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+  // The early-outs again (the slab, then the disk's bounding square): in
+  // the adaptive kernel they often decide what the filter could not, at the
+  // cost of a few signs (fewer instructions in every family than going
+  // straight to the undecided tests).
+  {
+    using N = typename K::Num;
+    auto pos = [](const N& v) { return K::sign(v) == Sign::kPos; };
+    auto allPos = [&](const N* c, bool negate, const N& d) {
+      for (int i = 0; i < 3; ++i)
+        if (!pos(negate ? N(-c[i] - d) : N(c[i] - d))) return false;
+      return true;
+    };
+    if (allPos(q.Z, false, q.H) || allPos(q.Z, true, q.H) ||
+        allPos(q.x, false, q.r) || allPos(q.x, true, q.r) ||
+        allPos(q.y, false, q.r) || allPos(q.y, true, q.r))
+      return Tri::kFalse;
+  }
+  std::uint32_t need[2] = {0, 0};  // per cap: bit i = vertex i's sign
+  for (int i = 0; i < 3; ++i)
+    if (tests >> (kTestV + i) & 1) need[0] |= 1u << i, need[1] |= 1u << i;
+  for (int c = 0; c < 2; ++c) {
+    if (tests >> (kTestB + c) & 1) need[c] |= 7u;
+    for (int e = 0; e < 3; ++e)
+      if (tests >> (kTestX + 3 * c + e) & 1)
+        need[c] |= (1u << kEnds[e][0]) | (1u << kEnds[e][1]);
+  }
+  Sign top[3], bot[3];
+  for (int i = 0; i < 3; ++i) {
+    top[i] = need[0] >> i & 1 ? K::sign(q.Z[i] - q.H) : Sign::kUnknown;
+    bot[i] = need[1] >> i & 1 ? K::sign(q.Z[i] + q.H) : Sign::kUnknown;
+  }
+  TestMask mask;
+  mask.run = tests;
+  return triangleCylinderTests<K>(q, top, bot, &mask);
 }
 
 /// Everything after the early-outs: (V), (X), (E), (A), (B). `top` and
@@ -270,7 +331,7 @@ Tri triangleCylinder(const TriCylLocal<K>& q, bool* early) {
 /// src/triangle_cylinder.cpp computes them itself, branch-free).
 template <class K>
 Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
-                          const Sign* bot) {
+                          const Sign* bot, TestMask* mask) {
   using N = typename K::Num;
   const N* x = q.x;
   const N* y = q.y;
@@ -278,13 +339,21 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
   const N& H = q.H;
   const N r2 = q.r * q.r;
   AnyOf any;
+  const std::uint32_t run = mask ? mask->run : kAllTests;
+  auto skip = [run](int bit) { return (run >> bit & 1) == 0; };
+  // any.add, and the test's bit in mask->unknown when it is undecided.
+  auto add = [&any, mask](Tri t, int bit) {
+    if (t == Tri::kUnknown && mask) mask->unknown |= std::uint32_t(1) << bit;
+    return any.add(t);
+  };
 
   // (V) A triangle vertex inside the solid: |Z| <= H and x^2 + y^2 <= r^2.
   for (int i = 0; i < 3; ++i) {
+    if (skip(kTestV + i)) continue;
     const Tri in_slab = kAnd(isNonPos(top[i]), isNonNeg(bot[i]));
     if (in_slab == Tri::kFalse) continue;
-    if (any.add(
-            kAnd(in_slab, isNonNeg(K::sign(r2 - x[i] * x[i] - y[i] * y[i])))))
+    if (add(kAnd(in_slab, isNonNeg(K::sign(r2 - x[i] * x[i] - y[i] * y[i]))),
+            kTestV + i))
       return Tri::kTrue;
   }
 
@@ -296,8 +365,9 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
   // so "inside" is X^2 + Y^2 <= r^2 W^2 with W = a_j - a_i (sign-free).
   for (int s = 0; s < 2; ++s) {
     const Sign* sa = s == 0 ? top : bot;
-    for (const auto& e : kEdge) {
-      const int i = e[0], j = e[1];
+    for (int ei = 0; ei < 3; ++ei) {
+      if (skip(kTestX + 3 * s + ei)) continue;
+      const int i = kEdge[ei][0], j = kEdge[ei][1];
       const Tri crossing = kOr(kAnd(isNeg(sa[i]), isPos(sa[j])),
                                kAnd(isPos(sa[i]), isNeg(sa[j])));
       if (crossing == Tri::kFalse) continue;
@@ -306,8 +376,8 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
       const N X = x[i] * aj - x[j] * ai;
       const N Y = y[i] * aj - y[j] * ai;
       const N W = aj - ai;
-      if (any.add(
-              kAnd(crossing, isNonNeg(K::sign(r2 * (W * W) - X * X - Y * Y)))))
+      if (add(kAnd(crossing, isNonNeg(K::sign(r2 * (W * W) - X * X - Y * Y))),
+              kTestX + 3 * s + ei))
         return Tri::kTrue;
     }
   }
@@ -323,8 +393,9 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
   // (a wall standing on the floor plane of a cylinder's cap), where
   // H L - Z_i L would cancel two rounded products.
   // L = 0 (an edge parallel to the axis) is covered by (V) and (X).
-  for (const auto& e : kEdge) {
-    const int i = e[0], j = e[1];
+  for (int ei = 0; ei < 3; ++ei) {
+    if (skip(kTestE + ei)) continue;
+    const int i = kEdge[ei][0], j = kEdge[ei][1];
     const N ex = x[j] - x[i];
     const N ey = y[j] - y[i];
     const N L = ex * ex + ey * ey;
@@ -342,7 +413,7 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
     t = kAnd(t, isNonNeg(K::sign((H - Z[i]) * L - gz)));
     if (t == Tri::kFalse) continue;
     t = kAnd(t, isNonNeg(K::sign((H + Z[i]) * L + gz)));
-    if (any.add(t)) return Tri::kTrue;
+    if (add(t, kTestE + ei)) return Tri::kTrue;
   }
 
   // (A) The axis segment meets the triangle. With o_ij = x_i y_j - x_j y_i
@@ -358,14 +429,14 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
   // standing cylinder) an exact 0 from exact zeros, which the exact stage
   // certifies; H A2 - (o12 Z0 + ...) would cancel rounded products.
   // A2 = 0: see the header comment.
-  {
+  if (!skip(kTestA)) {
     const N o01 = x[0] * y[1] - x[1] * y[0];
     const N o12 = x[1] * y[2] - x[2] * y[1];
     const N o20 = x[2] * y[0] - x[0] * y[2];
     const N A2 = o01 + o12 + o20;
     const Sign sA = K::sign(A2);
     if (sA == Sign::kUnknown) {
-      any.add(Tri::kUnknown);
+      add(Tri::kUnknown, kTestA);
     } else if (sA != Sign::kZero) {
       const bool flip = sA == Sign::kNeg;
       auto oriented = [flip](const N& v) { return flip ? N(-v) : v; };
@@ -379,7 +450,7 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
         if (t != Tri::kFalse)
           t = kAnd(t, isNonNeg(K::sign((H + Z[0]) * A + w)));
       }
-      if (any.add(t)) return Tri::kTrue;
+      if (add(t, kTestA)) return Tri::kTrue;
     }
   }
 
@@ -390,10 +461,11 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
   // (x_i a_j - x_j a_i, y_i a_j - y_j a_i, a_j - a_i). With all three a_k = 0
   // the triangle lies in the plane and (V), (E), (A) are complete.
   for (int s = 0; s < 2; ++s) {
+    if (skip(kTestB + s)) continue;
     const Sign* sa = s == 0 ? top : bot;
     if (sa[0] == Sign::kUnknown || sa[1] == Sign::kUnknown ||
         sa[2] == Sign::kUnknown) {
-      any.add(Tri::kUnknown);  // the chord's shape itself is undecided
+      add(Tri::kUnknown, kTestB + s);  // the chord's shape is undecided
       continue;
     }
     N X[3], Y[3], W[3];
@@ -421,7 +493,8 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
       ++n;
     }
     if (n != 2) continue;  // no chord, or a single touching vertex
-    if (any.add(chordWithinR<K>(X[0], Y[0], W[0], X[1], Y[1], W[1], r2)))
+    if (add(chordWithinR<K>(X[0], Y[0], W[0], X[1], Y[1], W[1], r2),
+            kTestB + s))
       return Tri::kTrue;
   }
 

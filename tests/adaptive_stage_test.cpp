@@ -73,6 +73,31 @@ Expr randomExpr(std::mt19937_64& g, int depth, int lo, int hi) {
   }
 }
 
+// The weight of x's lowest set bit (x finite, non-zero).
+double lowestBit(double x) {
+  int e = 0;
+  double f = std::frexp(std::fabs(x), &e);  // f in [0.5, 1)
+  // f 2^53 is an integer; strip its trailing zeros.
+  double m = std::ldexp(f, 53);
+  int tz = 0;
+  while (std::fmod(m, 2.0) == 0) {
+    m /= 2;
+    ++tz;
+  }
+  return std::ldexp(1.0, e - 53 + tz);
+}
+
+// Shewchuk's invariant that sign() rests on: components in increasing
+// magnitude, none zero, each smaller than the lowest set bit of the next
+// (non-overlapping).
+bool nonOverlapping(const Expansion& x) {
+  for (int k = 0; k < x.size(); ++k)
+    if (x.data()[k] == 0) return false;
+  for (int k = 0; k + 1 < x.size(); ++k)
+    if (!(std::fabs(x.data()[k]) < lowestBit(x.data()[k + 1]))) return false;
+  return true;
+}
+
 TEST(Expansion, ExactAgainstGmpOnRandomExpressions) {
   const std::uint64_t seed = test::baseSeed() + 91;
   SCOPED_TRACE(test::seedTrace(seed));
@@ -84,6 +109,7 @@ TEST(Expansion, ExactAgainstGmpOnRandomExpressions) {
     if (!e.x.ok()) continue;
     ++valid;
     ASSERT_EQ(e.x.sign(), dyadicSign(e.d)) << "case " << i;
+    ASSERT_TRUE(nonOverlapping(e.x)) << "case " << i;
     // The value itself: the expansion's components, summed exactly in GMP,
     // minus the GMP value is 0.
     Dyadic sum;

@@ -28,7 +28,6 @@ namespace {
 
 using detail::DwArith;
 using detail::DwEt;
-using detail::EftTwoProd;
 using detail::ExactDoubleArith;
 using detail::ExpansionArith;
 using detail::Fd;
@@ -39,11 +38,14 @@ using qscenes::Family;
 using qscenes::Query;
 using qscenes::QueryCase;
 
+/// The double-word path of this build without run-time dispatch.
+constexpr bool kPlainFma = TRICYL_HAVE_FMA != 0;
+
 int signOf(Sign s) { return s == Sign::kPos ? 1 : (s == Sign::kNeg ? -1 : 0); }
 
 /// |dw - exact| <= its bound (as dwSign reads it), decided exactly in GMP.
-template <class TP>
-bool withinBound(const DwEt<TP>& d, const detail::Dyadic& exact) {
+template <bool kFma>
+bool withinBound(const DwEt<kFma>& d, const detail::Dyadic& exact) {
   using detail::ExactKernel;
   const detail::Dyadic diff =
       ExactKernel::lift(d.v.hi) + ExactKernel::lift(d.v.lo) - exact;
@@ -81,8 +83,8 @@ void checkPredicate(const Q& q, const P& pred, long* certified) {
     ++certified[1];
   }
   // Double word: the bound holds; a certified sign is the true one.
-  const typename Q::template Frame<DwArith<EftTwoProd>> fd(q);
-  const DwEt<EftTwoProd> d = pred(fd);
+  const typename Q::template Frame<DwArith<kPlainFma>> fd(q);
+  const DwEt<kPlainFma> d = pred(fd);
   EXPECT_TRUE(withinBound(d, exact))
       << "double word " << d.v.hi << " + " << d.v.lo << ", bound " << d.e;
   const Sign sd = detail::dwSign(d);
@@ -90,10 +92,10 @@ void checkPredicate(const Q& q, const P& pred, long* certified) {
     EXPECT_EQ(signOf(sd), truth);
     ++certified[2];
   }
-#if TRICYL_FMA_DISPATCH
-  if (detail::cpuHasFma()) {
-    const typename Q::template Frame<DwArith<detail::FmaTwoProd>> fm(q);
-    const DwEt<detail::FmaTwoProd> m = pred(fm);
+#if TRICYL_PER_SIGN_FMA_DISPATCH
+  if (detail::perSignHasFma()) {
+    const typename Q::template Frame<DwArith<true>> fm(q);
+    const DwEt<true> m = pred(fm);
     EXPECT_EQ(std::memcmp(&m, &d, sizeof m), 0)
         << "FMA path " << m.v.hi << " + " << m.v.lo << " vs " << d.v.hi << " + "
         << d.v.lo;

@@ -173,6 +173,60 @@ TYPED_TEST(RunningFrameTest, BoundEnclosesTheExactLocalCoordinates) {
   EXPECT_GT(worst, 1.0 / 16);
 }
 
+// The adaptive run's coordinates from the fast path's values
+// (Tape::coordinates): the double values of toLocal and the per-vertex
+// magnitude M = rho (|d0| + |d1| + |d2|) as the prologues round it; the
+// bound derived from M encloses the exact coordinate, in every regime of
+// framePoint (general position, cancellation, mixed exponents, underflow).
+TEST(AdaptiveFrame, BoundFromTheFastPathMagnitudeEnclosesTheExact) {
+  const std::uint64_t seed = test::baseSeed() + 73;
+  SCOPED_TRACE(test::seedTrace(seed));
+  std::mt19937_64 g(seed);
+  const long n = test::scaled(3000);
+  double worst = 0;
+  long failures = 0;
+  for (long i = 0; i < n && failures < 10; ++i) {
+    Pose<double> pose;
+    Vec3<double> p;
+    framePoint(g, i, pose, p);
+    detail::Tape tape;
+    detail::TapeScope scope(&tape);
+    // toLocal's values (its leaves' v), and the prologue's M.
+    detail::An t[3];
+    tape.toLocal(pose, p, t[0], t[1], t[2]);
+    double rho = 0;
+    for (const auto& row : pose.R)
+      for (double r : row) rho = std::max(rho, std::fabs(r));
+    const double d0 = p.x - pose.t.x, d1 = p.y - pose.t.y, d2 = p.z - pose.t.z;
+    const double M = rho * ((std::fabs(d0) + std::fabs(d1)) + std::fabs(d2));
+    detail::An c[3];
+    tape.coordinates(pose, p, t[0].v, t[1].v, t[2].v, M, c[0], c[1], c[2]);
+    const oracle::Q3 ex = oracle::toLocal(pose, p);
+    const Q exact[3] = {ex.x, ex.y, 2 * ex.z};
+    for (int k = 0; k < 3; ++k) {
+      const Q err = abs(exactly(c[k].v) - exact[k]);
+      if (err > exactly(c[k].m)) {
+        ++failures;
+        ADD_FAILURE() << "case " << i << ", coordinate " << k << ": error "
+                      << err.get_d() << " > bound " << c[k].m;
+      }
+      if (c[k].m > 0) worst = std::max(worst, Q(err / exactly(c[k].m)).get_d());
+      // The same leaf for the stronger stages: its double-word value.
+      detail::DW v;
+      double e;
+      tape.doubleWord(c[k].id, &v, &e);
+      if (abs(exactly(v.hi) + exactly(v.lo) - exact[k]) > exactly(e)) {
+        ++failures;
+        ADD_FAILURE() << "case " << i << ", coordinate " << k
+                      << ": double-word value outside its bound";
+      }
+    }
+  }
+  std::printf("[ stats    ] %ld points: worst error / bound %.3g\n", n, worst);
+  EXPECT_EQ(failures, 0);
+  EXPECT_GT(worst, 1.0 / 64);  // not vacuous
+}
+
 // The adaptive stage's double-word local coordinates (Tape::dwCoord): the
 // a-priori bound 2^-100 M + kDwTiny encloses the exact value, for the same
 // points.

@@ -13,9 +13,10 @@
 /// - Answer: true iff the two closed sets share a point. Touching counts.
 ///   The answer is exact for the float or double inputs as given: there is no
 ///   epsilon and no tolerance parameter anywhere on this path.
-/// - Bounded time: no iteration. A query either is decided by the
-///   floating-point fast path (tens of ns) or by the exact rational fallback
-///   (tens of microseconds), see docs/exactness.md.
+/// - Bounded time: no iteration. Most queries are decided by the certified
+///   double filter (tens of ns); a sign it cannot certify is re-decided by
+///   itself in double-word, then exactly (stack expansions, GMP only outside
+///   their exponent window), see docs/exactness.md.
 ///
 /// ## Invalid input
 /// - `intersect` throws tricyl::InvalidInput if any coordinate, pose entry,

@@ -12,4 +12,5 @@
 #include "tricyl/segment_cylinder.h"
 #include "tricyl/sphere_cylinder.h"
 #include "tricyl/triangle_cylinder.h"
+#include "tricyl/triangle_cylinder_margin.h"
 #include "tricyl/types.h"

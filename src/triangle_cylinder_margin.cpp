@@ -1,0 +1,687 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Triangle vs the margin-neighbourhood of a cylinder: exact (docs/margin.md).
+//
+// With C the closed cylinder (radius r, half-length h = lz/2) and B_m the
+// closed ball of radius m, the nearest point of C to any point p is on the
+// barrel, on a cap's interior or on a rim circle, so
+//   C + B_m = Cyl(r + m, h)  u  Cyl(r, h + m)  u  Tor(+h)  u  Tor(-h),
+// Tor(c) the solid torus of tube radius m around the rim circle at z = c.
+// The triangle meets C + B_m iff it meets one of the four parts.
+//
+// The cylinders: the exact triangle kernel (src/triangle_cylinder_impl.h)
+// with r + m (resp. lz + 2m) as the SUM of its two inputs: first bracketed
+// by the public intersect on the two neighbouring doubles of the rounded sum
+// (a subset and a superset, both exact tests), and only where the bracket
+// disagrees, i.e. where the true radius lies in one ulp of the triangle's
+// radial reach, re-decided with the sum as a node of the adaptive kernel's
+// tape (double-word, then exact expansions or GMP).
+//
+// The tori: a point (rho, z) is within m of the rim circle (radius r, height
+// c) iff (rho - r)^2 + (z - c)^2 <= m^2. With
+//   L = rho^2 + (z - c)^2 + r^2 - m^2,   Q = L^2 - 4 r^2 rho^2
+// that is L <= 2 r rho, i.e. L <= 0 or Q <= 0 (both sides squared only where
+// both are non-negative): no square root. Along an edge p(s) = a + s (b - a),
+// L is a quadratic and Q a quartic in s; the edge meets the torus iff one of
+// them is <= 0 somewhere on [0, 1]. The face interior is needed only when no
+// edge meets the torus and the triangle misses C (so it misses the rim
+// circle): then a component of torus-cap-plane lies inside the triangle and
+// holds a local minimum of dist(., circle) on the plane, which (off the axis
+// and off the circle) is the foot of a rim point where the plane's normal n
+// lies in the meridian plane: the rim points r (n_x, n_y)/|n_xy| (+-), or any
+// rim point when n_xy = 0 (docs/margin.md has the proof). Testing these two
+// feet (inside the triangle, and within m of their rim point) is exact in
+// Q(sqrt(n_x^2 + n_y^2)): sign(a + b sqrt(D)) from the signs of a, b and
+// a^2 - b^2 D.
+//
+// Stages of the tori. Edges: a double filter with running error bounds (the
+// rules of RunningDoubleKernel, src/filter.h) on the inputs scaled by a
+// power of two to unit size, in which L and Q are decided by their Bernstein
+// coefficients on [0, 1] with de Casteljau subdivision (all coefficients
+// > 0: no point of the edge is inside; an end value < 0: a point is), to a
+// fixed depth and a fixed number of intervals; the edges it leaves open in
+// GMP integers, the quartic by its ends, its Bernstein coefficients and its
+// Sturm sequence on (0, 1), the quadratic by its ends and vertex. The face:
+// the stage driver of src/stages.h (FilterKernel, then the adaptive kernel)
+// on the scaled inputs. Every stage does a bounded amount of work;
+// docs/margin.md has the derivations and the exactness argument.
+#include "tricyl/triangle_cylinder_margin.h"
+
+#include <gmpxx.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "cylinder_queries_impl.h"
+#include "filter.h"
+#include "margin_sturm.h"
+#include "stages.h"
+#include "triangle_cylinder_impl.h"
+#include "tricyl/triangle_cylinder.h"
+
+namespace tricyl {
+namespace {
+
+using detail::kAnd;
+using detail::kOr;
+using detail::Sign;
+using detail::Tri;
+
+// ---------------------------------------------------------------------------
+// Exact sums of two doubles: the rounded sum and its error (Knuth's TwoSum),
+// and the neighbouring doubles below and above the exact sum.
+
+/// The next double above x >= 0 (finite), and below x > 0, by the bits
+/// (the sizes here are never negative).
+double nextUp(double x) {
+  std::uint64_t b;
+  std::memcpy(&b, &x, sizeof b);
+  b += 1;
+  std::memcpy(&x, &b, sizeof b);
+  return x;
+}
+double nextDown(double x) {
+  std::uint64_t b;
+  std::memcpy(&b, &x, sizeof b);
+  b -= 1;
+  std::memcpy(&x, &b, sizeof b);
+  return x;
+}
+
+/// For a, b >= 0 (+0, never -0): the rounded sum s >= 0, its error e, and
+/// the neighbouring doubles below and above the exact sum (e < 0 implies
+/// s > 0; e > 0 with s the largest double gives +inf, checked by callers).
+struct TwoSum {
+  double s;     // fl(a + b), finite
+  double e;     // a + b - s exactly
+  bool finite;  // false: the rounded sum overflowed (e is then 0)
+  double down() const { return e < 0 ? nextDown(s) : s; }
+  double up() const { return e > 0 ? nextUp(s) : s; }
+};
+
+TwoSum twoSum(double a, double b) {
+  const double s = a + b;
+  if (!std::isfinite(s)) return {s, 0, false};  // no inf - inf below
+  const double bb = s - a;
+  const double e = (a - (s - bb)) + (b - bb);
+  return {s, e, true};
+}
+
+// ---------------------------------------------------------------------------
+// Kernels for the torus parts: the running-bound double filter of
+// src/filter.h, and GMP integers (exact).
+
+using Rk = detail::RunningDoubleKernel;
+
+/// GMP integers: the exact stage of the torus edges, on the local
+/// coordinates scaled by a power of two to integers (the torus test is
+/// invariant under a common scaling).
+struct ZKernel {
+  using Num = mpz_class;
+};
+
+/// One torus in doubled local coordinates (X = 2x, Y = 2y, Z = 2z: the
+/// doubled rim height c = +-lz stays a double): the triangle's vertices,
+/// the doubled radius R = 2r, tube M = 2m, rim height C.
+template <class K>
+struct TorusInput {
+  using N = typename K::Num;
+  N X[3], Y[3], Z[3];
+  N R, M, C;
+};
+
+/// sign(a + b sqrt(D)) for D > 0 (kUnknown where a needed sign is open).
+template <class K>
+Sign signWithRoot(const typename K::Num& a, const typename K::Num& b,
+                  const typename K::Num& D) {
+  const Sign sa = K::sign(a), sb = K::sign(b);
+  if (sa == Sign::kUnknown || sb == Sign::kUnknown) return Sign::kUnknown;
+  if (sb == Sign::kZero) return sa;
+  if (sa == Sign::kZero || sa == sb) return sb;
+  const Sign s2 = K::sign(a * a - b * b * D);  // |a| vs |b| sqrt(D)
+  if (s2 == Sign::kUnknown || s2 == Sign::kZero) return s2;
+  return s2 == Sign::kPos ? sa : sb;
+}
+
+/// The face part (see the file comment): does the foot on the triangle's
+/// plane of one of the rim points +-r (n_x, n_y)/|n_xy| lie in the triangle
+/// within m of that rim point? Only asked for a triangle that misses the rim
+/// circle and whose edges miss the torus. Degree 24 in the inputs (12 in the
+/// local coordinates): run on inputs scaled to unit size (see
+/// ScaledInputs), where every magnitude stays below 2^90.
+template <class K>
+Tri faceFeet(const TorusInput<K>& t) {
+  using N = typename K::Num;
+  const N ex0 = t.X[1] - t.X[0], ey0 = t.Y[1] - t.Y[0], ez0 = t.Z[1] - t.Z[0];
+  const N ex1 = t.X[2] - t.X[0], ey1 = t.Y[2] - t.Y[0], ez1 = t.Z[2] - t.Z[0];
+  const N n[3] = {ey0 * ez1 - ez0 * ey1, ez0 * ex1 - ex0 * ez1,
+                  ex0 * ey1 - ey0 * ex1};
+  const Sign sn[3] = {K::sign(n[0]), K::sign(n[1]), K::sign(n[2])};
+  bool any_unknown = false, nonzero = false;
+  for (Sign s : sn) {
+    if (s == Sign::kUnknown) any_unknown = true;
+    if (s == Sign::kPos || s == Sign::kNeg) nonzero = true;
+  }
+  if (!nonzero) return any_unknown ? Tri::kUnknown : Tri::kFalse;  // segment
+  const N D = n[0] * n[0] + n[1] * n[1];
+  const Sign sD = K::sign(D);
+  if (sD == Sign::kUnknown) return Tri::kUnknown;
+  const N n2 = D + n[2] * n[2];
+  const N R2 = t.R * t.R, M2 = t.M * t.M;
+  // Edge normals in the plane, c_i = n x E_i, E_i = V_{i+1} - V_i.
+  N c[3][3];
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    const N ex = t.X[j] - t.X[i], ey = t.Y[j] - t.Y[i], ez = t.Z[j] - t.Z[i];
+    c[i][0] = n[1] * ez - n[2] * ey;
+    c[i][1] = n[2] * ex - n[0] * ez;
+    c[i][2] = n[0] * ey - n[1] * ex;
+  }
+  // beta_i = c_i . ((0, 0, C) - V_i), beta_d = n . ((0, 0, C) - V_0).
+  N beta[3];
+  for (int i = 0; i < 3; ++i)
+    beta[i] = c[i][2] * (t.C - t.Z[i]) - c[i][0] * t.X[i] - c[i][1] * t.Y[i];
+  const N bd = n[2] * (t.C - t.Z[0]) - n[0] * t.X[0] - n[1] * t.Y[0];
+  detail::AnyOf any;
+  for (int sg = 0; sg < 2; ++sg) {
+    Tri ok = Tri::kTrue;
+    if (sD == Sign::kZero) {
+      // Horizontal plane: every rim point is critical; take (+-R, 0, C).
+      const N gx = sg == 0 ? t.R : N(-t.R);
+      for (int i = 0; i < 3 && ok != Tri::kFalse; ++i) {
+        // (E_i x (g - V_i)) . n = (g - V_i) . c_i
+        const N s = c[i][0] * (gx - t.X[i]) - c[i][1] * t.Y[i] +
+                    c[i][2] * (t.C - t.Z[i]);
+        ok = kAnd(ok, detail::isNonNeg(K::sign(s)));
+      }
+      if (ok == Tri::kFalse) continue;
+      const N dn = n[0] * (gx - t.X[0]) - n[1] * t.Y[0] + n[2] * (t.C - t.Z[0]);
+      ok = kAnd(ok, detail::isNonPos(K::sign(dn * dn - M2 * n2)));
+    } else {
+      for (int i = 0; i < 3 && ok != Tri::kFalse; ++i) {
+        N alpha = t.R * (c[i][0] * n[0] + c[i][1] * n[1]);
+        if (sg == 1) alpha = -alpha;
+        ok = kAnd(ok, detail::isNonNeg(signWithRoot<K>(alpha, beta[i], D)));
+      }
+      if (ok == Tri::kFalse) continue;
+      // (s R w + beta_d)^2 <= M^2 |n|^2, w = sqrt(D), s = +-1:
+      // R^2 D + beta_d^2 - M^2 |n|^2 + 2 s R beta_d w <= 0.
+      const N a0 = R2 * D + bd * bd - M2 * n2;
+      N a1 = (t.R + t.R) * bd;
+      if (sg == 1) a1 = -a1;
+      ok = kAnd(ok, detail::isNonPos(signWithRoot<K>(a0, a1, D)));
+    }
+    if (any.add(ok)) return Tri::kTrue;
+  }
+  return any.result();
+}
+
+/// The coefficients (power basis in s) of L and Q along the edge a -> b.
+template <class K>
+void edgePolys(const TorusInput<K>& t, int a, int b, typename K::Num* l,
+               typename K::Num* q) {
+  using N = typename K::Num;
+  const N ex = t.X[b] - t.X[a], ey = t.Y[b] - t.Y[a], ez = t.Z[b] - t.Z[a];
+  const N za = t.Z[a] - t.C;
+  const N p0 = t.X[a] * t.X[a] + t.Y[a] * t.Y[a];
+  const N p1 = (t.X[a] * ex + t.Y[a] * ey) + (t.X[a] * ex + t.Y[a] * ey);
+  const N p2 = ex * ex + ey * ey;
+  const N R2 = t.R * t.R;
+  const N R4 = (R2 + R2) + (R2 + R2);
+  l[0] = p0 + za * za + (R2 - t.M * t.M);
+  l[1] = p1 + (za * ez + za * ez);
+  l[2] = p2 + ez * ez;
+  q[0] = l[0] * l[0] - R4 * p0;
+  q[1] = (l[0] * l[1] + l[0] * l[1]) - R4 * p1;
+  q[2] = l[1] * l[1] + (l[0] * l[2] + l[0] * l[2]) - R4 * p2;
+  q[3] = l[1] * l[2] + l[1] * l[2];
+  q[4] = l[2] * l[2];
+}
+
+// ---- The filter: Bernstein coefficients with subdivision ------------------
+
+using Rd = detail::Rd;
+
+/// Is some value of the polynomial with Bernstein coefficients b[0..n] on
+/// an interval <= 0? kTrue if an end value is certainly < 0, kFalse if every
+/// coefficient is certainly > 0 (convex-hull property), else subdivides at
+/// the midpoint (de Casteljau; halving is exact but for underflow, which the
+/// running bound's product rule covers), to `depth` more levels and at most
+/// `*budget` intervals in all (a near-double root needs a few intervals per
+/// level around it; a polynomial that is 0 within its bound everywhere, e.g.
+/// a point edge on the torus, would need all 2^depth).
+Tri bernsteinAnyNonPos(const Rd* b, int n, int depth, int* budget) {
+  if (--*budget < 0) return Tri::kUnknown;
+  const Sign s0 = Rk::sign(b[0]), sn = Rk::sign(b[n]);
+  if (s0 == Sign::kNeg || sn == Sign::kNeg) return Tri::kTrue;
+  bool all_pos = true;
+  for (int i = 0; i <= n; ++i)
+    if (Rk::sign(b[i]) != Sign::kPos) all_pos = false;
+  if (all_pos) return Tri::kFalse;
+  if (depth == 0) return Tri::kUnknown;
+  Rd left[5], right[5], w[5];
+  for (int i = 0; i <= n; ++i) w[i] = b[i];
+  const Rd half = Rk::lift(0.5);
+  for (int k = 0; k <= n; ++k) {
+    left[k] = w[0];
+    right[n - k] = w[n - k];
+    for (int i = 0; i < n - k; ++i) w[i] = (w[i] + w[i + 1]) * half;
+  }
+  const Tri l = bernsteinAnyNonPos(left, n, depth - 1, budget);
+  if (l == Tri::kTrue) return l;
+  return kOr(l, bernsteinAnyNonPos(right, n, depth - 1, budget));
+}
+
+constexpr int kBernsteinDepth = 24;
+constexpr int kBernsteinBudget = 96;
+
+Tri edgeFilter(const TorusInput<Rk>& t, int a, int b) {
+  Rd l[3], q[5];
+  edgePolys<Rk>(t, a, b, l, q);
+  auto k = [](double v) { return Rk::lift(v); };
+  // Bernstein coefficients times 2 (L) and 12 (Q): power -> Bernstein.
+  const Rd lb[3] = {k(2) * l[0], k(2) * l[0] + l[1],
+                    k(2) * (l[0] + l[1] + l[2])};
+  const Rd q0 = k(12) * q[0];
+  const Rd qb[5] = {q0, q0 + k(3) * q[1], q0 + k(6) * q[1] + k(2) * q[2],
+                    q0 + k(9) * q[1] + k(6) * q[2] + k(3) * q[3],
+                    k(12) * ((q[0] + q[1]) + (q[2] + q[3]) + q[4])};
+  int budget = kBernsteinBudget;
+  const Tri tq = bernsteinAnyNonPos(qb, 4, kBernsteinDepth, &budget);
+  if (tq == Tri::kTrue) return tq;
+  budget = kBernsteinBudget;
+  return kOr(tq, bernsteinAnyNonPos(lb, 2, kBernsteinDepth, &budget));
+}
+
+// ---- The exact stage: GMP integers, Sturm sequence ------------------------
+
+using detail::sturm::Poly;
+using detail::sturm::rootsInUnit;
+
+bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
+  mpz_class l[3], q[5];
+  edgePolys<ZKernel>(t, a, b, l, q);
+  // L <= 0 somewhere on [0, 1]: at an end, or at the interior vertex of the
+  // parabola (l2 > 0, -l1 / (2 l2) in (0, 1), 4 l0 l2 - l1^2 <= 0).
+  const mpz_class l_end = l[0] + l[1] + l[2];
+  if (sgn(l[0]) <= 0 || sgn(l_end) <= 0) return true;
+  if (sgn(l[2]) > 0 && sgn(l[1]) < 0 && l[1] + 2 * l[2] > 0 &&
+      4 * l[0] * l[2] - l[1] * l[1] <= 0)
+    return true;
+  // Q <= 0 somewhere: at an end, or (both ends > 0) at a root in (0, 1).
+  const mpz_class q_end = q[0] + q[1] + q[2] + q[3] + q[4];
+  if (sgn(q[0]) <= 0 || sgn(q_end) <= 0) return true;
+  // Bernstein coefficients (times 12) all > 0: Q > 0 on [0, 1], no roots.
+  const mpz_class q0 = 12 * q[0];
+  if (sgn(q0 + 3 * q[1]) > 0 && sgn(q0 + 6 * q[1] + 2 * q[2]) > 0 &&
+      sgn(q0 + 9 * q[1] + 6 * q[2] + 3 * q[3]) > 0)
+    return false;
+  return rootsInUnit(Poly(q, q + 5)) > 0;
+}
+
+/// The edges of one torus in the filter: kTrue if one certainly meets it,
+/// kFalse if none does; `open[e]` flags the edges left open.
+Tri edgesFilter(const TorusInput<Rk>& t, bool* open) {
+  static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+  detail::AnyOf any;
+  for (int e = 0; e < 3; ++e) {
+    const Tri r = edgeFilter(t, kEdge[e][0], kEdge[e][1]);
+    open[e] = r == Tri::kUnknown;
+    if (any.add(r)) return Tri::kTrue;
+  }
+  return any.result();
+}
+
+// ---------------------------------------------------------------------------
+// The query.
+
+/// A query whose sizes are valid (finite, >= 0, +0 for zero). The pose and
+/// the triangle are validated by the first call of the triangle kernel (or
+/// by scan() where no call is made first); the largest lengths for the range
+/// gate are computed by scan() on the slow paths only.
+struct Query {
+  Cylinder<double> cyl;
+  const Pose<double>& pose;
+  const Triangle<double>& tri;
+  double m;
+  double max_len = 0;
+  double max_unitless = 0;
+  /// False if some input is NaN or infinite.
+  bool scan() {
+    const Triangle<double>& t = tri;
+    return detail::scanFinite({cyl.radius, cyl.lz, m, t.a.x, t.a.y, t.a.z,
+                               t.b.x, t.b.y, t.b.z, t.c.x, t.c.y, t.c.z},
+                              pose, &max_len, &max_unitless);
+  }
+};
+
+/// The doubled local coordinates and sizes of the torus at height sgn * h,
+/// exactly, mirrored in z for the bottom one (sgn = -1) so that its rim is
+/// at +lz, all multiplied by one power of two that makes them integers
+/// (every value here is a dyadic rational).
+TorusInput<ZKernel> torusExactInput(const Query& q, int sgn) {
+  const Vec3<double>* v[3] = {&q.tri.a, &q.tri.b, &q.tri.c};
+  mpq_class vals[12];  // X, Y, Z of the three vertices, then R, M, C
+  for (int i = 0; i < 3; ++i) {
+    const mpq_class d[3] = {mpq_class(v[i]->x) - q.pose.t.x,
+                            mpq_class(v[i]->y) - q.pose.t.y,
+                            mpq_class(v[i]->z) - q.pose.t.z};
+    for (int k = 0; k < 3; ++k)
+      vals[3 * i + k] = 2 * (mpq_class(q.pose.R[0][k]) * d[0] +
+                             mpq_class(q.pose.R[1][k]) * d[1] +
+                             mpq_class(q.pose.R[2][k]) * d[2]);
+    if (sgn < 0) vals[3 * i + 2] = -vals[3 * i + 2];
+  }
+  vals[9] = 2 * mpq_class(q.cyl.radius);
+  vals[10] = 2 * mpq_class(q.m);
+  vals[11] = mpq_class(q.cyl.lz);
+  // The largest denominator (a power of two) is a common one.
+  mpz_class den = 1;
+  for (const auto& x : vals)
+    if (x.get_den() > den) den = x.get_den();
+  mpz_class ints[12];
+  for (int i = 0; i < 12; ++i)
+    mpz_divexact(ints[i].get_mpz_t(),
+                 mpz_class(vals[i].get_num() * den).get_mpz_t(),
+                 vals[i].get_den_mpz_t());
+  TorusInput<ZKernel> t;
+  for (int i = 0; i < 3; ++i) {
+    t.X[i] = ints[3 * i];
+    t.Y[i] = ints[3 * i + 1];
+    t.Z[i] = ints[3 * i + 2];
+  }
+  t.R = ints[9];
+  t.M = ints[10];
+  t.C = ints[11];
+  return t;
+}
+
+/// The inputs scaled by 2^-k, k the exponent of the largest length, so
+/// that every length is below 2 and the magnitudes of the torus tests
+/// (degree <= 24 in the inputs) stay below 2^90: far inside the budget of
+/// the filters' absolute slack (src/filter.h, "Underflow"). `ok` is false if
+/// the scaling is not exact (a length would become subnormal) or the inputs
+/// are outside the range gate; the tori are then decided in GMP alone.
+struct ScaledInputs {
+  Cylinder<double> cyl;
+  Pose<double> pose;
+  Triangle<double> tri;
+  double m;
+  bool ok;
+};
+
+ScaledInputs scaleInputs(const Query& q) {
+  ScaledInputs s{q.cyl, q.pose, q.tri, q.m, false};
+  if (!detail::rangeGateOk(q.max_len, q.max_unitless) || q.max_len == 0)
+    return s;
+  const int k = std::ilogb(q.max_len);
+  bool exact = true;
+  auto sc = [&](double& v) {
+    const double w = std::ldexp(v, -k);
+    if (std::ldexp(w, k) != v) exact = false;  // w became subnormal
+    v = w;
+  };
+  sc(s.cyl.radius);
+  sc(s.cyl.lz);
+  sc(s.m);
+  sc(s.pose.t.x);
+  sc(s.pose.t.y);
+  sc(s.pose.t.z);
+  for (Vec3<double>* v : {&s.tri.a, &s.tri.b, &s.tri.c}) {
+    sc(v->x);
+    sc(v->y);
+    sc(v->z);
+  }
+  s.ok = exact;
+  return s;
+}
+
+/// The torus at +h (top) or -h, mirrored to +h, in kernel K from the local
+/// frame of src/triangle_cylinder_impl.h (x, y, Z = 2z, H = lz): doubled
+/// coordinates X = 2x, Y = 2y, Z, doubled sizes R = 2r, M = 2m, C = lz.
+template <class K>
+TorusInput<K> torusInput(const detail::TriCylLocal<K>& l, double m, bool top) {
+  TorusInput<K> t;
+  const auto two = K::lift(2.0);
+  for (int i = 0; i < 3; ++i) {
+    t.X[i] = two * l.x[i];
+    t.Y[i] = two * l.y[i];
+    t.Z[i] = top ? l.Z[i] : -l.Z[i];
+  }
+  t.R = l.r + l.r;
+  t.M = K::lift(m) + K::lift(m);
+  t.C = l.H;
+  return t;
+}
+
+/// The face part of one torus through the stage driver (src/stages.h):
+/// FilterKernel, then the adaptive kernel, on the scaled inputs; GMP
+/// dyadics alone on the original ones where the scaling is not exact.
+Decision faceStage(const Query& q, const ScaledInputs& s, bool top) {
+  auto pred = [&](auto tag, bool*) {
+    using K = typename decltype(tag)::type;
+    const auto l =
+        s.ok ? detail::makeLocal<K>(s.cyl, s.pose, s.tri, q.max_unitless)
+             : detail::makeLocal<K>(q.cyl, q.pose, q.tri, q.max_unitless);
+    return faceFeet<K>(torusInput<K>(l, s.ok ? s.m : q.m, top));
+  };
+  if (!s.ok) return detail::runAdaptive(pred, false);
+  return detail::runStages(pred, 2.0, q.max_unitless);
+}
+
+/// Cylinder part with the exact sum r + m (grow_radius) or lz + 2m as the
+/// size, on the adaptive tape (or in GMP dyadics outside the range gate).
+/// Reached only when the bracket of the two neighbouring doubles disagrees.
+Decision cylinderPartExact(const Query& q, bool grow_radius) {
+  auto pred = [&](auto tag, bool* early) {
+    using K = typename decltype(tag)::type;
+    auto loc = detail::makeLocal<K>(q.cyl, q.pose, q.tri, q.max_unitless);
+    if (grow_radius)
+      loc.r = loc.r + K::lift(q.m);
+    else
+      loc.H = loc.H + (K::lift(q.m) + K::lift(q.m));
+    return detail::triangleCylinder<K>(loc, early);
+  };
+  // r + m and lz + 2m are at most 3 times the largest length: the gate is
+  // taken on that, so the bounds behind the adaptive run hold for them.
+  const bool gate = detail::rangeGateOk(4 * q.max_len, q.max_unitless);
+  return detail::runAdaptive(pred, gate);
+}
+
+bool intersects(double r, double lz, const Query& q) {
+  return tryIntersect(Cylinder<double>{r, lz}, q.pose, q.tri) ==
+         Answer::kIntersect;
+}
+
+Stage stronger(Stage a, Stage b) {
+  auto rank = [](Stage s) {
+    switch (s) {
+      case Stage::kEarlyOut:
+        return 0;
+      case Stage::kFastPath:
+        return 1;
+      case Stage::kExtended:
+        return 2;
+      case Stage::kExact:
+        return 3;
+      case Stage::kExactGmp:
+        return 4;
+      default:
+        return 5;
+    }
+  };
+  return rank(a) >= rank(b) ? a : b;
+}
+
+Decision yes(Stage s) { return {Answer::kIntersect, s}; }
+Decision no(Stage s) { return {Answer::kDisjoint, s}; }
+
+/// A sized part (grow_radius: Cyl(r + m, h), else Cyl(r, h + m)).
+/// `stage` accumulates the strongest stage used.
+bool cylinderPart(const Query& q, bool grow_radius, Stage* stage) {
+  const TwoSum s =
+      grow_radius ? twoSum(q.cyl.radius, q.m) : twoSum(q.cyl.lz, 2 * q.m);
+  if (s.finite && std::isfinite(2 * q.m)) {
+    const double r = grow_radius ? s.down() : q.cyl.radius;
+    const double lz = grow_radius ? q.cyl.lz : s.down();
+    if (intersects(r, lz, q)) return true;  // a subset: exact yes
+    if (s.e == 0) return false;             // the sum itself: exact no
+    const double r_up = grow_radius ? s.up() : q.cyl.radius;
+    const double lz_up = grow_radius ? q.cyl.lz : s.up();
+    if (std::isfinite(r_up) && std::isfinite(lz_up) &&
+        !intersects(r_up, lz_up, q))
+      return false;  // a superset: exact no
+  }
+  Query qs = q;
+  qs.scan();
+  const Decision d = cylinderPartExact(qs, grow_radius);
+  *stage = stronger(*stage, d.stage);
+  return d.answer == Answer::kIntersect;
+}
+
+Decision decide(Query& q) {
+  if (q.m == 0) return decideIntersect(q.cyl, q.pose, q.tri);
+  // A superset of C + B_m: Cyl(r + m, h + m), sizes rounded up. This first
+  // call of the kernel also validates the pose and the triangle. For
+  // x = fl(a + b) >= 0 normal, fl(x + fl(x 2^-51)) >= x (1 + 2^-52) >= a + b;
+  // in the subnormal range the sum is exact and the bound still >= it.
+  bool validated = false;
+  const double two_m = 2 * q.m;
+  const double r_sum = q.cyl.radius + q.m, l_sum = q.cyl.lz + two_m;
+  const double r_up = r_sum + r_sum * 0x1p-51;
+  const double lz_up = l_sum + l_sum * 0x1p-51;
+  if (std::isfinite(r_up) && std::isfinite(lz_up)) {
+    const Answer a = tryIntersect(Cylinder<double>{r_up, lz_up}, q.pose, q.tri);
+    if (a == Answer::kInvalidInput) return {a, Stage::kInvalid};
+    if (a == Answer::kDisjoint) return no(Stage::kEarlyOut);
+    validated = true;
+  }
+  if (!validated && !q.scan()) return {Answer::kInvalidInput, Stage::kInvalid};
+  Stage stage = Stage::kFastPath;
+  if (cylinderPart(q, true, &stage)) return yes(stage);
+  if (cylinderPart(q, false, &stage)) return yes(stage);
+  // The tori. The triangle misses C here, hence the rim circles. Edges
+  // first (the face part is complete only when they miss): the filter on
+  // both tori, then GMP for the edges it left open, then the faces.
+  q.scan();
+  const ScaledInputs s = scaleInputs(q);
+  bool open[2][3] = {{true, true, true}, {true, true, true}};
+  if (s.ok) {
+    const auto l = detail::makeLocal<Rk>(s.cyl, s.pose, s.tri, q.max_unitless);
+    for (int i = 0; i < 2; ++i)
+      if (edgesFilter(torusInput<Rk>(l, s.m, i == 0), open[i]) == Tri::kTrue)
+        return yes(stage);
+  }
+  static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+  for (int i = 0; i < 2; ++i) {
+    if (!(open[i][0] || open[i][1] || open[i][2])) continue;
+    const TorusInput<ZKernel> t = torusExactInput(q, i == 0 ? 1 : -1);
+    stage = Stage::kExactGmp;
+    for (int e = 0; e < 3; ++e)
+      if (open[i][e] && edgeExact(t, kEdge[e][0], kEdge[e][1]))
+        return yes(stage);
+  }
+  for (int i = 0; i < 2; ++i) {
+    const Decision d = faceStage(q, s, i == 0);
+    stage = stronger(stage, d.stage);
+    if (d.answer == Answer::kIntersect) return yes(stage);
+  }
+  return no(stage);
+}
+
+/// A size is valid iff finite and >= 0 (-0 included), read from its bits:
+/// no floating-point operation touches a NaN.
+bool validSize(double v) {
+  std::uint64_t b;
+  std::memcpy(&b, &v, sizeof b);
+  const std::uint64_t abs = b & ~(std::uint64_t(1) << 63);
+  return abs < 0x7ff0000000000000ULL && (abs == b || abs == 0);
+}
+
+Decision validateAndDecide(const Cylinder<double>& cyl,
+                           const Pose<double>& pose,
+                           const Triangle<double>& tri, double m) {
+  if (!validSize(cyl.radius) || !validSize(cyl.lz) || !validSize(m))
+    return {Answer::kInvalidInput, Stage::kInvalid};
+  // -0 is 0 for every size (the bits of -0 would break nothing, but the
+  // exact sums are clearer on +0).
+  Query q{{cyl.radius + 0.0, cyl.lz + 0.0}, pose, tri, m + 0.0};
+  return decide(q);
+}
+
+template <class S>
+Decision decideAs(const Cylinder<S>& cyl, const Pose<S>& pose,
+                  const Triangle<S>& tri, S m) noexcept {
+  try {
+    if constexpr (std::is_same_v<S, float>) {
+      const Cylinder<float> mm{m, m};
+      if (!detail::floatBitsFinite(cyl, pose, tri, mm))  // before widening
+        return {Answer::kInvalidInput, Stage::kInvalid};
+      return validateAndDecide(
+          {double(cyl.radius), double(cyl.lz)}, detail::widen(pose),
+          {detail::widen(tri.a), detail::widen(tri.b), detail::widen(tri.c)},
+          double(m));
+    } else {
+      return validateAndDecide(cyl, pose, tri, m);
+    }
+  } catch (...) {  // std::bad_alloc from GMP or a vector: nothing else throws
+    std::terminate();
+  }
+}
+
+}  // namespace
+
+template <class S>
+Decision decideWithinDistance(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                              const Triangle<S>& triangle, S margin) noexcept {
+  return decideAs(cylinder, pose, triangle, margin);
+}
+
+template <class S>
+Answer tryWithinDistance(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                         const Triangle<S>& triangle, S margin) noexcept {
+  return decideAs(cylinder, pose, triangle, margin).answer;
+}
+
+template <class S>
+bool withinDistance(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                    const Triangle<S>& triangle, S margin) {
+  const Answer a = decideAs(cylinder, pose, triangle, margin).answer;
+  if (a == Answer::kInvalidInput)
+    throw InvalidInput(
+        "tricyl::withinDistance: NaN or infinite input, or a negative "
+        "radius, length or margin");
+  return a == Answer::kIntersect;
+}
+
+template <class S>
+bool withinDistance(const Cylinder<S>& cylinder, const Triangle<S>& triangle,
+                    S margin) {
+  return withinDistance(cylinder, identityPose<S>(), triangle, margin);
+}
+
+template bool withinDistance(const Cylinder<float>&, const Pose<float>&,
+                             const Triangle<float>&, float);
+template bool withinDistance(const Cylinder<double>&, const Pose<double>&,
+                             const Triangle<double>&, double);
+template bool withinDistance(const Cylinder<float>&, const Triangle<float>&,
+                             float);
+template bool withinDistance(const Cylinder<double>&, const Triangle<double>&,
+                             double);
+template Answer tryWithinDistance(const Cylinder<float>&, const Pose<float>&,
+                                  const Triangle<float>&, float) noexcept;
+template Answer tryWithinDistance(const Cylinder<double>&, const Pose<double>&,
+                                  const Triangle<double>&, double) noexcept;
+template Decision decideWithinDistance(const Cylinder<float>&,
+                                       const Pose<float>&,
+                                       const Triangle<float>&, float) noexcept;
+template Decision decideWithinDistance(const Cylinder<double>&,
+                                       const Pose<double>&,
+                                       const Triangle<double>&,
+                                       double) noexcept;
+
+}  // namespace tricyl

@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// src/margin_sturm.h, the division-free Sturm count behind withinDistance's
+// exact torus edges: against polynomials built from known roots, and
+// against a textbook Sturm sequence in rationals (true remainders) on random
+// small-integer polynomials, whose many degenerate chains (degree drops of
+// two, common factors, negative leading coefficients) exercise the sign
+// bookkeeping of the pseudo-remainders.
+#include "margin_sturm.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scenes.h"
+#include "test_support.h"
+
+namespace tricyl {
+namespace {
+
+using detail::sturm::Poly;
+
+std::vector<mpq_class> toRational(const Poly& p) {
+  std::vector<mpq_class> q;
+  for (const auto& c : p) q.push_back(mpq_class(c));
+  return q;
+}
+
+void trimQ(std::vector<mpq_class>& p) {
+  while (!p.empty() && sgn(p.back()) == 0) p.pop_back();
+}
+
+mpq_class evalQ(const std::vector<mpq_class>& p, const mpq_class& x) {
+  mpq_class v = 0;
+  for (size_t i = p.size(); i-- > 0;) v = v * x + p[i];
+  return v;
+}
+
+/// The textbook sequence: p, p', -rem(p_{k-1}, p_k) with exact rational
+/// division; distinct roots in (0, 1) for p(0), p(1) != 0.
+int referenceRootsInUnit(std::vector<mpq_class> p) {
+  trimQ(p);
+  if (p.size() <= 1) return 0;
+  std::vector<std::vector<mpq_class>> chain{p};
+  std::vector<mpq_class> d;
+  for (size_t i = 1; i < p.size(); ++i) d.push_back(p[i] * long(i));
+  trimQ(d);
+  while (!d.empty()) {
+    chain.push_back(d);
+    std::vector<mpq_class> a = chain[chain.size() - 2];
+    while (a.size() >= d.size()) {
+      const mpq_class f = a.back() / d.back();
+      const size_t shift = a.size() - d.size();
+      for (size_t i = 0; i < d.size(); ++i) a[shift + i] -= f * d[i];
+      a.pop_back();
+      trimQ(a);
+    }
+    for (auto& c : a) c = -c;
+    d = a;
+  }
+  auto variations = [&](const mpq_class& x) {
+    int v = 0, last = 0;
+    for (const auto& q : chain) {
+      const int s = sgn(evalQ(q, x));
+      if (s == 0) continue;
+      if (last != 0 && s != last) ++v;
+      last = s;
+    }
+    return v;
+  };
+  return variations(0) - variations(1);
+}
+
+Poly multiply(const Poly& a, const Poly& b) {
+  Poly c(a.size() + b.size() - 1, mpz_class(0));
+  for (size_t i = 0; i < a.size(); ++i)
+    for (size_t j = 0; j < b.size(); ++j) c[i + j] += a[i] * b[j];
+  return c;
+}
+
+std::string show(const Poly& p) {
+  std::string s;
+  for (const auto& c : p) s += c.get_str() + " ";
+  return s;
+}
+
+TEST(MarginSturm, KnownRoots) {
+  // Linear factors (b s - a), root a/b; (s^2 + 1) has no real root.
+  const Poly half{-1, 2}, third{-1, 3}, two{-2, 1}, minus{1, 1}, none{1, 0, 1};
+  struct Case {
+    std::vector<Poly> factors;
+    int roots;
+  };
+  const Case cases[] = {
+      {{half}, 1},
+      {{half, half}, 1},               // a double root: counted once
+      {{half, half, third}, 2},        // tangency and a crossing
+      {{half, half, half, half}, 1},   // a quadruple root
+      {{half, third, two, minus}, 2},  // two inside, two outside
+      {{none, none}, 0},               // no real root
+      {{none, half, half}, 1},         // the torus-edge tie's shape
+      {{two, minus, two, minus}, 0},   // double roots outside
+      {{{-3, 7}, {-4, 7}, none}, 2},   // close roots 3/7 and 4/7
+      {{{-1000, 2001}, {-1001, 2001}, {5, 1}, {7, 1}}, 2},
+  };
+  for (const Case& c : cases) {
+    Poly p{1};
+    for (const Poly& f : c.factors) p = multiply(p, f);
+    for (int sign : {1, -1}) {
+      Poly q = p;
+      for (auto& x : q) x *= sign;
+      EXPECT_EQ(detail::sturm::rootsInUnit(q), c.roots) << show(q);
+      EXPECT_EQ(referenceRootsInUnit(toRational(q)), c.roots) << show(q);
+    }
+  }
+}
+
+TEST(MarginSturm, AgreesWithRationalSturmOnRandomPolynomials) {
+  const std::uint64_t seed = test::baseSeed();
+  SCOPED_TRACE(test::seedTrace(seed));
+  scenes::Rng g(seed ^ 0x57u);
+  const long n = test::scaled(8000);
+  long compared = 0, with_roots = 0;
+  for (long i = 0; i < n; ++i) {
+    const int deg = 1 + g.integer(4);
+    const int range = i % 2 == 0 ? 3 : 40;
+    Poly p(std::size_t(deg + 1));
+    for (auto& c : p) c = g.integer(2 * range + 1) - range;
+    mpz_class at1 = 0;
+    for (const auto& c : p) at1 += c;
+    if (sgn(p[0]) == 0 || sgn(at1) == 0) continue;  // the documented domain
+    const int want = referenceRootsInUnit(toRational(p));
+    ASSERT_EQ(detail::sturm::rootsInUnit(p), want) << show(p);
+    ++compared;
+    with_roots += want > 0;
+  }
+  std::printf("[ stats ] %ld random polynomials, %ld with roots in (0, 1)\n",
+              compared, with_roots);
+  EXPECT_GT(with_roots, compared / 20);
+}
+
+}  // namespace
+}  // namespace tricyl
