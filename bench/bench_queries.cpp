@@ -19,6 +19,7 @@
 #include <cmath>
 #include <vector>
 
+#include "query_cases.h"
 #include "query_scenes.h"
 #include "tricyl/line_cylinder.h"
 #include "tricyl/tricyl.h"
@@ -37,13 +38,10 @@ struct Src {  // the sources' endpoint form
   V p, q;
 };
 
-constexpr int kCases = 4096;
+constexpr int kCases = tricyl::bench::kQueryCases;
 
 std::vector<QueryCase> cases(Query q, Family f) {
-  std::vector<QueryCase> v;
-  for (int i = 0; i < kCases; ++i)
-    v.push_back(tricyl::qscenes::generate(q, f, 20261122u, std::uint64_t(i)));
-  return v;
+  return tricyl::bench::queryCases(q, f);
 }
 
 std::vector<Src> sources(const std::vector<QueryCase>& cs, bool cone) {

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "query_cases.h"
 #include "query_scenes.h"
 #include "stage_report.h"
 #include "tricyl/tricyl.h"
@@ -37,13 +38,10 @@ using tricyl::qscenes::Family;
 using tricyl::qscenes::Query;
 using tricyl::qscenes::QueryCase;
 
-constexpr int kCases = 4096;
+constexpr int kCases = tricyl::bench::kQueryCases;
 
 std::vector<QueryCase> cases(Query q, Family f) {
-  std::vector<QueryCase> v;
-  for (int i = 0; i < kCases; ++i)
-    v.push_back(tricyl::qscenes::generate(q, f, 20261122u, std::uint64_t(i)));
-  return v;
+  return tricyl::bench::queryCases(q, f);
 }
 
 tricyl::Decision decide(Query q, const QueryCase& c) {
