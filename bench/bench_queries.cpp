@@ -13,14 +13,13 @@
 #include <benchmark/benchmark.h>
 
 #ifdef TRICYL_BENCH_WITH_FCL
-#include <fcl/geometry/shape/cylinder.h>
-#include <fcl/geometry/shape/sphere.h>
-#include <fcl/narrowphase/detail/primitive_shape_algorithm/sphere_cylinder.h>
+#include "fcl_sphere_cases.h"
 #endif
 
 #include <cmath>
 #include <vector>
 
+#include "query_cases.h"
 #include "query_scenes.h"
 #include "tricyl/line_cylinder.h"
 #include "tricyl/tricyl.h"
@@ -39,13 +38,10 @@ struct Src {  // the sources' endpoint form
   V p, q;
 };
 
-constexpr int kCases = 4096;
+constexpr int kCases = tricyl::bench::kQueryCases;
 
 std::vector<QueryCase> cases(Query q, Family f) {
-  std::vector<QueryCase> v;
-  for (int i = 0; i < kCases; ++i)
-    v.push_back(tricyl::qscenes::generate(q, f, 20261122u, std::uint64_t(i)));
-  return v;
+  return tricyl::bench::queryCases(q, f);
 }
 
 std::vector<Src> sources(const std::vector<QueryCase>& cs, bool cone) {
@@ -288,26 +284,8 @@ void BM_Sphere_tricyl(benchmark::State& st) {
 // FCL 0.7's own sphere-cylinder test (primitive_shape_algorithm,
 // tolerance-based), the one fcl::collide uses for this pair.
 void BM_Sphere_fcl(benchmark::State& st) {
-  const auto cs = cases(Query::kSphere, familyOf(st));
-  std::vector<fcl::Sphered> sph;
-  std::vector<fcl::Cylinderd> cyl;
-  std::vector<fcl::Transform3d> X_FS, X_FC;
-  for (const QueryCase& c : cs) {
-    sph.emplace_back(c.rho);
-    cyl.emplace_back(c.cyl.radius, c.cyl.lz);
-    fcl::Transform3d s = fcl::Transform3d::Identity();
-    s.translation() = fcl::Vector3d(c.p.x, c.p.y, c.p.z);
-    X_FS.push_back(s);
-    fcl::Transform3d t = fcl::Transform3d::Identity();
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) t.linear()(i, j) = c.pose.R[i][j];
-    t.translation() = fcl::Vector3d(c.pose.t.x, c.pose.t.y, c.pose.t.z);
-    X_FC.push_back(t);
-  }
-  run(st, [&](int i) {
-    return fcl::detail::sphereCylinderIntersect<double>(sph[i], X_FS[i], cyl[i],
-                                                        X_FC[i], nullptr);
-  });
+  const tricyl::bench::FclSphereCases fc(cases(Query::kSphere, familyOf(st)));
+  run(st, [&](int i) { return fc.intersect(std::size_t(i)); });
 }
 #endif
 void BM_Sphere_source(benchmark::State& st) {

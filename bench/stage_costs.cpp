@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "scenes.h"
+#include "stage_report.h"
 #include "tricyl/triangle_cylinder.h"
 #include "walk.h"
 
@@ -31,55 +32,22 @@
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using tricyl::Stage;
+using tricyl::bench::Clock;
+using tricyl::bench::ns;
+using tricyl::bench::quantile;
 using tricyl::bench::Walk;
 using tricyl::scenes::Family;
 using tricyl::scenes::TriCase;
 
 constexpr int kCases = 4096;
 
-double ns(Clock::duration d) {
-  return std::chrono::duration<double, std::nano>(d).count();
-}
-
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  const std::size_t k =
-      std::min(v.size() - 1, std::size_t(q * double(v.size())));
-  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
-  return v[k];
-}
-
-const char* stageName(Stage s) {
-  switch (s) {
-    case Stage::kEarlyOut:
-      return "early-out";
-    case Stage::kFastPath:
-      return "double filter";
-    case Stage::kExtended:
-      return "double-word";
-    case Stage::kExact:
-      return "exact (stack)";
-    case Stage::kExactGmp:
-      return "exact (GMP)";
-    case Stage::kInvalid:
-      return "invalid";
-  }
-  return "?";
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   const int passes = argc > 1 ? std::max(1, std::atoi(argv[1])) : 20;
   // The clock's own cost, subtracted from every single-query time.
-  double clock_ns = 1e300;
-  for (int i = 0; i < 20000; ++i) {
-    const auto a = Clock::now();
-    const auto b = Clock::now();
-    clock_ns = std::min(clock_ns, ns(b - a));
-  }
+  const double clock_ns = tricyl::bench::clockOverheadNs();
   std::printf(
       "# tricyl-stage-costs\n\n%d cases per family, %d passes; "
       "clock overhead %.1f ns (subtracted from single-query "
@@ -94,65 +62,33 @@ int main(int argc, char** argv) {
     std::vector<TriCase> v;
     for (int i = 0; i < kCases; ++i)
       v.push_back(tricyl::scenes::generate(fam, 7, std::uint64_t(i)));
-    long hits = 0;
-    // Whole passes: the mean.
-    Walk walk(v.size());
-    const auto t0 = Clock::now();
-    for (int p = 0; p < passes; ++p)
-      for (std::size_t n = 0; n < v.size(); ++n) {
-        const TriCase& c = v[walk.next()];
-        hits += tricyl::tryIntersect(c.cyl, c.pose, c.tri) ==
-                tricyl::Answer::kIntersect;
-      }
-    const double mean = ns(Clock::now() - t0) / double(passes * kCases);
+    const tricyl::bench::FamilyCosts fc =
+        tricyl::bench::measureFamily(v, passes, clock_ns, [](const TriCase& c) {
+          return tricyl::decideIntersect(c.cyl, c.pose, c.tri);
+        });
+    long hits = fc.hits;
     double fcl_mean = 0;
 #ifdef TRICYL_BENCH_WITH_FCL
     {
-      const tricyl::bench::FclCases fc(v);
+      const tricyl::bench::FclCases fcl_cases(v);
       fcl::detail::GJKSolver_libccd<double> solver;
       solver.collision_tolerance = 1e-6;
       Walk w(v.size());
       const int fcl_passes = std::max(1, passes / 4);
       const auto f0 = Clock::now();
-      for (int p = 0; p < fcl_passes; ++p) hits += fc.pass(solver, w);
+      for (int p = 0; p < fcl_passes; ++p) hits += fcl_cases.pass(solver, w);
       fcl_mean = ns(Clock::now() - f0) / double(fcl_passes * kCases);
     }
 #endif
-    // One by one: the distribution, and the cost of each stage.
-    std::vector<double> all;
-    std::vector<double> by[8];
-    Walk w1(v.size());
-    for (int p = 0; p < passes; ++p)
-      for (std::size_t n = 0; n < v.size(); ++n) {
-        const TriCase& c = v[w1.next()];
-        const auto a = Clock::now();
-        const tricyl::Decision d =
-            tricyl::decideIntersect(c.cyl, c.pose, c.tri);
-        const double t = std::max(0.0, ns(Clock::now() - a) - clock_ns);
-        hits += d.answer == tricyl::Answer::kIntersect;
-        all.push_back(t);
-        by[int(d.stage)].push_back(t);
-      }
+    const auto& all = fc.all;
     std::printf(
         "| %s | %.1f ns | %.1f ns | %.1fx | %.1f ns | %.0f ns | %.0f ns |\n",
-        tricyl::scenes::familyName(fam), mean, fcl_mean,
-        fcl_mean > 0 ? fcl_mean / mean : 0.0, quantile(all, 0.5),
+        tricyl::scenes::familyName(fam), fc.mean, fcl_mean,
+        fcl_mean > 0 ? fcl_mean / fc.mean : 0.0, quantile(all, 0.5),
         quantile(all, 0.99), *std::max_element(all.begin(), all.end()));
-    for (Stage s : {Stage::kEarlyOut, Stage::kFastPath, Stage::kExtended,
-                    Stage::kExact, Stage::kExactGmp}) {
-      const auto& b = by[int(s)];
-      if (b.empty()) continue;
-      double sum = 0;
-      for (double t : b) sum += t;
-      char row[256];
-      std::snprintf(row, sizeof row,
-                    "| %s | %s | %.3f %% | %.0f ns | %.0f ns | %.0f ns |\n",
-                    tricyl::scenes::familyName(fam), stageName(s),
-                    100.0 * double(b.size()) / double(all.size()),
-                    sum / double(b.size()), quantile(b, 0.99),
-                    *std::max_element(b.begin(), b.end()));
-      stage_rows.push_back(row);
-    }
+    for (const auto& r :
+         tricyl::bench::stageRows(tricyl::scenes::familyName(fam), fc))
+      stage_rows.push_back(r);
     if (hits == -1) std::printf("\n");  // keep the answers alive
   }
   std::printf(

@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The cylinder query family, each predicate written ONCE over a kernel K of
-// src/filter.h and decided by the same driver as the triangle kernel
-// (runStages, src/stages.h): FilterKernel (certified double), then, for a
-// query it leaves open, AdaptiveKernel (src/adaptive.h), which re-decides
-// only the open signs in double-word, then exactly.
+// The cylinder query family, each predicate written ONCE. The point and
+// cone queries are written over a kernel K of src/filter.h and decided by
+// runStages (src/stages.h): FilterKernel (certified double), then, for a
+// query it leaves open, AdaptiveKernel (src/adaptive.h). The sphere, segment
+// and line queries are written against a context (src/per_sign.h), each
+// sign a closed-form polynomial of the query's frame: decided in double,
+// and each sign the double bound leaves open re-decided by itself in the
+// next arithmetic (runPerSign, the driver's per-sign policy).
 //
 // Frame: the cylinder frame of the triangle kernel, produced by the same
 // toLocal<K> (src/triangle_cylinder_impl.h): y = R^T (x - t) evaluated
@@ -22,14 +25,17 @@
 //   slab   Z -+ H                                 2      6      2^45
 //   disk   r^2 - x^2 - y^2                        4      7      2^90
 //   cone   r^2 (H - Z)^2 - 4 H^2 (x^2 + y^2)      6      9      2^172
-//   sphere 2 rho - (Z -+ H), s - (r + rho)^2      4      7      2^91
-//   sphere T, 16 r^2 G - T^2                      8     11      2^190
+//   sphere 2 rho - E, E = |Z| - H, s - (r+rho)^2  4      7      2^91
+//   sphere T, 16 r^2 G - T^2                      8     12      2^190
 //   segment (V), (X), (E): as the triangle kernel's (V), (X), (E):
 //          degree <= 8, depth <= 11, magnitude <= 2^370 (docs/exactness.md)
 //   line   (V), (X), (E) and its early-out r^2 L - c^2: the segment's
 //          terms with the direction R^T (q - p) for b - a (the same
 //          degree, depth and magnitude as a local coordinate), same bounds
-// All inside the budget; no division and no square root anywhere.
+// All inside the budget; no division and no square root anywhere. The
+// per-sign filter of the sphere, segment and line (shallowSign,
+// src/per_sign.h) uses their largest depth, 12, for a bound four times
+// tighter than the filter's general one (depth <= 56).
 #pragma once
 
 #include <cstdint>
@@ -38,6 +44,7 @@
 #include <type_traits>
 
 #include "filter.h"
+#include "per_sign.h"
 #include "stages.h"
 #include "triangle_cylinder_impl.h"
 #include "tricyl/types.h"
@@ -172,6 +179,27 @@ Tri pointInCone(const LocalPoint<K>& q, const typename K::Num& H,
 }
 
 // ---------------------------------------------------------------------------
+// The sphere, segment and line queries: each sign a closed-form polynomial
+// in the local data of the query (its Frame<N>), written once as a generic
+// lambda and decided by a context C (src/per_sign.h): PerSign inside the
+// range gate (double, then that sign alone in double-word, expansions,
+// GMP), GMP alone outside it, or one kernel K of src/filter.h
+// (KernelCtx<K>, for runStages). Kleene logic keeps every query correct
+// for a context that may leave a sign open (KernelCtx<FilterKernel>).
+
+/// r^2 - x^2 - y^2: v is in the infinite solid cylinder (>= 0).
+template <class N>
+inline N diskGap(const Pt<N>& v, const N& r) {
+  return r * r - v.x * v.x - v.y * v.y;
+}
+/// 4 x (exact: two exact doublings; no overflow under the range gate).
+template <class N>
+inline N times4(const N& x) {
+  const N d = x + x;
+  return d + d;
+}
+
+// ---------------------------------------------------------------------------
 // Sphere vs cylinder. The sphere is the ball of radius rho about the local
 // centre c = (x, y, z) (see include/tricyl/sphere_cylinder.h for what that
 // means in the world). The closed sets meet iff dist(c, C) <= rho, and
@@ -179,59 +207,104 @@ Tri pointInCone(const LocalPoint<K>& q, const typename K::Num& H,
 //                               e  = max(0, |z| - lz/2).
 // The source's case split on the centre's height (beyond the top cap,
 // within the slab, beyond the bottom cap), squared with care:
-// * Within the slab (e = 0): sqrt(s) <= r + rho  <=>  s <= (r + rho)^2.
-// * Beyond a cap (e >= 0, in doubled units E = 2e = Z - H or -Z - H):
-//   first e <= rho, i.e. 2 rho - E >= 0. Then with the source's slice
-//   radius f = sqrt(rho^2 - e^2) the test is sqrt(s) <= r + f, and with
-//   g = f^2, G = 4 g = 4 rho^2 - E^2 >= 0 and T = 4 (s - r^2) - G:
+// In doubled units (Z = 2 z, H = lz) let E = |Z| - H = 2 (|z| - lz/2): the
+// centre's doubled height beyond the nearer cap plane, <= 0 in the slab.
+// |.| rounds nothing and keeps every error bound and magnitude (||a| - |b||
+// <= |a - b|), so E is as good a value as Z - H in every arithmetic.
+// * E > 2 rho: the centre is more than rho beyond a cap plane: disjoint
+//   (the early-out, and the first sign of the cap branch).
+// * Within the slab (E <= 0): sqrt(s) <= r + rho  <=>  s <= (r + rho)^2.
+// * Beyond a cap (E >= 0) and E <= 2 rho: with the source's slice radius
+//   f = sqrt(rho^2 - e^2) the test is sqrt(s) <= r + f, and with g = f^2,
+//   G = 4 g = 4 rho^2 - E^2 >= 0 and T = 4 (s - r^2) - G:
 //     s <= r^2 + g + 2 r sqrt(g)  <=>  T <= 0  or  T^2 <= 16 r^2 G,
 //   squaring only when both sides are non-negative (T > 0). The two
-//   formulas agree at E = 0, so both branches may claim the plane Z = +-H.
-// Every branch condition is itself a certified sign (Kleene logic): an
-// undecided height only means the next stage decides.
+//   formulas agree at E = 0, so both branches may claim the plane E = 0.
+// Signs, in order: 2 rho - E, E, then s - (r + rho)^2 or T and
+// 16 r^2 G - T^2. Every branch condition is itself a certified sign
+// (Kleene logic: a context that may leave a sign open only evaluates both
+// branches). Degree <= 8, depth <= 12 (16 r^2 G - T^2: Z at 5, E 6, E^2 7,
+// G 8, T 10, T^2 11, the difference 12; the doublings of times4 are exact).
 
-template <class K>
-Tri sphereBeyondCap(const typename K::Num& E, const typename K::Num& s,
-                    const typename K::Num& r, const typename K::Num& rho) {
-  using N = typename K::Num;
-  Tri t = isNonNeg(K::sign((rho + rho) - E));
-  if (t == Tri::kFalse) return t;
-  const N G = (rho * rho) * K::lift(4.0) - E * E;
-  const N T = (s - r * r) * K::lift(4.0) - G;
-  const Tri t_neg = isNonPos(K::sign(T));
-  if (t_neg == Tri::kTrue) return t;
-  const Tri t_sq = isNonNeg(K::sign((r * r) * K::lift(16.0) * G - T * T));
-  return kAnd(t, kOr(t_neg, t_sq));
+/// The local data of a sphere query: the centre, H = lz, r, rho.
+struct SphereQuery {
+  const Cylinder<double>& cyl;
+  const Pose<double>& pose;
+  const Sphere<double>& sph;
+  double max_unitless;
+
+  template <class A>
+  struct Frame {
+    using N = typename A::Num;
+    explicit Frame(const SphereQuery& q)
+        : c(A::local(q.pose, q.sph.center, q.max_unitless)),
+          H(A::lift(q.cyl.lz)),
+          r(A::lift(q.cyl.radius)),
+          rho(A::lift(q.sph.radius)) {}
+    Pt<N> c;
+    N H, r, rho;
+  };
+};
+
+/// E = |Z| - H.
+template <class F>
+inline auto sphereHeight(const F& f) {
+  return absolute(f.c.Z) - f.H;
+}
+/// G = 4 rho^2 - E^2 and T = 4 (s - r^2) - G.
+template <class F>
+inline auto sphereT(const F& f) {
+  const auto E = sphereHeight(f);
+  const auto G = times4(f.rho * f.rho) - E * E;
+  return times4(f.c.x * f.c.x + f.c.y * f.c.y - f.r * f.r) - G;
 }
 
-template <class K>
-Tri sphereCylinder(const LocalPoint<K>& c, const typename K::Num& H,
-                   const typename K::Num& r, const typename K::Num& rho,
-                   bool* early) {
-  using N = typename K::Num;
-  const N top = c.Z - H;   // E of the top branch
-  const N bot = -c.Z - H;  // E of the bottom branch
-  const N rho2 = rho + rho;
-  // Early-out: the centre is more than rho beyond a cap plane.
-  if (K::sign(top - rho2) == Sign::kPos || K::sign(bot - rho2) == Sign::kPos) {
+template <class C>
+Tri sphereCylinder(C& c, bool* early) {
+  *early = false;
+  auto near_cap_p = [](const auto& f) {
+    return (f.rho + f.rho) - sphereHeight(f);
+  };
+  auto height_p = [](const auto& f) { return sphereHeight(f); };
+  auto gap_p = [](const auto& f) { return diskGap(f.c, f.r + f.rho); };
+  auto t_p = [](const auto& f) { return sphereT(f); };
+  auto q_p = [](const auto& f) {
+    const auto E = sphereHeight(f);
+    const auto G = times4(f.rho * f.rho) - E * E;
+    const auto T = sphereT(f);
+    return times4(times4(f.r * f.r)) * G - T * T;
+  };
+  if constexpr (C::kEagerFilter) {
+    // First the whole formula below in double, all five signs at once and
+    // combined without a branch (the near family's outcomes are coin
+    // flips, which a branch per sign pays for); only where that leaves the
+    // answer open, the signs one by one, each escalated if it must be.
+    const Bits a = c.filterBits(near_cap_p), e = c.filterBits(height_p);
+    const KBool in_slab = kbAnd(nonPos(e), nonNeg(c.filterBits(gap_p)));
+    const KBool cap = kbAnd(
+        nonNeg(e), kbOr(nonPos(c.filterBits(t_p)), nonNeg(c.filterBits(q_p))));
+    const KBool r = kbAnd(nonNeg(a), kbOr(in_slab, cap));
+    if (r.t | r.f) {
+      *early = a.neg;
+      return toTri(r.t);
+    }
+  }
+  const Sign near_cap = c.sign(near_cap_p);
+  if (near_cap == Sign::kNeg) {
     *early = true;
     return Tri::kFalse;
   }
-  const N s = c.x * c.x + c.y * c.y;
-  const Sign s_top = K::sign(top);
-  const Sign s_bot = K::sign(bot);
-  // Within the slab.
-  Tri result = kAnd(kAnd(isNonPos(s_top), isNonPos(s_bot)),
-                    isNonNeg(K::sign((r + rho) * (r + rho) - s)));
-  if (result == Tri::kTrue) return result;
-  if (isNonNeg(s_top) != Tri::kFalse)
-    result =
-        kOr(result, kAnd(isNonNeg(s_top), sphereBeyondCap<K>(top, s, r, rho)));
-  if (result == Tri::kTrue) return result;
-  if (isNonNeg(s_bot) != Tri::kFalse)
-    result =
-        kOr(result, kAnd(isNonNeg(s_bot), sphereBeyondCap<K>(bot, s, r, rho)));
-  return result;
+  const Sign height = c.sign(height_p);
+  Tri result = Tri::kFalse;
+  if (isNonPos(height) != Tri::kFalse) {  // within the slab
+    result = kAnd(isNonPos(height), isNonNeg(c.sign(gap_p)));
+    if (result == Tri::kTrue || isPos(height) == Tri::kFalse) return result;
+  }
+  // Beyond a cap: 2 rho - E >= 0, and T <= 0 or 16 r^2 G - T^2 >= 0.
+  Tri t = kAnd(isNonNeg(height), isNonNeg(near_cap));
+  const Tri t_neg = isNonPos(c.sign(t_p));
+  if (t_neg != Tri::kTrue) t = kAnd(t, kOr(t_neg, isNonNeg(c.sign(q_p))));
+  return kOr(result, t);
 }
 
 // ---------------------------------------------------------------------------
@@ -251,30 +324,26 @@ Tri sphereCylinder(const LocalPoint<K>& c, const typename K::Num& H,
 // the infinite-cylinder quadratic inside [0, 1] and so rejects a segment
 // entirely inside (V), never checks that the root lies between the caps
 // (the slab part of (E)), and never tests the cap disks (X).
-
-template <class K>
-struct SegLocal {
-  LocalPoint<K> p[2];  // the images of p and q
-  LocalPoint<K> e;     // R^T (q - p), from the input differences
-  typename K::Num H, r;
-};
-
+//
 // Terms shared by the segment and the line predicates, in terms of a = the
 // local image of p and the direction e = R^T (q - p) (Z doubled as
 // everywhere). e is computed from the input differences q - p (toLocal
 // with t = p), not as b - a: exactly the same value, but a short or a
 // distant pair p, q keeps its relative accuracy, which the filter sees
 // (measured on the segment's families, 10^5 cases each: near 2.15% -> 1.92%
-// exact, far 5956 -> 3340 extended-stage cases). top/bot: signs of Z - H
-// and Z + H at a point.
+// exact, far 5956 -> 3340 extended-stage cases). The exact arithmetics
+// take b - a (the same value, fewer operations).
+//
+// Every polynomial below reads a frame with the fields a (the point p's
+// image), e (the direction), H and r.
 
-/// (V): the point v is in the solid.
-template <class K>
-inline Tri vertexInside(const LocalPoint<K>& v, Sign top, Sign bot,
-                        const typename K::Num& r2) {
+/// (V): |Z| <= H (from the signs top = sign(Z - H), bot = sign(Z + H)) and
+/// x^2 + y^2 <= r^2. `gap`: the disk term's polynomial.
+template <class C, class P>
+inline Tri vertexInside(C& c, Sign top, Sign bot, const P& gap) {
   const Tri slab = kAnd(isNonPos(top), isNonNeg(bot));
   if (slab == Tri::kFalse) return slab;
-  return kAnd(slab, isNonNeg(K::sign(r2 - v.x * v.x - v.y * v.y)));
+  return kAnd(slab, isNonNeg(c.sign(gap)));
 }
 
 /// (X) without its precondition: the point where the line a + mu e meets
@@ -282,103 +351,212 @@ inline Tri vertexInside(const LocalPoint<K>& v, Sign top, Sign bot,
 /// (x_a W - e_x a0, y_a W - e_y a0) / W, lies in the cap disk:
 /// X^2 + Y^2 <= r^2 W^2. Meaningful only when W != 0 (for W = 0 the test
 /// degenerates to a0^2 |e|^2 <= 0); the caller supplies that condition.
-template <class K>
-inline Tri capCrossingInDisk(const LocalPoint<K>& a, const LocalPoint<K>& e,
-                             const typename K::Num& a0,
-                             const typename K::Num& r2) {
-  using N = typename K::Num;
-  const N& W = e.Z;
-  const N X = a.x * W - e.x * a0;
-  const N Y = a.y * W - e.y * a0;
-  return isNonNeg(K::sign(r2 * (W * W) - X * X - Y * Y));
+template <class F>
+inline auto capCrossingGap(const F& f, int side) {
+  const auto a0 = side > 0 ? f.a().Z - f.H : f.a().Z + f.H;
+  const auto& W = f.e().Z;
+  const auto X = f.a().x * W - f.e().x * a0;
+  const auto Y = f.a().y * W - f.e().y * a0;
+  return (f.r * f.r) * (W * W) - X * X - Y * Y;
 }
 
-/// The sign of r^2 L - c^2, L = e_x^2 + e_y^2, c = x_a e_y - y_a e_x: the
-/// projected line through a along e comes within r of the axis (for
-/// L > 0; its distance^2 is c^2 / L).
-template <class K>
-inline Sign axisDistance(const LocalPoint<K>& a, const LocalPoint<K>& e,
-                         const typename K::Num& r2) {
-  using N = typename K::Num;
-  const N c = a.x * e.y - a.y * e.x;
-  return K::sign(r2 * (e.x * e.x + e.y * e.y) - c * c);
+/// r^2 L - c^2, L = e_x^2 + e_y^2, c = x_a e_y - y_a e_x: the projected
+/// line through a along e comes within r of the axis (for L > 0; its
+/// distance^2 is c^2 / L).
+template <class F>
+inline auto axisDistanceGap(const F& f) {
+  const auto c = f.a().x * f.e().y - f.a().y * f.e().x;
+  return (f.r * f.r) * (f.e().x * f.e().x + f.e().y * f.e().y) - c * c;
 }
 
 /// (E): with L = |e_xy|^2 > 0, the foot of the perpendicular from the axis
 /// to the projected line is at mu = g / L, g = -a.e, within r
-/// (axisDistance); its height Z_a + mu e_Z is in the slab (times L > 0).
-/// `interior` adds 0 <= g <= L (the foot within [a, a + e]: the segment's
-/// form; the line has no such condition). `sep`, if not null, is
-/// axisDistance computed already.
-template <class K>
-inline Tri axisApproach(const LocalPoint<K>& a, const LocalPoint<K>& e,
-                        const typename K::Num& H, const typename K::Num& r2,
-                        bool interior, const Sign* sep = nullptr) {
-  using N = typename K::Num;
-  const N L = e.x * e.x + e.y * e.y;
-  Tri t = isPos(K::sign(L));
-  if (t != Tri::kFalse)
-    t = kAnd(t, isNonNeg(sep != nullptr ? *sep : axisDistance<K>(a, e, r2)));
-  N g{}, zL{}, HL{};
-  if (t != Tri::kFalse) {
-    g = -(a.x * e.x + a.y * e.y);
-    if (interior) t = kAnd(t, isNonNeg(K::sign(g)));
+/// (axisDistanceGap, whose sign is `sep`); its height Z_a + mu e_Z is in
+/// the slab (times L > 0). `interior` adds 0 <= g <= L (the foot within
+/// [a, a + e]: the segment's form; the line has no such condition).
+/// L = e_x^2 + e_y^2.
+template <class F>
+inline auto axisLen(const F& f) {
+  return f.e().x * f.e().x + f.e().y * f.e().y;
+}
+/// g = -a.e (in the xy-plane): the foot of the perpendicular is at g / L.
+template <class F>
+inline auto axisFoot(const F& f) {
+  return -(f.a().x * f.e().x + f.a().y * f.e().y);
+}
+/// H L -+ (Z_a L + g e_Z): the foot's height (times L) below the top cap
+/// (side +1) or above the bottom one (side -1).
+template <class F>
+inline auto axisFootHeight(const F& f, int side) {
+  const auto L = axisLen(f);
+  const auto zL = f.a().Z * L + axisFoot(f) * f.e().Z;
+  return side > 0 ? f.H * L - zL : f.H * L + zL;
+}
+
+template <class C>
+inline Tri axisApproach(C& c, bool interior, Sign sep) {
+  Tri t = isPos(c.sign([](const auto& f) { return axisLen(f); }));
+  if (t != Tri::kFalse) t = kAnd(t, isNonNeg(sep));
+  if (interior && t != Tri::kFalse)
+    t = kAnd(t, isNonNeg(c.sign([](const auto& f) { return axisFoot(f); })));
+  if (interior && t != Tri::kFalse)
+    t = kAnd(t, isNonNeg(c.sign(
+                    [](const auto& f) { return axisLen(f) - axisFoot(f); })));
+  for (int side : {1, -1}) {
+    if (t == Tri::kFalse) break;
+    t = kAnd(t, isNonNeg(c.sign([side](const auto& f) {
+               return axisFootHeight(f, side);
+             })));
   }
-  if (interior && t != Tri::kFalse) t = kAnd(t, isNonNeg(K::sign(L - g)));
-  if (t != Tri::kFalse) {
-    zL = a.Z * L + g * e.Z;
-    HL = H * L;
-    t = kAnd(t, isNonNeg(K::sign(HL - zL)));
-  }
-  if (t != Tri::kFalse) t = kAnd(t, isNonNeg(K::sign(HL + zL)));
   return t;
 }
 
-template <class K>
-Tri segmentCylinder(const SegLocal<K>& q, bool* early) {
-  using N = typename K::Num;
-  const N& H = q.H;
-  const LocalPoint<K>& a = q.p[0];
-  const LocalPoint<K>& b = q.p[1];
+/// The local data of a segment or line query: a = the image of p, b = the
+/// image of q (the segment only), e = R^T (q - p), H = lz, r.
+template <bool kSegment>
+struct LinearQuery {
+  LinearQuery(const Cylinder<double>& cyl_, const Pose<double>& pose_,
+              const Vec3<double>& p_, const Vec3<double>& q_,
+              double max_unitless_)
+      : cyl(cyl_),
+        pose(pose_),
+        p(p_),
+        q(q_),
+        max_unitless(max_unitless_),
+        at_p(pose_) {
+    at_p.t = p_;
+  }
+  const Cylinder<double>& cyl;
+  const Pose<double>& pose;
+  const Vec3<double>& p;
+  const Vec3<double>& q;
+  double max_unitless;
+  Pose<double> at_p;  // the pose moved to p: toLocal(at_p, q) = R^T (q - p)
+
+  /// The double filter's frame: every point at once (every query reads
+  /// them all).
+  template <class A>
+  class EagerFrame {
+   public:
+    using N = typename A::Num;
+    explicit EagerFrame(const LinearQuery& q)
+        : H(A::lift(q.cyl.lz)),
+          r(A::lift(q.cyl.radius)),
+          a_(A::local(q.pose, q.p, q.max_unitless)),
+          b_(kSegment ? A::local(q.pose, q.q, q.max_unitless) : Pt<N>{}),
+          e_(A::local(q.at_p, q.q, q.max_unitless)) {}
+    const Pt<N>& a() const { return a_; }
+    const Pt<N>& b() const { return b_; }
+    const Pt<N>& e() const { return e_; }
+    N H, r;
+
+   private:
+    Pt<N> a_, b_, e_;
+  };
+  /// The later stages' frames: each point computed when first read (an
+  /// escalated sign usually reads one or two of the three).
+  template <class A>
+  class LazyFrame {
+   public:
+    using N = typename A::Num;
+    explicit LazyFrame(const LinearQuery& q)
+        : H(A::lift(q.cyl.lz)), r(A::lift(q.cyl.radius)), q_(q) {}
+    const Pt<N>& a() const {
+      if (!(have_ & 1)) {
+        a_ = A::local(q_.pose, q_.p, q_.max_unitless);
+        have_ |= 1;
+      }
+      return a_;
+    }
+    const Pt<N>& b() const {
+      if (!(have_ & 2)) {
+        b_ = A::local(q_.pose, q_.q, q_.max_unitless);
+        have_ |= 2;
+      }
+      return b_;
+    }
+    const Pt<N>& e() const {
+      if (!(have_ & 4)) {
+        if constexpr (A::kExact) {  // the same value, three subtractions
+          e_ = {b().x - a().x, b().y - a().y, b().Z - a().Z};
+        } else {
+          e_ = A::local(q_.at_p, q_.q, q_.max_unitless);
+        }
+        have_ |= 4;
+      }
+      return e_;
+    }
+    N H, r;
+
+   private:
+    const LinearQuery& q_;
+    mutable Pt<N> a_, b_, e_;
+    mutable unsigned have_ = 0;
+  };
+  template <class A>
+  using Frame = std::conditional_t<std::is_same_v<A, KernelArith<FilterKernel>>,
+                                   EagerFrame<A>, LazyFrame<A>>;
+};
+using SegmentQuery = LinearQuery<true>;
+using LineQuery = LinearQuery<false>;
+
+template <class C>
+Tri segmentCylinder(C& c, bool* early) {
   *early = false;
-  const Sign top[2] = {K::sign(a.Z - H), K::sign(b.Z - H)};
-  const Sign bot[2] = {K::sign(a.Z + H), K::sign(b.Z + H)};
+  auto top0 = [](const auto& f) { return f.a().Z - f.H; };
+  auto top1 = [](const auto& f) { return f.b().Z - f.H; };
+  auto bot0 = [](const auto& f) { return f.a().Z + f.H; };
+  auto bot1 = [](const auto& f) { return f.b().Z + f.H; };
+  const Sign top[2] = {c.sign(top0), c.sign(top1)};
   // Both endpoints strictly beyond the same cap plane.
-  if ((top[0] == Sign::kPos && top[1] == Sign::kPos) ||
-      (bot[0] == Sign::kNeg && bot[1] == Sign::kNeg)) {
+  if (top[0] == Sign::kPos && top[1] == Sign::kPos) {
     *early = true;
     return Tri::kFalse;
   }
-  // Both endpoints strictly beyond one side of the disk's bounding square.
+  const Sign bot[2] = {c.sign(bot0), c.sign(bot1)};
+  if (bot[0] == Sign::kNeg && bot[1] == Sign::kNeg) {
+    *early = true;
+    return Tri::kFalse;
+  }
+  // Both endpoints strictly beyond one side of the disk's bounding square
+  // (from the filter only: the terms below decide what it cannot).
   {
-    const N& r = q.r;
-    auto beyond = [&](const N& u, const N& v) {
-      return K::sign(u - r) == Sign::kPos && K::sign(v - r) == Sign::kPos;
+    auto beyond = [&c](auto u) {
+      return c.cheapSign([&u](const auto& f) { return u(f.a()) - f.r; }) ==
+                 Sign::kPos &&
+             c.cheapSign([&u](const auto& f) { return u(f.b()) - f.r; }) ==
+                 Sign::kPos;
     };
-    if (beyond(a.x, b.x) || beyond(-a.x, -b.x) || beyond(a.y, b.y) ||
-        beyond(-a.y, -b.y)) {
+    if (beyond([](const auto& v) { return v.x; }) ||
+        beyond([](const auto& v) { return -v.x; }) ||
+        beyond([](const auto& v) { return v.y; }) ||
+        beyond([](const auto& v) { return -v.y; })) {
       *early = true;
       return Tri::kFalse;
     }
   }
-  const N r2 = q.r * q.r;
   AnyOf any;
   // (V)
-  for (int i = 0; i < 2; ++i)
-    if (any.add(vertexInside<K>(q.p[i], top[i], bot[i], r2))) return Tri::kTrue;
-  const LocalPoint<K>& e = q.e;
+  if (any.add(vertexInside(c, top[0], bot[0],
+                           [](const auto& f) { return diskGap(f.a(), f.r); })))
+    return Tri::kTrue;
+  if (any.add(vertexInside(c, top[1], bot[1],
+                           [](const auto& f) { return diskGap(f.b(), f.r); })))
+    return Tri::kTrue;
   // (X) a strict crossing of Z = sH at a point of the cap disk.
-  for (int side = 0; side < 2; ++side) {
-    const Sign* sa = side == 0 ? top : bot;
+  for (int side : {1, -1}) {
+    const Sign* sa = side > 0 ? top : bot;
     const Tri crossing =
         kOr(kAnd(isNeg(sa[0]), isPos(sa[1])), kAnd(isPos(sa[0]), isNeg(sa[1])));
     if (crossing == Tri::kFalse) continue;
-    const N a0 = side == 0 ? N(a.Z - H) : N(a.Z + H);
-    if (any.add(kAnd(crossing, capCrossingInDisk<K>(a, e, a0, r2))))
+    if (any.add(kAnd(crossing, isNonNeg(c.sign([side](const auto& f) {
+                       return capCrossingGap(f, side);
+                     })))))
       return Tri::kTrue;
   }
   // (E) the closest approach to the axis, interior to the segment.
-  if (any.add(axisApproach<K>(a, e, H, r2, true))) return Tri::kTrue;
+  const Sign sep = c.sign([](const auto& f) { return axisDistanceGap(f); });
+  if (any.add(axisApproach(c, true, sep))) return Tri::kTrue;
   return any.result();
 }
 
@@ -407,45 +585,66 @@ Tri segmentCylinder(const SegLocal<K>& q, bool* early) {
 // as the segment's terms (e has the degree, depth and gate magnitude of a
 // local coordinate).
 
-template <class K>
-struct LineLocal {
-  LocalPoint<K> a, e;  // a point of the line, its direction (Z doubled)
-  typename K::Num H, r;
-};
-
-template <class K>
-Tri lineCylinder(const LineLocal<K>& q, bool* early) {
-  using N = typename K::Num;
-  const N& H = q.H;
-  const LocalPoint<K>& a = q.a;
-  const LocalPoint<K>& e = q.e;
+template <class C>
+Tri lineCylinder(C& c, bool* early) {
   *early = false;
-  const N r2 = q.r * q.r;
-  const Sign sep = axisDistance<K>(a, e, r2);
+  const Sign sep = c.sign([](const auto& f) { return axisDistanceGap(f); });
   if (sep == Sign::kNeg) {
     *early = true;
     return Tri::kFalse;
   }
+  if constexpr (C::kEagerFilter) {
+    // The terms below in double at once, combined without a branch per
+    // sign (as the sphere's); only an open answer goes on sign by sign.
+    const KBool approach =
+        kbAnd(nonNeg(c.filterBits([](const auto& f) { return axisLen(f); })),
+              kbAnd(nonNeg(c.filterBits(
+                        [](const auto& f) { return axisFootHeight(f, 1); })),
+                    nonNeg(c.filterBits(
+                        [](const auto& f) { return axisFootHeight(f, -1); }))));
+    const Bits ez = c.filterBits([](const auto& f) { return f.e().Z; });
+    const KBool slanted = {bool(ez.pos | ez.neg), false};
+    const KBool cross =
+        kbAnd(slanted, kbOr(nonNeg(c.filterBits([](const auto& f) {
+                              return capCrossingGap(f, 1);
+                            })),
+                            nonNeg(c.filterBits([](const auto& f) {
+                              return capCrossingGap(f, -1);
+                            }))));
+    const KBool inside = kbAnd(
+        kbAnd(
+            nonPos(c.filterBits([](const auto& f) { return f.a().Z - f.H; })),
+            nonNeg(c.filterBits([](const auto& f) { return f.a().Z + f.H; }))),
+        nonNeg(
+            c.filterBits([](const auto& f) { return diskGap(f.a(), f.r); })));
+    const KBool r = kbOr(approach, kbOr(cross, inside));
+    if (r.t | r.f) return toTri(r.t);
+  }
   AnyOf any;
-  // (V)
-  if (any.add(vertexInside<K>(a, K::sign(a.Z - H), K::sign(a.Z + H), r2)))
-    return Tri::kTrue;
+  // (E) the closest approach to the axis, anywhere on the line: first, as
+  // it decides most hits with a few low-degree signs.
+  if (any.add(axisApproach(c, false, sep))) return Tri::kTrue;
   // (X) the crossing with Z = sH, if the line is not parallel to it, in the
   // cap disk.
   Tri slanted = Tri::kUnknown;
   bool have_slanted = false;
-  for (int side = 0; side < 2; ++side) {
-    const N a0 = side == 0 ? N(a.Z - H) : N(a.Z + H);
-    Tri t = capCrossingInDisk<K>(a, e, a0, r2);
+  for (int side : {1, -1}) {
+    const Tri t = isNonNeg(
+        c.sign([side](const auto& f) { return capCrossingGap(f, side); }));
     if (t == Tri::kFalse) continue;
     if (!have_slanted) {
-      slanted = kNot(isZero(K::sign(e.Z)));
+      slanted = kNot(isZero(c.sign([](const auto& f) { return f.e().Z; })));
       have_slanted = true;
     }
     if (any.add(kAnd(t, slanted))) return Tri::kTrue;
   }
-  // (E) the closest approach to the axis, anywhere on the line.
-  if (any.add(axisApproach<K>(a, e, H, r2, false, &sep))) return Tri::kTrue;
+  // (V): needed only for e = 0 (the line is the point a), where (E) and (X)
+  // are false.
+  if (any.add(vertexInside(c,
+                           c.sign([](const auto& f) { return f.a().Z - f.H; }),
+                           c.sign([](const auto& f) { return f.a().Z + f.H; }),
+                           [](const auto& f) { return diskGap(f.a(), f.r); })))
+    return Tri::kTrue;
   return any.result();
 }
 

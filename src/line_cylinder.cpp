@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Line vs cylinder: the exact Boolean (three stages of src/filter.h,
-// predicate lineCylinder<K> in src/cylinder_queries_impl.h) and the
+// Line vs cylinder: the exact Boolean (lineCylinder in
+// src/cylinder_queries_impl.h, decided sign by sign, src/per_sign.h) and the
 // entry/exit interval along the unbounded line (the segment's interval
 // code without the [0, 1] restriction: src/line_cylinder_interval.cpp).
 #include "tricyl/line_cylinder.h"
@@ -14,9 +14,7 @@ namespace {
 
 using detail::LinearInputs;
 
-Decision decide(LinearInputs& in) {
-  return detail::decideLinear<detail::LinePred>(in);
-}
+Decision decide(LinearInputs& in) { return detail::decideLinear<false>(in); }
 
 template <class S>
 Answer clipAs(const Cylinder<S>& cyl, const Pose<S>& pose, const Line<S>& line,
@@ -40,8 +38,7 @@ Answer clipAs(const Cylinder<S>& cyl, const Pose<S>& pose, const Line<S>& line,
 template <class S>
 Decision decideIntersect(const Cylinder<S>& cylinder, const Pose<S>& pose,
                          const Line<S>& line) noexcept {
-  LinearInputs in = detail::widenLinear(cylinder, pose, line.p, line.q);
-  return decide(in);
+  return detail::decideLinearAs<false>(cylinder, pose, line.p, line.q);
 }
 
 template <class S>

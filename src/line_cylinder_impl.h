@@ -53,55 +53,57 @@ inline bool validateLinear(LinearInputs& in) {
          in.cyl.radius >= 0 && in.cyl.lz >= 0;
 }
 
-/// The segment's local data: the images of p and q, and the direction
-/// R^T (q - p) (from the input differences, except in the exact kernel).
+/// The segment query with one kernel K of src/filter.h, for runStages (the
+/// triangle's degenerate hand-off, src/triangle_cylinder.cpp).
 template <class K>
 struct SegmentPred {
   static Tri run(const LinearInputs& in, bool* early) {
-    SegLocal<K> loc;
-    loc.p[0] = localPoint<K>(in.pose, in.p, in.max_unitless);
-    loc.p[1] = localPoint<K>(in.pose, in.q, in.max_unitless);
-    if constexpr (K::kExact) {  // the same value, three subtractions
-      loc.e = {loc.p[1].x - loc.p[0].x, loc.p[1].y - loc.p[0].y,
-               loc.p[1].Z - loc.p[0].Z};
-    } else {
-      Pose<double> at_p = in.pose;
-      at_p.t = in.p;
-      loc.e = localPoint<K>(at_p, in.q, in.max_unitless);
-    }
-    loc.H = K::lift(in.cyl.lz);
-    loc.r = K::lift(in.cyl.radius);
-    return segmentCylinder<K>(loc, early);
+    const SegmentQuery q{in.cyl, in.pose, in.p, in.q, in.max_unitless};
+    KernelCtx<K, SegmentQuery> c(q);
+    return segmentCylinder(c, early);
   }
 };
 
-/// The line's local data: the image of p and the direction R^T (q - p),
-/// the latter from the input differences q - p (toLocal with t = p).
-template <class K>
-struct LinePred {
-  static Tri run(const LinearInputs& in, bool* early) {
-    LineLocal<K> loc;
-    loc.a = localPoint<K>(in.pose, in.p, in.max_unitless);
-    Pose<double> at_p = in.pose;
-    at_p.t = in.p;
-    loc.e = localPoint<K>(at_p, in.q, in.max_unitless);
-    loc.H = K::lift(in.cyl.lz);
-    loc.r = K::lift(in.cyl.radius);
-    return lineCylinder<K>(loc, early);
-  }
-};
+/// The exact Boolean of the segment (kSegment) or the line in double:
+/// validation, then the per-sign stages (src/per_sign.h). No copy of the
+/// inputs (decideIntersect in double calls it directly).
+template <bool kSegment>
+Decision decideLinear(const Cylinder<double>& cyl, const Pose<double>& pose,
+                      const Vec3<double>& p, const Vec3<double>& q) {
+  double max_len = 0, max_unitless = 0;
+  if (!scanFinite({cyl.radius, cyl.lz, p.x, p.y, p.z, q.x, q.y, q.z}, pose,
+                  &max_len, &max_unitless) ||
+      !(cyl.radius >= 0 && cyl.lz >= 0))
+    return {Answer::kInvalidInput, Stage::kInvalid};
+  const LinearQuery<kSegment> lq{cyl, pose, p, q, max_unitless};
+  return runPerSign(lq, rangeGateOk(max_len, max_unitless),
+                    [](auto& c, bool* early) {
+                      if constexpr (kSegment)
+                        return segmentCylinder(c, early);
+                      else
+                        return lineCylinder(c, early);
+                    });
+}
 
-/// The exact Boolean through the three stages: `Pred` is SegmentPred or
-/// LinePred.
-template <template <class> class Pred>
+/// The same on widened inputs (float, and the interval queries, which keep
+/// them for linearInterval); sets in's magnitudes.
+template <bool kSegment>
 Decision decideLinear(LinearInputs& in) {
   if (!validateLinear(in)) return {Answer::kInvalidInput, Stage::kInvalid};
-  return runStages(
-      [&](auto tag, bool* early) {
-        using K = typename decltype(tag)::type;
-        return Pred<K>::run(in, early);
-      },
-      in.max_len, in.max_unitless);
+  return decideLinear<kSegment>(in.cyl, in.pose, in.p, in.q);
+}
+
+/// decideIntersect for a segment or line {p, q} of S (float: validated by
+/// its bits, then widened).
+template <bool kSegment, class S>
+Decision decideLinearAs(const Cylinder<S>& cyl, const Pose<S>& pose,
+                        const Vec3<S>& p, const Vec3<S>& q) {
+  if constexpr (std::is_same_v<S, double>) {
+    return decideLinear<kSegment>(cyl, pose, p, q);
+  } else {
+    LinearInputs in = widenLinear(cyl, pose, p, q);
+    return decideLinear<kSegment>(in);
+  }
 }
 
 /// The entry/exit interval of a query whose exact Boolean said "intersect"

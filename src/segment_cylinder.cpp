@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Segment vs cylinder: the exact Boolean (three stages of src/filter.h,
-// predicate segmentCylinder<K> in src/cylinder_queries_impl.h) and the
+// Segment vs cylinder: the exact Boolean (segmentCylinder in
+// src/cylinder_queries_impl.h, decided sign by sign, src/per_sign.h) and the
 // entry/exit interval. The interval is the line's (a segment is the line
 // through p and q restricted to [0, 1]): src/line_cylinder_interval.cpp,
 // written once for both, with the derivation of the 1.9e-15 guarantee
@@ -17,9 +17,7 @@ namespace {
 
 using detail::LinearInputs;
 
-Decision decide(LinearInputs& in) {
-  return detail::decideLinear<detail::SegmentPred>(in);
-}
+Decision decide(LinearInputs& in) { return detail::decideLinear<true>(in); }
 
 template <class S>
 Answer clipAs(const Cylinder<S>& cyl, const Pose<S>& pose,
@@ -43,8 +41,7 @@ Answer clipAs(const Cylinder<S>& cyl, const Pose<S>& pose,
 template <class S>
 Decision decideIntersect(const Cylinder<S>& cylinder, const Pose<S>& pose,
                          const Segment<S>& segment) noexcept {
-  LinearInputs in = detail::widenLinear(cylinder, pose, segment.p, segment.q);
-  return decide(in);
+  return detail::decideLinearAs<true>(cylinder, pose, segment.p, segment.q);
 }
 
 template <class S>

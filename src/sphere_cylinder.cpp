@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Sphere vs cylinder: validate, then the three stages of src/filter.h.
+// Sphere vs cylinder: validate, then sphereCylinder
+// (src/cylinder_queries_impl.h), decided sign by sign (src/per_sign.h).
 #include "tricyl/sphere_cylinder.h"
 
 #include <type_traits>
@@ -17,25 +18,24 @@ Decision decide(const Cylinder<double>& cyl, const Pose<double>& pose,
                           &max_len, &max_unitless) ||
       !(cyl.radius >= 0 && cyl.lz >= 0 && sph.radius >= 0))
     return {Answer::kInvalidInput, Stage::kInvalid};
-  return detail::runStages(
-      [&](auto tag, bool* early) {
-        using K = typename decltype(tag)::type;
-        const auto q = detail::localPoint<K>(pose, c, max_unitless);
-        return detail::sphereCylinder<K>(q, K::lift(cyl.lz),
-                                         K::lift(cyl.radius),
-                                         K::lift(sph.radius), early);
-      },
-      max_len, max_unitless);
+  const detail::SphereQuery q{cyl, pose, sph, max_unitless};
+  return detail::runPerSign(q, detail::rangeGateOk(max_len, max_unitless),
+                            [](auto& ctx, bool* early) {
+                              return detail::sphereCylinder(ctx, early);
+                            });
 }
 
 template <class S>
 Decision decideAs(const Cylinder<S>& cyl, const Pose<S>& pose,
                   const Sphere<S>& sph) {
-  if constexpr (std::is_same_v<S, float>)
+  if constexpr (std::is_same_v<S, double>) {
+    return decide(cyl, pose, sph);  // no copy
+  } else {
     if (!detail::floatBitsFinite(cyl, pose, sph))  // before widening (issue 20)
       return {Answer::kInvalidInput, Stage::kInvalid};
-  return decide({double(cyl.radius), double(cyl.lz)}, detail::widen(pose),
-                {detail::widen(sph.center), double(sph.radius)});
+    return decide({double(cyl.radius), double(cyl.lz)}, detail::widen(pose),
+                  {detail::widen(sph.center), double(sph.radius)});
+  }
 }
 
 }  // namespace

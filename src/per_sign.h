@@ -1,0 +1,473 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Escalation per sign for the cylinder queries (sphere, segment, line):
+// the policy of the stage driver for queries whose predicates are short
+// closed-form polynomials in the local coordinates of a few points.
+//
+// A query of this kind is written once against a context C with
+//   C::sign(pred)       the certified sign of pred(frame), never kUnknown
+//                       from PerSign below;
+//   C::cheapSign(pred)  the same, but only from the double filter (may be
+//                       kUnknown): for early-outs, which the later signs
+//                       decide anyway;
+//   C::kEagerFilter, C::filterBits(pred)  (PerSign only) the filter's
+//                       verdict without a branch, for a query that first
+//                       tries its whole formula in double at once;
+// where pred is a generic lambda from a frame (the query's local data) to
+// the value of one polynomial. The query describes its frame (Q below):
+//   template <class A> struct/class Frame, constructed from the query, in
+//   arithmetic A (A::Num with +, -, * and absolute(); A::lift, A::local).
+//
+// PerSign (inside the range gate) evaluates pred in double on a frame
+// computed once (FilterKernel's Fd: value and magnitude, certified by the
+// a-priori bound of src/filter.h with the constant of the queries' depth,
+// shallowSign); only a sign that bound leaves open is re-decided, by
+// itself, in the next arithmetic, from a frame of that arithmetic computed
+// when first needed (for the segment and the line, point by point), while
+// the query goes on in double with the certified sign (CGAL's
+// Filtered_predicate, Shewchuk's adaptive predicates: the expensive
+// evaluation only for the expression that failed). No tape, no second run
+// of the query. The arithmetics, in order:
+//   1. the same double values with a running error bound
+//      (RunningDoubleKernel, src/filter.h), which follows the values where
+//      the filter's bound follows the magnitudes; a double value that is
+//      exactly 0 (most often a true tie) instead re-done with every
+//      operation checked for exactness (Xd below);
+//   2. double word (about 106 bits, src/eft.h) with the running bound of
+//      the adaptive kernel (src/adaptive.cpp), with the CPU's FMA chosen at
+//      run time on x86-64 builds without it (the same bits either way);
+//   3. exact stack expansions (src/expansion.h);
+//   4. GMP dyadics (ExactKernel), where the expansions give up.
+// Outside the range gate the query runs on GMP dyadics alone
+// (KernelCtx<ExactKernel>), as in runStages (src/stages.h). KernelCtx<K>
+// runs the same query code with one kernel K of src/filter.h, for
+// runStages itself (the triangle's degenerate hand-off calls the segment
+// query that way). tests/per_sign_test.cpp checks every stage's signs
+// against GMP.
+#pragma once
+
+#include <cmath>
+#include <cstdlib>
+#include <optional>
+#include <type_traits>
+
+#include "adaptive.h"
+#include "eft.h"
+#include "expansion.h"
+#include "filter.h"
+#include "stages.h"
+#include "triangle_cylinder_impl.h"
+#include "tricyl/types.h"
+
+// The escalation paths are out of line (one copy of the frames' code for
+// every sign of a query) but not "cold": on the near-touching families a
+// third of the queries take them.
+#if defined(__GNUC__) || defined(__clang__)
+#define TRICYL_PER_SIGN_NOINLINE __attribute__((noinline))
+#else
+#define TRICYL_PER_SIGN_NOINLINE
+#endif
+
+namespace tricyl::detail {
+
+/// A local point (x, y, Z), Z = 2 z (the frame of the triangle kernel).
+template <class N>
+struct Pt {
+  N x, y, Z;
+};
+
+// ---------------------------------------------------------------------------
+// Double-word values with a running error bound (the rules of the adaptive
+// kernel's double-word stage, derived in src/adaptive.cpp): each value
+// carries a double word v and a bound e >= |v - E| on its distance to the
+// exact value E, so that a product of two small values (the square of a
+// nearly cancelling term: c^2 in r^2 L - c^2 for a grazing line) keeps a
+// bound relative to its own size, which no a-priori bound does.
+//
+// TwoProduct and the double-word product with or without a fused
+// multiply-add (src/eft.h, twoProdT and dwMulT): error-free either way, so
+// both give the same double words, bit for bit; the choice changes the
+// speed, never a value. On x86-64 built without FMA
+// the FMA copy of the double-word stage is chosen at run time, as the
+// adaptive kernel's (the same condition as its TRICYL_DW_FMA_DISPATCH,
+// src/adaptive.cpp).
+#if (defined(__x86_64__) || defined(__i386__)) && \
+    (defined(__GNUC__) || defined(__clang__)) && !TRICYL_HAVE_FMA
+#define TRICYL_PER_SIGN_FMA_DISPATCH 1
+#else
+#define TRICYL_PER_SIGN_FMA_DISPATCH 0
+#endif
+#if TRICYL_PER_SIGN_FMA_DISPATCH
+#define TRICYL_TARGET_FMA __attribute__((target("fma"), flatten))
+/// Once per process; never with TRICYL_SCALAR_BASELINE=1 in the environment
+/// (tests/answers_digest_check.sh runs both paths).
+inline bool perSignHasFma() {
+  static const bool k = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("fma") != 0 &&
+           std::getenv("TRICYL_SCALAR_BASELINE") == nullptr;
+  }();
+  return k;
+}
+#endif
+
+template <bool kFma>
+struct DwEt {
+  DW v;
+  double e;
+};
+template <bool kFma>
+inline DwEt<kFma> operator+(const DwEt<kFma>& a, const DwEt<kFma>& b) {
+  return {dwAdd(a.v, b.v),
+          a.e + b.e + kDwAddRel * (std::fabs(a.v.hi) + std::fabs(b.v.hi))};
+}
+template <bool kFma>
+inline DwEt<kFma> operator-(const DwEt<kFma>& a) {
+  return {dwNeg(a.v), a.e};
+}
+template <bool kFma>
+inline DwEt<kFma> operator-(const DwEt<kFma>& a, const DwEt<kFma>& b) {
+  return a + (-b);
+}
+template <bool kFma>
+inline DwEt<kFma> operator*(const DwEt<kFma>& a, const DwEt<kFma>& b) {
+  const DW v = dwMulT<kFma>(a.v, b.v);
+  const double ma = std::fabs(a.v.hi) + std::fabs(a.v.lo);
+  const double mb = std::fabs(b.v.hi) + std::fabs(b.v.lo);
+  return {v,
+          ma * b.e + mb * a.e + a.e * b.e + kDwRel * std::fabs(v.hi) + kDwTiny};
+}
+template <bool kFma>
+inline DwEt<kFma> absolute(const DwEt<kFma>& a) {
+  return a.v.hi < 0 ? -a : a;
+}
+using DwE = DwEt<TRICYL_HAVE_FMA != 0>;
+
+/// The certified sign of a double-word value (src/adaptive.cpp: the bound
+/// inflated for its own rounding, and the absolute slack of the range
+/// gate), or kUnknown.
+template <bool kFma>
+inline Sign dwSign(const DwEt<kFma>& d) {
+  const double b = (d.e + std::fabs(d.v.lo)) * (1 + 0x1p-40) + 0x1p-600;
+  if (d.v.hi > b) return Sign::kPos;
+  if (d.v.hi < -b) return Sign::kNeg;
+  return Sign::kUnknown;
+}
+
+template <bool kFma>
+struct DwArith {
+  using Num = DwEt<kFma>;
+  static constexpr bool kExact = false;
+  static Num lift(double x) { return {{x, 0.0}, 0.0}; }
+  /// y = R^T (p - t), Z doubled, each within e = 2^-100 M + kDwTiny of the
+  /// exact value, M = sum_k |R_kj| |D_k|: (D_k, l_k) = TwoSum(p_k, -t_k),
+  /// (P_k, e_k) = TwoProd(R_kj, D_k), q_k = fl(R_kj l_k), the P_k summed
+  /// by two TwoSums and the low-order terms in double; an exact 0 (every
+  /// term with a zero factor) has e = 0. The same sequence and bound as
+  /// the adaptive kernel's (src/adaptive.cpp, Tape::dwCoord, derives it).
+  static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
+                       double /*rho*/) {
+    const double pp[3] = {p.x, p.y, p.z};
+    const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
+    double D[3], l[3];
+    for (int k = 0; k < 3; ++k) twoSum(pp[k], -tt[k], D[k], l[k]);
+    Num out[3];
+    for (int j = 0; j < 3; ++j) {
+      double P[3], e[3], q[3], m = 0;
+      bool zero = true;
+      for (int k = 0; k < 3; ++k) {
+        const double R = pose.R[k][j];
+        twoProdT<kFma>(R, D[k], P[k], e[k]);
+        q[k] = R * l[k];
+        m += std::fabs(R) * std::fabs(D[k]);
+        zero = zero && (R == 0 || D[k] == 0);
+      }
+      double s1, f1, s, f2;
+      twoSum(P[0], P[1], s1, f1);
+      twoSum(s1, P[2], s, f2);
+      const double low =
+          ((((f1 + f2) + (e[0] + e[1])) + e[2]) + (q[0] + q[1])) + q[2];
+      twoSum(s, low, out[j].v.hi, out[j].v.lo);
+      out[j].e = zero ? 0.0 : 0x1p-100 * m + kDwTiny;
+    }
+    out[2] = {{out[2].v.hi * 2, out[2].v.lo * 2}, out[2].e * 2};  // exact
+    return {out[0], out[1], out[2]};
+  }
+};
+
+// ---------------------------------------------------------------------------
+// Exact in double? For a sign whose double value is exactly 0 (almost
+// always a true tie: exact data in an exact pose), the double evaluation
+// is re-done with every operation checked: a sum by its TwoSum error being
+// 0, a product by its TwoProduct error being 0 with the product at least
+// kProdExactMin (so that the error term is itself exact, src/eft.h), or by
+// an exact 0 factor. If every operation was exact, the double value is the
+// exact value (the adaptive kernel's exactInDouble, src/adaptive.cpp, does
+// the same on its tape).
+struct Xd {
+  double v;
+  bool exact;
+};
+inline Xd operator+(const Xd& a, const Xd& b) {
+  double s, e;
+  twoSum(a.v, b.v, s, e);
+  return {s, a.exact && b.exact && e == 0 && std::isfinite(s)};
+}
+inline Xd operator-(const Xd& a) { return {-a.v, a.exact}; }
+inline Xd operator-(const Xd& a, const Xd& b) { return a + (-b); }
+inline Xd operator*(const Xd& a, const Xd& b) {
+  if ((a.exact && a.v == 0) || (b.exact && b.v == 0)) return {0.0, true};
+  double p, e;
+  twoProd(a.v, b.v, p, e);
+  return {p, a.exact && b.exact && e == 0 && std::fabs(p) >= kProdExactMin &&
+                 std::isfinite(p)};
+}
+
+struct ExactDoubleArith {
+  using Num = Xd;
+  static constexpr bool kExact = false;
+  static Num lift(double x) { return {x, true}; }
+  static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
+                       double /*rho*/) {
+    const Xd d[3] = {Xd{p.x, true} - Xd{pose.t.x, true},
+                     Xd{p.y, true} - Xd{pose.t.y, true},
+                     Xd{p.z, true} - Xd{pose.t.z, true}};
+    Xd out[3];
+    for (int j = 0; j < 3; ++j)
+      out[j] = (Xd{pose.R[0][j], true} * d[0] + Xd{pose.R[1][j], true} * d[1]) +
+               Xd{pose.R[2][j], true} * d[2];
+    return {out[0], out[1], out[2] + out[2]};
+  }
+};
+
+// ---------------------------------------------------------------------------
+// Stage 2: exact stack expansions; stage 3: GMP.
+
+struct ExpansionArith {
+  using Num = Expansion;
+  static constexpr bool kExact = true;
+  static Num lift(double x) { return Expansion(x); }
+  static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
+                       double /*rho*/) {
+    const double pp[3] = {p.x, p.y, p.z};
+    const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
+    Expansion d[3];
+    for (int k = 0; k < 3; ++k) d[k] = Expansion::difference(pp[k], tt[k]);
+    Expansion out[3];
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+        out[j] = out[j] + Expansion(pose.R[k][j]) * d[k];
+    return {out[0], out[1], out[2] + out[2]};
+  }
+};
+
+/// |x| in each arithmetic: no rounding, the same error bound and magnitude
+/// (||a| - |b|| <= |a - b|).
+inline Fd absolute(const Fd& a) { return {std::fabs(a.v), a.m}; }
+inline Rd absolute(const Rd& a) { return {std::fabs(a.v), a.e}; }
+inline Xd absolute(const Xd& a) { return {std::fabs(a.v), a.exact}; }
+inline Expansion absolute(const Expansion& a) { return a.sign() < 0 ? -a : a; }
+inline Dyadic absolute(const Dyadic& a) { return sgn(a.m) < 0 ? -a : a; }
+
+/// The arithmetic of a kernel K of src/filter.h (its own toLocal).
+template <class K>
+struct KernelArith {
+  using Num = typename K::Num;
+  static constexpr bool kExact = K::kExact;
+  static Num lift(double x) { return K::lift(x); }
+  static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
+                       double rho) {
+    Pt<Num> q;
+    toLocal<K>(pose, p, rho, q.x, q.y, q.Z);
+    return q;
+  }
+};
+
+/// A sign as two certain facts, for Kleene logic without branches: pos
+/// (certainly > 0) and neg (certainly < 0); neither: open.
+struct Bits {
+  bool pos, neg;
+};
+/// Kleene's and/or on {certainly true, certainly false} pairs.
+struct KBool {
+  bool t, f;
+};
+inline KBool kbAnd(KBool a, KBool b) {
+  return {bool(a.t & b.t), bool(a.f | b.f)};
+}
+inline KBool kbOr(KBool a, KBool b) {
+  return {bool(a.t | b.t), bool(a.f & b.f)};
+}
+inline KBool nonNeg(Bits b) { return {b.pos, b.neg}; }  // >= 0 (never 0)
+inline KBool nonPos(Bits b) { return {b.neg, b.pos}; }  // <= 0
+
+/// One kernel K for every sign (runStages' stages; outside the range gate,
+/// K = ExactKernel).
+template <class K, class Q>
+class KernelCtx {
+ public:
+  explicit KernelCtx(const Q& q) : f_(q) {}
+  template <class P>
+  Sign sign(const P& pred) const {
+    return K::sign(pred(f_));
+  }
+  template <class P>
+  Sign cheapSign(const P& pred) const {
+    return K::sign(pred(f_));
+  }
+  static constexpr bool kEagerFilter = false;
+
+ private:
+  typename Q::template Frame<KernelArith<K>> f_;
+};
+
+/// FilterKernel::sign (src/filter.h) for the shallow predicates of the
+/// cylinder queries. Its bound |v - E| <= D u / ((1 - D u)(1 - u)^D) m holds
+/// for any depth D (the longest chain of operations from an input); the
+/// filter's 2^-47 covers D <= 56, and every predicate of the sphere, the
+/// segment and the line has D <= 12 (counted in src/cylinder_queries_impl.h),
+/// for which the factor is below 13 u < 2^-49. Four times tighter, at no
+/// cost: the same Fd values, another constant. The absolute slack is the
+/// filter's (underflow under the range gate).
+inline Sign shallowSign(const Fd& a) {
+  const double bound = a.m * 0x1p-49 + FilterKernel::kAbs;
+  if (a.v > bound) return Sign::kPos;
+  if (a.v < -bound) return Sign::kNeg;
+  return Sign::kUnknown;
+}
+
+/// Inside the range gate: double, then each open sign by itself in
+/// double-word, expansions, GMP.
+template <class Q>
+class PerSign {
+ public:
+  explicit PerSign(const Q& q) : q_(q), fd_(q) {}
+  PerSign(const PerSign&) = delete;
+  PerSign& operator=(const PerSign&) = delete;
+
+  template <class P>
+  Sign sign(const P& pred) {
+    const Fd v = pred(fd_);
+    const Sign s = shallowSign(v);
+    if (s != Sign::kUnknown) return s;
+    return escalate(pred, v);
+  }
+  template <class P>
+  Sign cheapSign(const P& pred) const {
+    return shallowSign(pred(fd_));
+  }
+  /// The filter's verdict on pred without a branch: {certainly > 0,
+  /// certainly < 0} (shallowSign's test; both false: open).
+  static constexpr bool kEagerFilter = true;
+  template <class P>
+  Bits filterBits(const P& pred) const {
+    const Fd v = pred(fd_);
+    const double bound = v.m * 0x1p-49 + FilterKernel::kAbs;
+    return {v.v > bound, v.v < -bound};
+  }
+  /// The strongest arithmetic any sign needed: 0 double, 1 double-word,
+  /// 2 expansions, 3 GMP.
+  int level() const { return level_; }
+
+ private:
+  template <class A>
+  using Frame = typename Q::template Frame<A>;
+
+  template <class P>
+  TRICYL_PER_SIGN_NOINLINE Sign escalate(const P& pred, const Fd& v) {
+    Sign s = Sign::kUnknown;
+    if (v.v != 0) {
+      // The same double values with a running bound (src/filter.h,
+      // RunningDoubleKernel): it follows the values where the filter's
+      // bound follows the magnitudes (a small value after cancellation).
+      // Still the double stage.
+      if (!rd_) build(rd_);
+      s = RunningDoubleKernel::sign(pred(*rd_));
+      if (s != Sign::kUnknown) return s;
+    } else {
+      // A double value that is exactly 0 is most often a true tie (exact
+      // data in an exact pose), which no bound certifies: was the double
+      // evaluation exact?
+      if (!xd_) build(xd_);
+      const Xd x = pred(*xd_);
+      if (x.exact) {
+        if (level_ < 2) level_ = 2;
+        return x.v > 0 ? Sign::kPos : (x.v < 0 ? Sign::kNeg : Sign::kZero);
+      }
+    }
+    if (level_ < 1) level_ = 1;
+#if TRICYL_PER_SIGN_FMA_DISPATCH
+    s = perSignHasFma() ? dwSignFma(pred) : dwSignWith<false>(pred, dw_);
+#else
+    s = dwSignWith<TRICYL_HAVE_FMA != 0>(pred, dw_);
+#endif
+    if (s != Sign::kUnknown) return s;
+    if (!ex_) build(ex_);
+    const Expansion x = pred(*ex_);
+    if (x.ok()) {
+      if (level_ < 2) level_ = 2;
+      s = Sign(x.sign());
+      return s;
+    }
+    if (!gmp_) build(gmp_);
+    level_ = 3;
+    return ExactKernel::sign(pred(*gmp_));
+  }
+
+  /// The double-word stage (with FMA or not), on a frame built when first
+  /// needed.
+  template <bool kFma, class P>
+  Sign dwSignWith(const P& pred, std::optional<Frame<DwArith<kFma>>>& frame) {
+    if (!frame) build(frame);
+    return dwSign(pred(*frame));
+  }
+#if TRICYL_PER_SIGN_FMA_DISPATCH
+  /// The same, compiled for a CPU with FMA (everything it calls inlined,
+  /// so that __builtin_fma is one instruction).
+  template <class P>
+  TRICYL_TARGET_FMA Sign dwSignFma(const P& pred) {
+    if (!dwf_) buildFma();
+    return dwSign(pred(*dwf_));
+  }
+  TRICYL_TARGET_FMA TRICYL_PER_SIGN_NOINLINE void buildFma() {
+    dwf_.emplace(q_);
+  }
+  std::optional<Frame<DwArith<true>>> dwf_;
+#endif
+
+  // The frames of the later stages, built when a sign first needs them;
+  // one copy of the code for all the query's signs.
+  template <class F>
+  TRICYL_PER_SIGN_NOINLINE void build(std::optional<F>& frame) {
+    frame.emplace(q_);
+  }
+
+  const Q& q_;
+  Frame<KernelArith<FilterKernel>> fd_;
+  int level_ = 0;
+  std::optional<Frame<KernelArith<RunningDoubleKernel>>> rd_;
+  std::optional<Frame<DwArith<TRICYL_HAVE_FMA != 0>>> dw_;
+  std::optional<Frame<ExactDoubleArith>> xd_;
+  std::optional<Frame<ExpansionArith>> ex_;
+  std::optional<Frame<KernelArith<ExactKernel>>> gmp_;
+};
+
+/// The driver's per-sign policy (runStages' counterpart, src/stages.h):
+/// inside the range gate one run of `query(ctx, &early)` with PerSign,
+/// which always decides; outside it one run on GMP dyadics.
+template <class Q, class Query>
+Decision runPerSign(const Q& q, bool gate, const Query& query) {
+  bool early = false;
+  if (!gate) {
+    KernelCtx<ExactKernel, Q> ctx(q);
+    return {toAnswer(query(ctx, &early)), Stage::kExactGmp};
+  }
+  PerSign<Q> ctx(q);
+  const Tri t = query(ctx, &early);
+  // Never kUnknown: every sign of PerSign is decided.
+  const int level = ctx.level();
+  if (level == 0)
+    return {toAnswer(t), early ? Stage::kEarlyOut : Stage::kFastPath};
+  return {toAnswer(t), stageOfLevel(level)};
+}
+
+}  // namespace tricyl::detail
