@@ -6,14 +6,6 @@
 #include <cmath>
 #include <cstdlib>
 
-// On x86-64 builds that do not assume FMA (the default: SSE2), the
-// double-word stage picks an FMA-compiled copy at run time (Tape::dw).
-#if (defined(__x86_64__) || defined(__i386__)) && \
-    (defined(__GNUC__) || defined(__clang__)) && !TRICYL_HAVE_FMA
-#define TRICYL_DW_FMA_DISPATCH 1
-#else
-#define TRICYL_DW_FMA_DISPATCH 0
-#endif
 #if defined(__GNUC__) || defined(__clang__)
 #define TRICYL_EFT_INLINE inline __attribute__((always_inline))
 #else
@@ -180,23 +172,10 @@ TRICYL_EFT_INLINE void Tape::dwNode(std::uint32_t id) {
 
 void Tape::dwPlain(std::uint32_t id) { dwNode<TRICYL_HAVE_FMA != 0>(id); }
 
-#if TRICYL_DW_FMA_DISPATCH
+#if TRICYL_FMA_DISPATCH
 // The same evaluation compiled for FMA (dwNode, dwCoord, runMul and the
-// double-word operations inline into it), for CPUs that have it; chosen
-// once per process, and never with TRICYL_SCALAR_BASELINE=1 in the
-// environment (tests/answers_digest_check.sh compares the two paths'
-// digests, which include the bits of interval ends computed from these
-// values). Before this flag is initialised (a static constructor of
-// another translation unit calling in) it reads false: the same bits.
-namespace {
-bool cpuHasFma() {
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("fma") != 0 &&
-         std::getenv("TRICYL_SCALAR_BASELINE") == nullptr;
-}
-const bool kHasFma = cpuHasFma();
-}  // namespace
-
+// double-word operations inline into it), for CPUs that have it
+// (fmaAtRunTime, src/eft.h): the same bits.
 __attribute__((target("fma"))) void Tape::dwFma(std::uint32_t id) {
   dwNode<true>(id);
 }
@@ -206,8 +185,8 @@ void Tape::dwFma(std::uint32_t id) { dwPlain(id); }
 
 DwRun Tape::dw(std::uint32_t id) {
   if ((memo_[id >> 6] >> (id & 63) & 1) == 0) {
-#if TRICYL_DW_FMA_DISPATCH
-    if (kHasFma)
+#if TRICYL_FMA_DISPATCH
+    if (fmaAtRunTime())
       dwFma(id);
     else
 #endif
@@ -407,6 +386,22 @@ Dyadic Tape::dyadic(std::uint32_t id) const {
 
 // ---------------------------------------------------------------------------
 
+std::uint32_t Tape::addPoint(const Pose<double>& pose, const Vec3<double>& p) {
+  if (points_ == kMaxPoints) {
+    overflow_ = true;
+    return 0;
+  }
+  Point& P = pts_[points_];
+  P.p[0] = p.x;
+  P.p[1] = p.y;
+  P.p[2] = p.z;
+  P.t[0] = pose.t.x;
+  P.t[1] = pose.t.y;
+  P.t[2] = pose.t.z;
+  P.R = pose.R;
+  return std::uint32_t(points_++);
+}
+
 void Tape::toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x,
                    An& y, An& Z) {
   // The double values of the generic toLocal: d_k = fl(p_k - t_k), then
@@ -415,20 +410,7 @@ void Tape::toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x,
   // S = sum_k |R_kj| |d_k|.
   const double d0 = p.x - pose.t.x, d1 = p.y - pose.t.y, d2 = p.z - pose.t.z;
   const double a0 = std::fabs(d0), a1 = std::fabs(d1), a2 = std::fabs(d2);
-  std::uint32_t point = 0;
-  if (points_ < kMaxPoints) {
-    Point& P = pts_[points_];
-    point = std::uint32_t(points_++);
-    P.p[0] = p.x;
-    P.p[1] = p.y;
-    P.p[2] = p.z;
-    P.t[0] = pose.t.x;
-    P.t[1] = pose.t.y;
-    P.t[2] = pose.t.z;
-    P.R = pose.R;
-  } else {
-    overflow_ = true;
-  }
+  const std::uint32_t point = addPoint(pose, p);
   auto coord = [&](int j) {
     const double r0 = pose.R[0][j], r1 = pose.R[1][j], r2 = pose.R[2][j];
     const double s1 = r0 * d0 + r1 * d1;
@@ -463,20 +445,7 @@ void Tape::toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x,
 void Tape::coordinates(const Pose<double>& pose, const Vec3<double>& p,
                        double x, double y, double Z, double M, An& ax, An& ay,
                        An& aZ) {
-  std::uint32_t point = 0;
-  if (points_ < kMaxPoints) {
-    Point& P = pts_[points_];
-    point = std::uint32_t(points_++);
-    P.p[0] = p.x;
-    P.p[1] = p.y;
-    P.p[2] = p.z;
-    P.t[0] = pose.t.x;
-    P.t[1] = pose.t.y;
-    P.t[2] = pose.t.z;
-    P.R = pose.R;
-  } else {
-    overflow_ = true;
-  }
+  const std::uint32_t point = addPoint(pose, p);
   constexpr double c = 0x1p-53 + 0x1p-53 * 0x1p-40;
   const double M3 = 3 * M;
   auto leaf = [&](int j, double v) {

@@ -172,6 +172,8 @@ class Tape {
   // Double-word values: dw dispatches once per escalation to dwFma (x86-64
   // CPUs with FMA, in builds that do not assume it) or dwPlain; both run
   // dwNode, whose TwoProducts are exact either way: the same bits.
+  /// Records a point for coordinate leaves (its index; overflow flagged).
+  std::uint32_t addPoint(const Pose<double>& pose, const Vec3<double>& p);
   DwRun dw(std::uint32_t id);
   void dwPlain(std::uint32_t id);
   void dwFma(std::uint32_t id);

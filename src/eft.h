@@ -21,6 +21,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdlib>
 
 #if defined(__FP_FAST_FMA) || defined(FP_FAST_FMA) || defined(__FMA__) || \
     defined(__aarch64__)
@@ -29,7 +30,32 @@
 #define TRICYL_HAVE_FMA 0
 #endif
 
+// On x86-64 builds that do not assume FMA (the default: SSE2), the
+// double-word stages pick, once per process, copies compiled for FMA when
+// the CPU has one (src/adaptive.cpp, src/per_sign.h): TRICYL_FMA_DISPATCH.
+#if (defined(__x86_64__) || defined(__i386__)) && \
+    (defined(__GNUC__) || defined(__clang__)) && !TRICYL_HAVE_FMA
+#define TRICYL_FMA_DISPATCH 1
+#else
+#define TRICYL_FMA_DISPATCH 0
+#endif
+
 namespace tricyl::detail {
+
+#if TRICYL_FMA_DISPATCH
+/// Whether to take the FMA copies: the CPU has FMA, and
+/// TRICYL_SCALAR_BASELINE=1 is not in the environment (it keeps the plain
+/// path; tests/answers_digest_check.sh compares the two paths' digests).
+/// TwoProduct is exact either way: the choice changes no bit.
+inline bool fmaAtRunTime() {
+  static const bool k = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("fma") != 0 &&
+           std::getenv("TRICYL_SCALAR_BASELINE") == nullptr;
+  }();
+  return k;
+}
+#endif
 
 /// s = fl(a + b) and e = (a + b) - s EXACTLY, for any finite a, b whose sum
 /// does not overflow, with no condition on their order (Knuth). Gradual

@@ -88,26 +88,9 @@ struct Pt {
 // both give the same double words, bit for bit; the choice changes the
 // speed, never a value. On x86-64 built without FMA
 // the FMA copy of the double-word stage is chosen at run time, as the
-// adaptive kernel's (the same condition as its TRICYL_DW_FMA_DISPATCH,
-// src/adaptive.cpp).
-#if (defined(__x86_64__) || defined(__i386__)) && \
-    (defined(__GNUC__) || defined(__clang__)) && !TRICYL_HAVE_FMA
-#define TRICYL_PER_SIGN_FMA_DISPATCH 1
-#else
-#define TRICYL_PER_SIGN_FMA_DISPATCH 0
-#endif
-#if TRICYL_PER_SIGN_FMA_DISPATCH
+// adaptive kernel's (TRICYL_FMA_DISPATCH and fmaAtRunTime, src/eft.h).
+#if TRICYL_FMA_DISPATCH
 #define TRICYL_TARGET_FMA __attribute__((target("fma"), flatten))
-/// Once per process; never with TRICYL_SCALAR_BASELINE=1 in the environment
-/// (tests/answers_digest_check.sh runs both paths).
-inline bool perSignHasFma() {
-  static const bool k = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("fma") != 0 &&
-           std::getenv("TRICYL_SCALAR_BASELINE") == nullptr;
-  }();
-  return k;
-}
 #endif
 
 template <bool kFma>
@@ -395,8 +378,8 @@ class PerSign {
       }
     }
     if (level_ < 1) level_ = 1;
-#if TRICYL_PER_SIGN_FMA_DISPATCH
-    s = perSignHasFma() ? dwSignFma(pred) : dwSignWith<false>(pred, dw_);
+#if TRICYL_FMA_DISPATCH
+    s = fmaAtRunTime() ? dwSignFma(pred) : dwSignWith<false>(pred, dw_);
 #else
     s = dwSignWith<TRICYL_HAVE_FMA != 0>(pred, dw_);
 #endif
@@ -420,7 +403,7 @@ class PerSign {
     if (!frame) build(frame);
     return dwSign(pred(*frame));
   }
-#if TRICYL_PER_SIGN_FMA_DISPATCH
+#if TRICYL_FMA_DISPATCH
   /// The same, compiled for a CPU with FMA (everything it calls inlined,
   /// so that __builtin_fma is one instruction).
   template <class P>

@@ -92,8 +92,8 @@ void checkPredicate(const Q& q, const P& pred, long* certified) {
     EXPECT_EQ(signOf(sd), truth);
     ++certified[2];
   }
-#if TRICYL_PER_SIGN_FMA_DISPATCH
-  if (detail::perSignHasFma()) {
+#if TRICYL_FMA_DISPATCH
+  if (detail::fmaAtRunTime()) {
     const typename Q::template Frame<DwArith<true>> fm(q);
     const DwEt<true> m = pred(fm);
     EXPECT_EQ(std::memcmp(&m, &d, sizeof m), 0)
