@@ -372,12 +372,19 @@ Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
   }
 
   double U = std::numeric_limits<double>::infinity(), L = 0;
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < 4; ++k)
+    if (pass.cand[k].valid && pass.cand[k].f < U) U = pass.cand[k].f;
+  // The separating-plane bound of the best candidate first (usually the
+  // tight one); the others only if it leaves a gap.
+  auto bound = [&](int k) {
     const Candidate<double>& c = pass.cand[k];
     if (k == 3 ? !pass.face_cut : c.valid)
       L = maxd(L, detail::dist::certify(P, c.w));
-    if (c.valid && c.f < U) U = c.f;
-  }
+  };
+  if (pass.best >= 0) bound(pass.best);
+  if (!(U - L <= 2 * slack_d))
+    for (int k = 0; k < 4; ++k)
+      if (k != pass.best) bound(k);
   // (L > U beyond the rounding allowance cannot happen for consistent
   // bounds; such a pass is not accepted.)
   const double err_d = maxd(U - L, 0.0) + slack_d + kU * U;
