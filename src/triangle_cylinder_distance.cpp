@@ -494,13 +494,21 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
     for (double x : row) mr = maxd(mr, absd(x));
   Cylinder<double> none{0, 0};
   const double mw = maxLength(none, pose, tri);  // world lengths
+  const double mc = maxd(cyl.radius, cyl.lz);
+  // The usual case, decided by comparisons alone: R within 2^+-30, the
+  // lengths within 2^+-60 (then eM and ea below are inside the window).
+  auto moderate = [](double x, double lim) {
+    return x == 0 || (x <= lim && x >= 1 / lim);
+  };
+  if (moderate(mr, 0x1p30) && moderate(mw, 0x1p60) && moderate(mc, 0x1p60))
+    return solve<DDx>(cyl, pose, tri, boolean, 0, out);
   int ea = 0, ew = 0, ec = 0;
-  if (mr > 0) (void)std::frexp(4 * (mr * 0.25), &ea);
+  if (mr > 0) (void)std::frexp(mr, &ea);
   if (mw > 0) (void)std::frexp(mw, &ew);
-  (void)std::frexp(maxd(cyl.radius, cyl.lz), &ec);
+  (void)std::frexp(mc, &ec);
   int eM = mr > 0 && mw > 0 ? ea + 2 + ew : -2000;
   if (!(mr > 0)) ea = 0;
-  if (maxd(cyl.radius, cyl.lz) > 0 && ec > eM) eM = ec;
+  if (mc > 0 && ec > eM) eM = ec;
   if (eM == -2000) eM = 0;  // everything 0: nothing to scale
   if (eM >= -80 && eM <= 80 && ea >= -40 && ea <= 40)
     return solve<DDx>(cyl, pose, tri, boolean, 0, out);
