@@ -652,6 +652,20 @@ DistanceResult<S> distance(const Cylinder<S>& cylinder,
   return distance(cylinder, identityPose<S>(), triangle);
 }
 
+namespace diagnostic {
+template <class S>
+Answer tryDistancePortable(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                           const Triangle<S>& triangle,
+                           DistanceResult<S>* out) noexcept {
+  static_assert(std::is_same_v<S, double>);
+  return distanceDoubleGeneric(cylinder, pose, triangle, out);
+}
+template Answer tryDistancePortable(const Cylinder<double>&,
+                                    const Pose<double>&,
+                                    const Triangle<double>&,
+                                    DistanceResult<double>*) noexcept;
+}  // namespace diagnostic
+
 template DistanceResult<float> distance(const Cylinder<float>&,
                                         const Pose<float>&,
                                         const Triangle<float>&);
