@@ -17,6 +17,33 @@
 #include "triangle_cylinder_distance_impl.h"
 #include "tricyl/triangle_cylinder.h"
 
+// `flatten` (inline the whole query into one function) except under the
+// sanitizers, where the instrumented flattened function takes GCC tens of
+// minutes and gigabytes to compile.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define TRICYL_DIST_NO_FLATTEN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define TRICYL_DIST_NO_FLATTEN 1
+#endif
+#endif
+#if defined(TRICYL_DIST_NO_FLATTEN)
+// Under the sanitizers also no FMA clone, and GCC's -O1 for this file: the
+// instrumented -O2 build of the double-word templates took GCC over ten
+// minutes and 5 GB (the sanitizer jobs test behaviour, not speed); the
+// large steps are kept out of line there (TRICYL_DIST_NOINLINE): 7 s.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC optimize("O1")
+#endif
+#define TRICYL_DIST_FLATTEN
+#define TRICYL_DIST_FLATTEN_ONLY noinline
+#define TRICYL_DIST_NOINLINE __attribute__((noinline))
+#else
+#define TRICYL_DIST_FLATTEN , flatten
+#define TRICYL_DIST_FLATTEN_ONLY flatten
+#define TRICYL_DIST_NOINLINE
+#endif
+
 namespace tricyl {
 namespace {
 
@@ -77,7 +104,8 @@ struct Pass {
 // beat the best so far) and the start of the Newton iteration.
 // `witness`: the pair intersects, only a common point is wanted (the pass
 // stops at the first candidate at distance 0).
-Pass doublePass(const Problem<double>& P, double prune_slack, bool witness) {
+TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
+                                     double prune_slack, bool witness) {
   Pass out;
   P3<double> g[3];
   double f[3];
@@ -196,9 +224,11 @@ DDx hSupport(const P3<DDx>& w, const DDx& r, const DDx& h) {
 // (eps_y + 5 u M), w_d = w rounded to double). Returns false when the
 // result is not within kAcceptRel: the general refinement then runs.
 template <class DDx, class VertexFn>
-bool refineFast(const Pass& pass, const Problem<double>& P, VertexFn ddVertex,
-                double U, double tie, double eps_y_d, double M, double slack_dd,
-                const WorldMap& wm, DistanceResult<double>* out) {
+TRICYL_DIST_NOINLINE bool refineFast(const Pass& pass, const Problem<double>& P,
+                                     VertexFn ddVertex, double U, double tie,
+                                     double eps_y_d, double M, double slack_dd,
+                                     const WorldMap& wm,
+                                     DistanceResult<double>* out) {
   const DDx r(P.r), h(P.h);
   P3<DDx> Y[3];
   bool have[3] = {false, false, false};
@@ -318,9 +348,10 @@ bool refineFast(const Pass& pass, const Problem<double>& P, VertexFn ddVertex,
 // The distance for valid double inputs of moderate magnitude (no
 // overflow of products of up to six lengths: every length below 2^100).
 template <class DDx>
-Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
-             const Triangle<double>& tri, Answer boolean, int rexp,
-             DistanceResult<double>* out) {
+TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
+                                  const Pose<double>& pose,
+                                  const Triangle<double>& tri, Answer boolean,
+                                  int rexp, DistanceResult<double>* out) {
   const WorldMap wm{&pose, rexp};
   // The vertices in order of increasing magnitude of their local
   // coordinates (kEdge: every edge then starts at its smaller end).
@@ -551,9 +582,9 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
 // as written); `flatten` inlines the whole query into this one function,
 // compiled for the FMA target.
 #if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && \
-    !TRICYL_HAVE_FMA
+    !TRICYL_HAVE_FMA && !defined(TRICYL_DIST_NO_FLATTEN)
 #define TRICYL_DIST_FMA_DISPATCH 1
-__attribute__((target("fma"), flatten)) Answer distanceDoubleFma(
+__attribute__((target("fma") TRICYL_DIST_FLATTEN)) Answer distanceDoubleFma(
     const Cylinder<double>& cyl, const Pose<double>& pose,
     const Triangle<double>& tri, DistanceResult<double>* out) {
   return distanceDouble<detail::DDT<true>>(cyl, pose, tri, out);
