@@ -17,6 +17,33 @@
 #include "triangle_cylinder_distance_impl.h"
 #include "tricyl/triangle_cylinder.h"
 
+// `flatten` (inline the whole query into one function) except under the
+// sanitizers, where the instrumented flattened function takes GCC tens of
+// minutes and gigabytes to compile.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define TRICYL_DIST_NO_FLATTEN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define TRICYL_DIST_NO_FLATTEN 1
+#endif
+#endif
+#if defined(TRICYL_DIST_NO_FLATTEN)
+// Under the sanitizers also no FMA clone, and GCC's -O1 for this file: the
+// instrumented -O2 build of the double-word templates took GCC over ten
+// minutes and 5 GB (the sanitizer jobs test behaviour, not speed); the
+// large steps are kept out of line there (TRICYL_DIST_NOINLINE): 7 s.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC optimize("O1")
+#endif
+#define TRICYL_DIST_FLATTEN
+#define TRICYL_DIST_FLATTEN_ONLY noinline
+#define TRICYL_DIST_NOINLINE __attribute__((noinline))
+#else
+#define TRICYL_DIST_FLATTEN , flatten
+#define TRICYL_DIST_FLATTEN_ONLY flatten
+#define TRICYL_DIST_NOINLINE
+#endif
+
 namespace tricyl {
 namespace {
 
@@ -77,7 +104,8 @@ struct Pass {
 // beat the best so far) and the start of the Newton iteration.
 // `witness`: the pair intersects, only a common point is wanted (the pass
 // stops at the first candidate at distance 0).
-Pass doublePass(const Problem<double>& P, double prune_slack, bool witness) {
+TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
+                                     double prune_slack, bool witness) {
   Pass out;
   P3<double> g[3];
   double f[3];
@@ -196,9 +224,11 @@ DDx hSupport(const P3<DDx>& w, const DDx& r, const DDx& h) {
 // (eps_y + 5 u M), w_d = w rounded to double). Returns false when the
 // result is not within kAcceptRel: the general refinement then runs.
 template <class DDx, class VertexFn>
-bool refineFast(const Pass& pass, const Problem<double>& P, VertexFn ddVertex,
-                double U, double tie, double eps_y_d, double M, double slack_dd,
-                const WorldMap& wm, DistanceResult<double>* out) {
+TRICYL_DIST_NOINLINE bool refineFast(const Pass& pass, const Problem<double>& P,
+                                     VertexFn ddVertex, double U, double tie,
+                                     double eps_y_d, double M, double slack_dd,
+                                     const WorldMap& wm,
+                                     DistanceResult<double>* out) {
   const DDx r(P.r), h(P.h);
   P3<DDx> Y[3];
   bool have[3] = {false, false, false};
@@ -318,9 +348,10 @@ bool refineFast(const Pass& pass, const Problem<double>& P, VertexFn ddVertex,
 // The distance for valid double inputs of moderate magnitude (no
 // overflow of products of up to six lengths: every length below 2^100).
 template <class DDx>
-Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
-             const Triangle<double>& tri, Answer boolean, int rexp,
-             DistanceResult<double>* out) {
+TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
+                                  const Pose<double>& pose,
+                                  const Triangle<double>& tri, Answer boolean,
+                                  int rexp, DistanceResult<double>* out) {
   const WorldMap wm{&pose, rexp};
   // The vertices in order of increasing magnitude of their local
   // coordinates (kEdge: every edge then starts at its smaller end).
@@ -372,12 +403,19 @@ Answer solve(const Cylinder<double>& cyl, const Pose<double>& pose,
   }
 
   double U = std::numeric_limits<double>::infinity(), L = 0;
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < 4; ++k)
+    if (pass.cand[k].valid && pass.cand[k].f < U) U = pass.cand[k].f;
+  // The separating-plane bound of the best candidate first (usually the
+  // tight one); the others only if it leaves a gap.
+  auto bound = [&](int k) {
     const Candidate<double>& c = pass.cand[k];
     if (k == 3 ? !pass.face_cut : c.valid)
       L = maxd(L, detail::dist::certify(P, c.w));
-    if (c.valid && c.f < U) U = c.f;
-  }
+  };
+  if (pass.best >= 0) bound(pass.best);
+  if (!(U - L <= 2 * slack_d))
+    for (int k = 0; k < 4; ++k)
+      if (k != pass.best) bound(k);
   // (L > U beyond the rounding allowance cannot happen for consistent
   // bounds; such a pass is not accepted.)
   const double err_d = maxd(U - L, 0.0) + slack_d + kU * U;
@@ -487,13 +525,21 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
     for (double x : row) mr = maxd(mr, absd(x));
   Cylinder<double> none{0, 0};
   const double mw = maxLength(none, pose, tri);  // world lengths
+  const double mc = maxd(cyl.radius, cyl.lz);
+  // The usual case, decided by comparisons alone: R within 2^+-30, the
+  // lengths within 2^+-60 (then eM and ea below are inside the window).
+  auto moderate = [](double x, double lim) {
+    return x == 0 || (x <= lim && x >= 1 / lim);
+  };
+  if (moderate(mr, 0x1p30) && moderate(mw, 0x1p60) && moderate(mc, 0x1p60))
+    return solve<DDx>(cyl, pose, tri, boolean, 0, out);
   int ea = 0, ew = 0, ec = 0;
-  if (mr > 0) (void)std::frexp(4 * (mr * 0.25), &ea);
+  if (mr > 0) (void)std::frexp(mr, &ea);
   if (mw > 0) (void)std::frexp(mw, &ew);
-  (void)std::frexp(maxd(cyl.radius, cyl.lz), &ec);
+  (void)std::frexp(mc, &ec);
   int eM = mr > 0 && mw > 0 ? ea + 2 + ew : -2000;
   if (!(mr > 0)) ea = 0;
-  if (maxd(cyl.radius, cyl.lz) > 0 && ec > eM) eM = ec;
+  if (mc > 0 && ec > eM) eM = ec;
   if (eM == -2000) eM = 0;  // everything 0: nothing to scale
   if (eM >= -80 && eM <= 80 && ea >= -40 && ea <= 40)
     return solve<DDx>(cyl, pose, tri, boolean, 0, out);
@@ -536,9 +582,9 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
 // as written); `flatten` inlines the whole query into this one function,
 // compiled for the FMA target.
 #if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && \
-    !TRICYL_HAVE_FMA
+    !TRICYL_HAVE_FMA && !defined(TRICYL_DIST_NO_FLATTEN)
 #define TRICYL_DIST_FMA_DISPATCH 1
-__attribute__((target("fma"), flatten)) Answer distanceDoubleFma(
+__attribute__((target("fma") TRICYL_DIST_FLATTEN)) Answer distanceDoubleFma(
     const Cylinder<double>& cyl, const Pose<double>& pose,
     const Triangle<double>& tri, DistanceResult<double>* out) {
   return distanceDouble<detail::DDT<true>>(cyl, pose, tri, out);
@@ -636,6 +682,20 @@ DistanceResult<S> distance(const Cylinder<S>& cylinder,
                            const Triangle<S>& triangle) {
   return distance(cylinder, identityPose<S>(), triangle);
 }
+
+namespace diagnostic {
+template <class S>
+Answer tryDistancePortable(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                           const Triangle<S>& triangle,
+                           DistanceResult<S>* out) noexcept {
+  static_assert(std::is_same_v<S, double>);
+  return distanceDoubleGeneric(cylinder, pose, triangle, out);
+}
+template Answer tryDistancePortable(const Cylinder<double>&,
+                                    const Pose<double>&,
+                                    const Triangle<double>&,
+                                    DistanceResult<double>*) noexcept;
+}  // namespace diagnostic
 
 template DistanceResult<float> distance(const Cylinder<float>&,
                                         const Pose<float>&,

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 
 #include "distance_oracle.h"
@@ -186,6 +187,24 @@ TEST(TriangleCylinderDistance, Invariances) {
       EXPECT_EQ(w.distance, r.distance * s);
     }
   }
+}
+
+// The run-time FMA dispatch returns the portable path's bits (both
+// TwoProducts are exact; docs/distance.md, section 2).
+TEST(TriangleCylinderDistance, FmaPathSameBitsAsPortable) {
+  const std::uint64_t seed = test::baseSeed();
+  SCOPED_TRACE(test::seedTrace(seed));
+  for (const scenes::Family f : scenes::kAllFamilies)
+    for (long i = 0; i < test::scaled(500); ++i) {
+      SCOPED_TRACE(std::string(scenes::familyName(f)) + " #" +
+                   std::to_string(i));
+      const scenes::TriCase k = scenes::generate(f, seed, std::uint64_t(i));
+      DistanceResult<double> a{}, b{};
+      ASSERT_EQ(tryDistance(k.cyl, k.pose, k.tri, &a),
+                diagnostic::tryDistancePortable(k.cyl, k.pose, k.tri, &b));
+      EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0)
+          << a.distance << " vs " << b.distance;
+    }
 }
 
 // A case at a constructed separation: a boundary point q of the cylinder

@@ -92,6 +92,21 @@ Answer tryDistance(const Cylinder<S>& cylinder, const Pose<S>& pose,
                    const Triangle<S>& triangle,
                    DistanceResult<S>* out) noexcept;
 
+namespace diagnostic {
+/// tryDistance on the portable path: the double-word TwoProduct by
+/// Dekker's split even where the CPU has a fused multiply-add (the default
+/// path dispatches to it at run time). Both are exact, so the results are
+/// the same bits; this exists so that the tests can check that.
+template <class S>
+Answer tryDistancePortable(const Cylinder<S>& cylinder, const Pose<S>& pose,
+                           const Triangle<S>& triangle,
+                           DistanceResult<S>* out) noexcept;
+extern template Answer tryDistancePortable(const Cylinder<double>&,
+                                           const Pose<double>&,
+                                           const Triangle<double>&,
+                                           DistanceResult<double>*) noexcept;
+}  // namespace diagnostic
+
 extern template DistanceResult<float> distance(const Cylinder<float>&,
                                                const Pose<float>&,
                                                const Triangle<float>&);
