@@ -91,16 +91,6 @@ Pose<S> reflectedPose(const Pose<S>& p) {
   return out;
 }
 
-/// The five other orders of a triangle's vertices.
-template <class S>
-void otherOrders(const Triangle<S>& t, Triangle<S> out[5]) {
-  out[0] = {t.a, t.c, t.b};
-  out[1] = {t.b, t.a, t.c};
-  out[2] = {t.b, t.c, t.a};
-  out[3] = {t.c, t.a, t.b};
-  out[4] = {t.c, t.b, t.a};
-}
-
 /// The triangle of the point reflection of the scene (with
 /// reflectedPose): every vertex negated, exactly.
 template <class S>

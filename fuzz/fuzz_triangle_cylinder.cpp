@@ -77,8 +77,7 @@ void run(const Case<S>& c) {
     } catch (const tricyl::InvalidInput&) {
       threw = true;
     }
-    tricyl::Triangle<S> orders[5];
-    tricyl::fuzz::otherOrders(c.tri, orders);
+    const auto orders = tricyl::fuzz::otherVertexOrders(c.tri);
     for (int i = 0; i < 5; ++i)
       perm[i] = tricyl::tryIntersect(c.cyl, c.pose, orders[i]);
     reflected = tricyl::tryIntersect(c.cyl, tricyl::fuzz::reflectedPose(c.pose),

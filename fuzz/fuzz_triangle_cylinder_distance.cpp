@@ -82,8 +82,7 @@ void run(const Case<S>& c) {
     } catch (const tricyl::InvalidInput&) {
       threw = true;
     }
-    tricyl::Triangle<S> orders[5];
-    tricyl::fuzz::otherOrders(c.tri, orders);
+    const auto orders = tricyl::fuzz::otherVertexOrders(c.tri);
     for (int i = 0; i < 5; ++i)
       perm_answer[i] = tricyl::tryDistance(c.cyl, c.pose, orders[i], &perm[i]);
     refl_answer =

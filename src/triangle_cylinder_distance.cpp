@@ -580,16 +580,15 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
 // instead of Dekker's seventeen). The results are the same bits (both
 // TwoProducts are exact, and -ffp-contract=off keeps every other operation
 // as written); `flatten` inlines the whole query into this one function,
-// compiled for the FMA target.
-#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && \
-    !TRICYL_HAVE_FMA && !defined(TRICYL_DIST_NO_FLATTEN)
+// compiled for the FMA target. Chosen as the other double-word stages'
+// (fmaAtRunTime, src/eft.h: TRICYL_SCALAR_BASELINE=1 keeps the portable one).
+#if TRICYL_FMA_DISPATCH && !defined(TRICYL_DIST_NO_FLATTEN)
 #define TRICYL_DIST_FMA_DISPATCH 1
 __attribute__((target("fma") TRICYL_DIST_FLATTEN)) Answer distanceDoubleFma(
     const Cylinder<double>& cyl, const Pose<double>& pose,
     const Triangle<double>& tri, DistanceResult<double>* out) {
   return distanceDouble<detail::DDT<true>>(cyl, pose, tri, out);
 }
-const bool kHasFma = __builtin_cpu_supports("fma") != 0;
 #else
 #define TRICYL_DIST_FMA_DISPATCH 0
 #endif
@@ -608,7 +607,7 @@ distanceDoubleGeneric(const Cylinder<double>& cyl, const Pose<double>& pose,
 Answer distanceAny(const Cylinder<double>& cyl, const Pose<double>& pose,
                    const Triangle<double>& tri, DistanceResult<double>* out) {
 #if TRICYL_DIST_FMA_DISPATCH
-  if (kHasFma) return distanceDoubleFma(cyl, pose, tri, out);
+  if (detail::fmaAtRunTime()) return distanceDoubleFma(cyl, pose, tri, out);
 #endif
   return distanceDoubleGeneric(cyl, pose, tri, out);
 }
