@@ -4,7 +4,6 @@
 #include "adaptive.h"
 
 #include <cmath>
-#include <cstdlib>
 
 #if defined(__GNUC__) || defined(__clang__)
 #define TRICYL_EFT_INLINE inline __attribute__((always_inline))

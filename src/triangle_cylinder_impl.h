@@ -188,6 +188,9 @@ class AnyOf {
 
 /// The 15 tests of triangleCylinderTests, one bit each: (V) vertex i,
 /// (X) cap s and edge e, (E) edge e, (A), (B) cap s.
+/// The triangle's edges (i, j), in the order of the tests' bits.
+constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+
 constexpr int kTestV = 0, kTestX = 3, kTestE = 9, kTestA = 12, kTestB = 13;
 constexpr std::uint32_t kAllTests = (std::uint32_t(1) << 15) - 1;
 
@@ -288,7 +291,6 @@ Tri triangleCylinder(const TriCylLocal<K>& q, bool* early,
 /// certified rejection is the answer whatever the tests say.
 template <class K>
 Tri triangleCylinderUndecided(const TriCylLocal<K>& q, std::uint32_t tests) {
-  static constexpr int kEnds[3][2] = {{0, 1}, {1, 2}, {2, 0}};
   // The early-outs again (the slab, then the disk's bounding square): in
   // the adaptive kernel they often decide what the filter could not, at the
   // cost of a few signs (fewer instructions in every family than going
@@ -313,7 +315,7 @@ Tri triangleCylinderUndecided(const TriCylLocal<K>& q, std::uint32_t tests) {
     if (tests >> (kTestB + c) & 1) need[c] |= 7u;
     for (int e = 0; e < 3; ++e)
       if (tests >> (kTestX + 3 * c + e) & 1)
-        need[c] |= (1u << kEnds[e][0]) | (1u << kEnds[e][1]);
+        need[c] |= (1u << kEdge[e][0]) | (1u << kEdge[e][1]);
   }
   Sign top[3], bot[3];
   for (int i = 0; i < 3; ++i) {
@@ -357,7 +359,6 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
       return Tri::kTrue;
   }
 
-  static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
 
   // (X) An edge crossing a cap plane Z = s H strictly (a_i a_j < 0, with
   // a = Z - s H) at a point inside the cap disk. The crossing point is
