@@ -359,7 +359,6 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
       return Tri::kTrue;
   }
 
-
   // (X) An edge crossing a cap plane Z = s H strictly (a_i a_j < 0, with
   // a = Z - s H) at a point inside the cap disk. The crossing point is
   //   (x_i a_j - x_j a_i, y_i a_j - y_j a_i) / (a_j - a_i),
