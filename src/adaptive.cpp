@@ -61,49 +61,16 @@ inline DwRun runMul(const DwRun& a, const DwRun& b) {
 }
 }  // namespace
 
-// A local coordinate x = sum_k R_k d_k, d_k = p_k - t_k (R_k = R_kj for
-// the coordinate's column j), as one double word with an a-priori bound,
-// in a few more operations than the double value itself:
-//   (D_k, l_k) = TwoSum(p_k, -t_k)        d_k = D_k + l_k exactly;
-//   (P_k, e_k) = TwoProd(R_k, D_k)        R_k D_k = P_k + e_k exactly;
-//   q_k = fl(R_k l_k);
-//   (s1, f1) = TwoSum(P_0, P_1), (s, f2) = TwoSum(s1, P_2)   exact;
-//   low = fl(f1 + f2 + e_0 + e_1 + e_2 + q_0 + q_1 + q_2);
-//   v = TwoSum(s, low)                                        exact.
-// So x - v = (the rounding of low's seven additions) + sum_k (R_k l_k -
-// q_k). With M = sum_k |R_k| |d_k|: |l_k| <= u |D_k|, |e_k| <= u |P_k|,
-// |f1| <= u |s1|, |f2| <= u |s|, so low's terms sum to at most about
-// 5 u M in magnitude, its additions err by at most 7 u (1 + 7u) 5 u M
-// (the classic gamma_7 bound of recursive summation), and the q_k by
-// u^2 M (1 + u): in all below 37 u^2 M < 2^-100 M' with M' the computed
-// magnitude (three roundings of non-negative terms, (1 - u)^3 M <= M').
-// Underflow (a product or an error term below the normal range) adds at
-// most a few 2^-1075 absolutely: kDwTiny. Z = 2 z: the same, doubled.
+// A local coordinate: dwCoordinate (src/dw_kernel.h) on the point's
+// exact differences; Z = 2 z: the same, doubled.
 template <bool kFma>
 DwRun Tape::dwCoord(const Node& nd) const {
   const Point& P = pts_[nd.a];
   const int j = nd.b;
-  double D[3], l[3], Pk[3], e[3], q[3];
-  double m = 0;
-  for (int k = 0; k < 3; ++k) {
-    twoSum(P.p[k], -P.t[k], D[k], l[k]);
-    twoProdT<kFma>(P.R[k][j], D[k], Pk[k], e[k]);
-    q[k] = P.R[k][j] * l[k];
-    m += std::fabs(P.R[k][j]) * std::fabs(D[k]);
-  }
-  double s1, f1, s, f2;
-  twoSum(Pk[0], Pk[1], s1, f1);
-  twoSum(s1, Pk[2], s, f2);
-  const double low =
-      ((((f1 + f2) + (e[0] + e[1])) + e[2]) + (q[0] + q[1])) + q[2];
-  DwRun r;
-  twoSum(s, low, r.v.hi, r.v.lo);
-  // Every term with a zero factor (R_k = 0 or p_k = t_k): an exact 0 with
-  // nothing rounded or underflowed, certified as such (the line interval
-  // tests Dx = Dy = 0 and DZ = 0 that way).
-  bool zero = true;
-  for (int k = 0; k < 3; ++k) zero = zero && (P.R[k][j] == 0 || D[k] == 0);
-  r.e = zero ? 0.0 : 0x1p-100 * m + kDwTiny;
+  double D[3], l[3];
+  for (int k = 0; k < 3; ++k) twoSum(P.p[k], -P.t[k], D[k], l[k]);
+  const double R[3] = {P.R[0][j], P.R[1][j], P.R[2][j]};
+  DwRun r = dwCoordinate<kFma>(R, D, l);
   if (j == 2) {  // Z = 2 z: exact scaling, bound doubled
     r.v.hi *= 2;
     r.v.lo *= 2;
@@ -439,23 +406,17 @@ void Tape::toLocal(const Pose<double>& pose, const Vec3<double>& p, An& x,
 // 3 (1 + 2u) S_j <= 3 (1 + 6u) M, and
 //   e = fl(fl(fl(3 M) + |x^|) c) + 4 eta,   c = u (1 + 2^-40),
 // covers it: the three roundings of e and every (1 + k u) factor above
-// stay far inside the 2^-40 slack. An exact zero (every term with a zero
-// factor) keeps e = 0, as in toLocal; it is checked only when x^ = 0.
+// stay far inside the 2^-40 slack (coordinateBound, src/adaptive.h). An
+// exact zero (every term with a zero factor) keeps e = 0, as in toLocal; it
+// is checked only when x^ = 0.
 void Tape::coordinates(const Pose<double>& pose, const Vec3<double>& p,
                        double x, double y, double Z, double M, An& ax, An& ay,
                        An& aZ) {
   const std::uint32_t point = addPoint(pose, p);
-  constexpr double c = 0x1p-53 + 0x1p-53 * 0x1p-40;
-  const double M3 = 3 * M;
   auto leaf = [&](int j, double v) {
-    double m = (M3 + std::fabs(v)) * c + 4 * 0x1p-1074;
-    if (v == 0) {  // an exact zero? (rare: the check only then)
-      const double d[3] = {p.x - pose.t.x, p.y - pose.t.y, p.z - pose.t.z};
-      bool zero = true;
-      for (int k = 0; k < 3; ++k)
-        zero = zero && (pose.R[k][j] == 0 || d[k] == 0);
-      if (zero) m = 0;
-    }
+    double m = coordinateBound(M, v);
+    // An exact zero? (rare: the check only then)
+    if (v == 0 && exactZeroCoordinate(pose, p, j)) m = 0;
     return An{v, m, this, op(kCoord, point, std::uint32_t(j))};
   };
   ax = leaf(0, x);

@@ -41,6 +41,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "dw_kernel.h"
 #include "eft.h"
 #include "expansion.h"
 #include "filter.h"
@@ -56,13 +57,6 @@ namespace tricyl::detail {
 
 class Tape;
 
-/// A double-word value and a bound e >= |v - E| on its distance to the
-/// exact value E (the rules are in src/adaptive.cpp).
-struct DwRun {
-  DW v;
-  double e;
-};
-
 /// A value of the adaptive run: the double value v (computed by the same
 /// operations as FilterKernel's), a running bound m >= |v - E| (the rules of
 /// RunningDoubleKernel, src/filter.h), and the node that records how it was
@@ -73,6 +67,23 @@ struct An {
   Tape* tape;
   std::uint32_t id;
 };
+
+/// The running bound of a local coordinate's double value v from the
+/// fast path's per-vertex magnitude M (derived in src/adaptive.cpp, at
+/// Tape::coordinates); for Z = 2 z, call it with v = z and double it.
+inline double coordinateBound(double M, double v) {
+  constexpr double c = 0x1p-53 + 0x1p-53 * 0x1p-40;
+  return (3 * M + std::fabs(v)) * c + 4 * 0x1p-1074;
+}
+/// Whether coordinate j of p is an exact 0 with nothing rounded: every term
+/// R_kj (p_k - t_k) has a zero factor (then its bound may be 0).
+inline bool exactZeroCoordinate(const Pose<double>& pose, const Vec3<double>& p,
+                                int j) {
+  const double d[3] = {p.x - pose.t.x, p.y - pose.t.y, p.z - pose.t.z};
+  bool zero = true;
+  for (int k = 0; k < 3; ++k) zero = zero && (pose.R[k][j] == 0 || d[k] == 0);
+  return zero;
+}
 
 class Tape {
  public:

@@ -34,9 +34,11 @@
 #if defined(__GNUC__) || defined(__clang__)
 #define TRICYL_ALWAYS_INLINE inline __attribute__((always_inline))
 #define TRICYL_NOINLINE __attribute__((noinline))
+#define TRICYL_FLATTEN __attribute__((flatten))
 #else
 #define TRICYL_ALWAYS_INLINE inline
 #define TRICYL_NOINLINE
+#define TRICYL_FLATTEN
 #endif
 
 namespace tricyl {
@@ -158,19 +160,64 @@ Segment<double> collinearHull(const Triangle<double>& t) {
   return {t.a, t.a};
 }
 
+// The running-bound frame from the fast path's values: the bound of each
+// coordinate from the vertex magnitude (detail::coordinateBound).
+struct Local;
+template <class K>
+detail::TriCylLocal<K> runningLocal(const Inputs& in, const Local& L);
+bool shortRotation(const Pose<double>& pose);
+
+// The double-word stage (src/dw_kernel.h): the tests in `tests` alone, in
+// straight-line double-word arithmetic; `left`: those it left undecided.
+// Flattened (every call inlined), so that the copy compiled for FMA
+// (TRICYL_FMA_DISPATCH) runs FMA throughout; both copies give the same bits.
+template <bool kFma>
+TRICYL_ALWAYS_INLINE Tri dwTests(const Inputs& in, std::uint32_t tests,
+                                 std::uint32_t* left) {
+  using K = detail::DwKernel<kFma>;
+  detail::TriCylLocal<K> q;
+  const Vec3<double>* P[3] = {&in.tri.a, &in.tri.b, &in.tri.c};
+  for (int i = 0; i < 3; ++i)
+    K::toLocal(in.pose, *P[i], q.x[i], q.y[i], q.Z[i]);
+  q.H = K::lift(in.cyl.lz);
+  q.r = K::lift(in.cyl.radius);
+  return detail::triangleCylinderUndecided<K>(q, tests, left);
+}
+#if TRICYL_FMA_DISPATCH
+__attribute__((target("fma"), flatten, noinline)) Tri dwTestsFma(
+    const Inputs& in, std::uint32_t tests, std::uint32_t* left) {
+  return dwTests<true>(in, tests, left);
+}
+#endif
+TRICYL_FLATTEN TRICYL_NOINLINE Tri dwTestsPlain(const Inputs& in,
+                                                std::uint32_t tests,
+                                                std::uint32_t* left) {
+  return dwTests<TRICYL_HAVE_FMA != 0>(in, tests, left);
+}
+Tri dwStage(const Inputs& in, std::uint32_t tests, std::uint32_t* left) {
+#if TRICYL_FMA_DISPATCH
+  if (detail::fmaAtRunTime()) return dwTestsFma(in, tests, left);
+#endif
+  return dwTestsPlain(in, tests, left);
+}
+
 // The whole sequence for validated inputs (src/stages.h): the double filter
 // (unless the fast path already ran it and it could not decide), the
-// degenerate hand-off, the adaptive run. `undecided`: 0, or the tests the
-// fast path's filter left undecided (detail::TestMask); the adaptive run
-// re-decides only those.
+// degenerate hand-off, the double-word stage on the tests the filter left
+// undecided, and the tape's exact stage on what that left. `undecided`: 0,
+// or the tests the fast path's filter left undecided (detail::TestMask).
+// `fast`: the fast path's local frame when it ran (then the inputs are
+// valid and inside the gate: not validated again).
 struct Local;
 detail::TriCylLocal<detail::AdaptiveKernel> adaptiveLocal(const Inputs& in,
                                                           const Local& L);
 
 Decision decide(const Inputs& in, std::uint32_t undecided,
                 const Local* fast = nullptr) {
+  // With `fast`, max_len and max_unitless stay 0 (inside the gate) until
+  // the degenerate hand-off needs them.
   double max_len = 0, max_unitless = 0;
-  if (!validate(in, &max_len, &max_unitless))
+  if (fast == nullptr && !validate(in, &max_len, &max_unitless))
     return {Answer::kInvalidInput, Stage::kInvalid};
   const bool gate = detail::rangeGateOk(max_len, max_unitless);
   if (gate && undecided == 0) {
@@ -191,6 +238,7 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
       },
       max_len, max_unitless);
   if (degenerate.answer == Answer::kIntersect) {
+    if (fast != nullptr) validate(in, &max_len, &max_unitless);
     detail::LinearInputs seg;
     seg.cyl = in.cyl;
     seg.pose = in.pose;
@@ -207,7 +255,41 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
         },
         max_len, max_unitless);
   }
-  return detail::runAdaptive(
+  if (gate) {
+    // The undecided tests with a running bound in double (it follows the
+    // values, where the filter's follows the magnitudes: it certifies
+    // most signs that cancellation left open), then in double word.
+    // An exact pose (shortRotation) on exact data may make exact ties,
+    // which only a kernel that tracks exact values can decide: there
+    // RunningExactKernel, elsewhere the cheaper RunningDoubleKernel.
+    using detail::RunningDoubleKernel;
+    using detail::RunningExactKernel;
+    using detail::triangleCylinderUndecided;
+    std::uint32_t left = 0;
+    Tri t;
+    detail::tls_exact_zero = false;
+    if (fast == nullptr)
+      t = triangleCylinderUndecided<RunningExactKernel>(
+          detail::makeLocal<RunningExactKernel>(in.cyl, in.pose, in.tri,
+                                                max_unitless),
+          undecided, &left);
+    else if (shortRotation(in.pose))
+      t = triangleCylinderUndecided<RunningExactKernel>(
+          runningLocal<RunningExactKernel>(in, *fast), undecided, &left);
+    else
+      t = triangleCylinderUndecided<RunningDoubleKernel>(
+          runningLocal<RunningDoubleKernel>(in, *fast), undecided, &left);
+    if (t != Tri::kUnknown)
+      return {detail::toAnswer(t),
+              detail::tls_exact_zero ? Stage::kExact : Stage::kFastPath};
+    undecided = left;
+    t = dwStage(in, undecided, &left);
+    if (t != Tri::kUnknown)
+      return {detail::toAnswer(t),
+              detail::tls_exact_zero ? Stage::kExact : Stage::kExtended};
+    undecided = left;
+  }
+  Decision d = detail::runAdaptive(
       [&](auto tag, bool*) {
         using K = typename decltype(tag)::type;
         if constexpr (std::is_same_v<K, detail::AdaptiveKernel>) {
@@ -222,6 +304,9 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
         return detail::triangleCylinderUndecided<K>(q, undecided);
       },
       gate);
+  // The double-word stage ran first (inside the gate).
+  if (gate && d.stage == Stage::kFastPath) d.stage = Stage::kExtended;
+  return d;
 }
 
 // Widening a signalling NaN raises FE_INVALID: float inputs are checked by
@@ -290,6 +375,95 @@ struct Local {
   double x[4], y[4], Z[4], m[4];  // [3]: scratch (the AVX2 lane 3)
   double r, H;
 };
+
+// Which of the fast path's coordinates of p (computed as toLocal does:
+// ((R_0j d_0 + R_1j d_1) + R_2j d_2), d_k = p_k - t_k) are exact, as bits
+// 0 (x), 1 (y), 2 (Z), for a rotation whose entries have at most 27
+// significant bits (shortRotation): every operation re-checked as an
+// error-free transformation with a zero error. A product R d is exact when
+// d has at most 26 significant bits (27 + 26 <= 53) and no underflow
+// touches it (a zero factor, or |R d| >= kProdExactMin); other d take
+// TwoProduct.
+unsigned exactCoordinates(const Pose<double>& pose, const Vec3<double>& p) {
+  const double pk[3] = {p.x, p.y, p.z}, tk[3] = {pose.t.x, pose.t.y, pose.t.z};
+  double d[3];
+  bool shortd[3];
+  for (int k = 0; k < 3; ++k) {
+    double err;
+    detail::twoSum(pk[k], -tk[k], d[k], err);
+    if (err != 0) return 0;
+    std::uint64_t b;
+    std::memcpy(&b, &d[k], sizeof b);
+    shortd[k] = (b & ((std::uint64_t(1) << 27) - 1)) == 0;
+  }
+  unsigned exact = 0;
+  for (int j = 0; j < 3; ++j) {
+    double P[3];
+    bool ok = true;
+    for (int k = 0; k < 3; ++k) {
+      const double R = pose.R[k][j];
+      P[k] = R * d[k];
+      if (R == 0 || d[k] == 0) continue;
+      if (std::fabs(P[k]) < detail::kProdExactMin) ok = false;
+      if (!shortd[k]) {
+        double pp, err;
+        detail::twoProd(R, d[k], pp, err);
+        ok = ok && err == 0;
+      }
+    }
+    double s1, v, e1, e2;
+    detail::twoSum(P[0], P[1], s1, e1);
+    detail::twoSum(s1, P[2], v, e2);
+    if (ok && e1 == 0 && e2 == 0) exact |= 1u << j;
+  }
+  return exact;
+}
+
+// Whether every rotation entry has at most 27 significant bits (the low 26
+// bits of its significand zero): exact poses (signed permutations, short
+// dyadics) do, rounded rotations almost never; only then is it worth
+// checking the coordinates for exactness.
+bool shortRotation(const Pose<double>& pose) {
+  std::uint64_t low = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      std::uint64_t b;
+      std::memcpy(&b, &pose.R[i][j], sizeof b);
+      low |= b;
+    }
+  return (low & ((std::uint64_t(1) << 26) - 1)) == 0;
+}
+
+template <class K>
+detail::TriCylLocal<K> runningLocal(const Inputs& in, const Local& L) {
+  detail::TriCylLocal<K> q;
+  const Vec3<double>* P[3] = {&in.tri.a, &in.tri.b, &in.tri.c};
+  // Exact coordinates: only RunningExactKernel can use them.
+  constexpr bool check = std::is_same_v<K, detail::RunningExactKernel>;
+  for (int i = 0; i < 3; ++i) {
+    const double M = L.m[i];
+    const double z = L.Z[i] * 0.5;
+    q.x[i] = {L.x[i], detail::coordinateBound(M, L.x[i])};
+    q.y[i] = {L.y[i], detail::coordinateBound(M, L.y[i])};
+    q.Z[i] = {L.Z[i], 2 * detail::coordinateBound(M, z)};
+    if constexpr (check) {
+      const unsigned exact = exactCoordinates(in.pose, *P[i]);
+      if (exact & 1) q.x[i].e = 0;
+      if (exact & 2) q.y[i].e = 0;
+      if (exact & 4) q.Z[i].e = 0;
+    } else {
+      if (L.x[i] == 0 && detail::exactZeroCoordinate(in.pose, *P[i], 0))
+        q.x[i].e = 0;
+      if (L.y[i] == 0 && detail::exactZeroCoordinate(in.pose, *P[i], 1))
+        q.y[i].e = 0;
+      if (z == 0 && detail::exactZeroCoordinate(in.pose, *P[i], 2))
+        q.Z[i].e = 0;
+    }
+  }
+  q.H = K::lift(in.cyl.lz);
+  q.r = K::lift(in.cyl.radius);
+  return q;
+}
 
 // The adaptive run's local frame from the fast path's (double inputs).
 detail::TriCylLocal<detail::AdaptiveKernel> adaptiveLocal(const Inputs& in,

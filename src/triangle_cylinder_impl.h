@@ -36,6 +36,7 @@
 #include <limits>
 
 #include "adaptive.h"
+#include "dw_kernel.h"
 #include "filter.h"
 #include "tricyl/types.h"
 
@@ -288,9 +289,12 @@ Tri triangleCylinder(const TriCylLocal<K>& q, bool* early,
 /// left undecided, TestMask), with only the slab signs they read: (V) i
 /// reads top[i] and bot[i], (X) on cap s the two ends' signs on that cap,
 /// (B) on cap s all three; (E) and (A) none. The early-outs first: a
-/// certified rejection is the answer whatever the tests say.
+/// certified rejection is the answer whatever the tests say. `left`
+/// (optional): the tests this run left undecided, when it returns kUnknown
+/// (the double-word kernel, src/dw_kernel.h, can).
 template <class K>
-Tri triangleCylinderUndecided(const TriCylLocal<K>& q, std::uint32_t tests) {
+Tri triangleCylinderUndecided(const TriCylLocal<K>& q, std::uint32_t tests,
+                              std::uint32_t* left = nullptr) {
   // The early-outs again (the slab, then the disk's bounding square): in
   // the adaptive kernel they often decide what the filter could not, at the
   // cost of a few signs (fewer instructions in every family than going
@@ -324,7 +328,9 @@ Tri triangleCylinderUndecided(const TriCylLocal<K>& q, std::uint32_t tests) {
   }
   TestMask mask;
   mask.run = tests;
-  return triangleCylinderTests<K>(q, top, bot, &mask);
+  const Tri t = triangleCylinderTests<K>(q, top, bot, &mask);
+  if (left) *left = mask.unknown;
+  return t;
 }
 
 /// Everything after the early-outs: (V), (X), (E), (A), (B). `top` and

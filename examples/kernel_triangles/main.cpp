@@ -33,7 +33,7 @@ const char* name(tricyl::Stage s) {
     case tricyl::Stage::kExtended:
       return "double-word (a sign re-decided)";
     case tricyl::Stage::kExact:
-      return "exact (stack expansions)";
+      return "exact (a tie certified exactly)";
     case tricyl::Stage::kExactGmp:
       return "exact (GMP)";
     case tricyl::Stage::kInvalid:

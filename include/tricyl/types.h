@@ -117,8 +117,9 @@ enum class Answer : unsigned char {
 enum class Stage : unsigned char {
   kEarlyOut = 0,  ///< a cheap certified rejection (slab or bounding box)
   kFastPath = 1,  ///< double predicates with a certified error bound
-  kExact = 2,     ///< some sign decided exactly (stack floating-point
-                  ///< expansions: no heap allocation)
+  kExact = 2,     ///< some sign decided exactly: an exact tie certified
+                  ///< by exact double or double-word values, or stack
+                  ///< floating-point expansions (no heap allocation)
   kInvalid = 3,   ///< input rejected before any arithmetic
   kExtended = 4,  ///< some sign decided in double-word arithmetic (about
                   ///< 106 bits) with a running error bound, none exactly
