@@ -133,7 +133,8 @@ void framePoint(std::mt19937_64& g, long i, Pose<double>& pose,
 
 template <class K>
 struct RunningFrameTest : ::testing::Test {};
-using RunningKernels = ::testing::Types<RunningDoubleKernel>;
+using RunningKernels =
+    ::testing::Types<RunningDoubleKernel, detail::RunningExactKernel>;
 TYPED_TEST_SUITE(RunningFrameTest, RunningKernels);
 
 TYPED_TEST(RunningFrameTest, BoundEnclosesTheExactLocalCoordinates) {
@@ -306,6 +307,167 @@ TYPED_TEST(RunningFrameTest, TriangleKernelAgreesWithTheOracle) {
        {scenes::Family::kNear, scenes::Family::kThin, scenes::Family::kFar,
         scenes::Family::kAligned, scenes::Family::kSliver})
     agreesWithOracle<TypeParam>(f, test::scaled(1500), seed);
+}
+
+// The double-word kernel's coordinates (DwKernel::toLocal, src/dw_kernel.h)
+// enclose the exact local coordinates in every regime of framePoint, and in
+// exact poses on dyadic points (signed permutations) they are certified
+// exact (bound 0, low part 0) and equal to the exact value.
+template <bool kFma>
+void dwFrameEncloses(std::uint64_t seed) {
+  std::mt19937_64 g(seed);
+  const long n = test::scaled(3000);
+  long failures = 0, exact_count = 0;
+  for (long i = 0; i < n && failures < 10; ++i) {
+    Pose<double> pose;
+    Vec3<double> p;
+    const bool exact_pose = i % 5 == 4;
+    if (exact_pose) {  // a signed permutation, dyadic data: exact
+      pose = Pose<double>{};
+      const int perm = int(g() % 3);
+      for (int k = 0; k < 3; ++k)
+        pose.R[k][(k + perm) % 3] = (g() & 1) ? 1.0 : -1.0;
+      auto small = [&g] { return double(long(g() % 257) - 128) * 0.0625; };
+      pose.t = {small(), small(), small()};
+      p = {small(), small(), small()};
+    } else {
+      framePoint(g, i, pose, p);
+    }
+    detail::Dwe<kFma> c[3];
+    detail::DwKernel<kFma>::toLocal(pose, p, c[0], c[1], c[2]);
+    const oracle::Q3 ex = oracle::toLocal(pose, p);
+    const Q exact[3] = {ex.x, ex.y, 2 * ex.z};
+    for (int k = 0; k < 3; ++k) {
+      const Q v = exactly(c[k].v.hi) + exactly(c[k].v.lo);
+      if (abs(v - exact[k]) > exactly(c[k].e) ||
+          (c[k].e == 0 && c[k].v.lo != 0)) {
+        ++failures;
+        ADD_FAILURE() << "case " << i << ", coordinate " << k << ": error "
+                      << Q(abs(v - exact[k])).get_d() << " > bound " << c[k].e;
+      }
+      exact_count += c[k].e == 0;
+      if (exact_pose && c[k].e != 0) {
+        ++failures;
+        ADD_FAILURE() << "case " << i << ", coordinate " << k
+                      << ": an exact pose's coordinate not certified exact";
+      }
+    }
+  }
+  EXPECT_EQ(failures, 0);
+  EXPECT_GE(exact_count, 3 * (n / 5));
+}
+TEST(DwKernelFrame, BoundEnclosesTheExactLocalCoordinates) {
+  const std::uint64_t seed = test::baseSeed() + 74;
+  SCOPED_TRACE(test::seedTrace(seed));
+  dwFrameEncloses<false>(seed);
+  dwFrameEncloses<true>(seed);  // std::fma: correctly rounded everywhere
+}
+
+// The arithmetic of the tracking kernels on polynomials of the triangle's
+// shape (a b - c d, (a b - c d) (e + f) - g h, squares), with inputs that
+// make exact ties, cancellations and mixed exponents: the bound of every
+// result encloses the exact value (GMP dyadics), a bound of 0 means the
+// value is exact, and every certified sign is the exact sign.
+Q dyadicQ(const detail::Dyadic& x) {
+  Q q(x.m);
+  if (x.e >= 0)
+    mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(x.e));
+  else
+    mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(-x.e));
+  return q;
+}
+
+template <class K, class Value>
+void trackingArithmetic(std::uint64_t seed, Value value) {
+  std::mt19937_64 g(seed);
+  std::uniform_real_distribution<double> U(-1, 1);
+  const long n = test::scaled(20000);
+  long failures = 0, zeros = 0, decided = 0;
+  for (long i = 0; i < n && failures < 10; ++i) {
+    double in[8];
+    const int regime = int(i % 4);
+    for (double& x : in) {
+      if (regime == 0)  // small dyadics: exact ties
+        x = double(long(g() % 33) - 16) * 0.125;
+      else if (regime == 1)  // general
+        x = U(g);
+      else if (regime == 2)  // mixed exponents
+        x = std::ldexp(U(g), int(g() % 120) - 60);
+      else  // near-cancelling pairs
+        x = 1 + std::ldexp(U(g), -50);
+    }
+    if (regime == 3) in[2] = in[0], in[3] = in[1];  // a b - a b
+    using N = typename K::Num;
+    using detail::Dyadic;
+    using detail::ExactKernel;
+    N a[8];
+    Dyadic d[8];
+    for (int k = 0; k < 8; ++k) {
+      a[k] = K::lift(in[k]);
+      d[k] = ExactKernel::lift(in[k]);
+    }
+    const N r1 = a[0] * a[1] - a[2] * a[3];
+    const Dyadic x1 = d[0] * d[1] - d[2] * d[3];
+    const N r2 = r1 * (a[4] + a[5]) - a[6] * a[7];
+    const Dyadic x2 = x1 * (d[4] + d[5]) - d[6] * d[7];
+    const N r3 = r1 * r1 - (a[4] - a[5]) * (a[4] - a[5]);
+    const Dyadic x3 = x1 * x1 - (d[4] - d[5]) * (d[4] - d[5]);
+    const std::pair<const N*, const Dyadic*> checks[3] = {
+        {&r1, &x1}, {&r2, &x2}, {&r3, &x3}};
+    for (const auto& [r, x] : checks) {
+      const Q exact = dyadicQ(*x);
+      Q v;
+      double e;
+      value(*r, &v, &e);
+      if (abs(v - exact) > exactly(e)) {
+        ++failures;
+        ADD_FAILURE() << "case " << i << " (regime " << regime
+                      << "): outside the bound";
+      }
+      const detail::Sign s = K::sign(*r);
+      const int truth = sgn(exact);
+      if (s != detail::Sign::kUnknown) {
+        ++decided;
+        zeros += s == detail::Sign::kZero;
+        if (int(s) != truth) {
+          ++failures;
+          ADD_FAILURE() << "case " << i << " (regime " << regime << "): sign "
+                        << int(s) << ", exact " << truth;
+        }
+      }
+    }
+  }
+  std::printf(
+      "[ stats    ] %ld polynomials: %ld signs decided, %ld exact zeros\n",
+      3 * n, decided, zeros);
+  EXPECT_EQ(failures, 0);
+  EXPECT_GT(zeros, n / 20);  // exact ties certified (regimes 0 and 3)
+}
+TEST(TrackingKernels, BoundsEncloseAndSignsAreExact) {
+  const std::uint64_t seed = test::baseSeed() + 75;
+  SCOPED_TRACE(test::seedTrace(seed));
+  trackingArithmetic<detail::RunningExactKernel>(
+      seed, [](const detail::Rx& r, Q* v, double* e) {
+        *v = exactly(r.v);
+        *e = r.e;
+      });
+  auto dw = [](const auto& r, Q* v, double* e) {
+    *v = exactly(r.v.hi) + exactly(r.v.lo);
+    *e = r.e;
+  };
+  trackingArithmetic<detail::DwKernel<false>>(seed, dw);
+  trackingArithmetic<detail::DwKernel<true>>(seed, dw);
+}
+
+// The double-word kernel through the whole triangle kernel on every case of
+// the families: whatever it decides is the oracle's answer.
+TEST(DwKernelTriangle, AgreesWithTheOracle) {
+  const std::uint64_t seed = test::baseSeed() + 76;
+  SCOPED_TRACE(test::seedTrace(seed));
+  for (scenes::Family f :
+       {scenes::Family::kNear, scenes::Family::kThin, scenes::Family::kFar,
+        scenes::Family::kAligned, scenes::Family::kSliver})
+    agreesWithOracle<detail::DwKernel<false>>(f, test::scaled(1500), seed);
 }
 
 }  // namespace
