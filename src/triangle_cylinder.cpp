@@ -384,8 +384,21 @@ struct Local {
 // d has at most 26 significant bits (27 + 26 <= 53) and no underflow
 // touches it (a zero factor, or |R d| >= kProdExactMin); other d take
 // TwoProduct.
-unsigned exactCoordinates(const Pose<double>& pose, const Vec3<double>& p) {
+// For a signed permutation (every column one entry +-1, the others 0:
+// `perm[j]` that entry's row), coordinate j is +-d_perm[j] (+-0 terms added
+// exactly), exact iff that difference is: one TwoSum per axis.
+unsigned exactCoordinates(const Pose<double>& pose, const Vec3<double>& p,
+                          const int* perm) {
   const double pk[3] = {p.x, p.y, p.z}, tk[3] = {pose.t.x, pose.t.y, pose.t.z};
+  if (perm != nullptr) {
+    unsigned exact = 0;
+    for (int j = 0; j < 3; ++j) {
+      double d, err;
+      detail::twoSum(pk[perm[j]], -tk[perm[j]], d, err);
+      exact |= unsigned(err == 0) << j;
+    }
+    return exact;
+  }
   double d[3];
   bool shortd[3];
   for (int k = 0; k < 3; ++k) {
@@ -434,10 +447,31 @@ bool shortRotation(const Pose<double>& pose) {
   return (low & ((std::uint64_t(1) << 26) - 1)) == 0;
 }
 
+// Whether R is a signed permutation; then perm[j] is the row of column j's
+// non-zero entry.
+bool signedPermutation(const Pose<double>& pose, int perm[3]) {
+  for (int j = 0; j < 3; ++j) {
+    int nonzero = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double r = pose.R[k][j];
+      if (r == 0) continue;
+      if (std::fabs(r) != 1) return false;
+      perm[j] = k;
+      ++nonzero;
+    }
+    if (nonzero != 1) return false;
+  }
+  return true;
+}
+
 template <class K>
 detail::TriCylLocal<K> runningLocal(const Inputs& in, const Local& L) {
   detail::TriCylLocal<K> q;
   const Vec3<double>* P[3] = {&in.tri.a, &in.tri.b, &in.tri.c};
+  int perm_storage[3] = {0, 0, 0};
+  const int* perm = nullptr;
+  if constexpr (std::is_same_v<K, detail::RunningExactKernel>)
+    if (signedPermutation(in.pose, perm_storage)) perm = perm_storage;
   // Exact coordinates: only RunningExactKernel can use them.
   constexpr bool check = std::is_same_v<K, detail::RunningExactKernel>;
   for (int i = 0; i < 3; ++i) {
@@ -447,7 +481,7 @@ detail::TriCylLocal<K> runningLocal(const Inputs& in, const Local& L) {
     q.y[i] = {L.y[i], detail::coordinateBound(M, L.y[i])};
     q.Z[i] = {L.Z[i], 2 * detail::coordinateBound(M, z)};
     if constexpr (check) {
-      const unsigned exact = exactCoordinates(in.pose, *P[i]);
+      const unsigned exact = exactCoordinates(in.pose, *P[i], perm);
       if (exact & 1) q.x[i].e = 0;
       if (exact & 2) q.y[i].e = 0;
       if (exact & 4) q.Z[i].e = 0;
