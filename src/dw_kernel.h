@@ -37,6 +37,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "eft.h"
 #include "filter.h"
@@ -121,13 +122,22 @@ TRICYL_DW_INLINE Dwe<kFma> operator*(const Dwe<kFma>& a, const Dwe<kFma>& b) {
 }
 
 /// A product of two exact values of RunningExactKernel (src/filter.h).
-inline Rx mulExactOperands(Rx a, Rx b) {
-  double p, err;
-  twoProd(a.v, b.v, p, err);
+/// Two factors of at most 26 significant bits each (the low 27 bits of
+/// both significands zero) have an exact product of at most 52 bits unless
+/// it underflows: checked by their bits first (the small dyadics of exact
+/// data), TwoProduct otherwise.
+TRICYL_DW_INLINE Rx mulExactOperands(Rx a, Rx b) {
+  const double p = a.v * b.v;
   if (a.v == 0 || b.v == 0) return {p, 0.0};  // a zero factor: exact 0
-  return {p, err == 0 && std::fabs(p) >= kProdExactMin
-                 ? 0.0
-                 : kU1d * std::fabs(p) + 0x1p-1074};
+  std::uint64_t ba, bb;
+  std::memcpy(&ba, &a.v, sizeof ba);
+  std::memcpy(&bb, &b.v, sizeof bb);
+  const bool no_underflow = std::fabs(p) >= kProdExactMin;
+  if (((ba | bb) & ((std::uint64_t(1) << 27) - 1)) == 0 && no_underflow)
+    return {p, 0.0};
+  double q, err;
+  twoProd(a.v, b.v, q, err);
+  return {p, err == 0 && no_underflow ? 0.0 : kU1d * std::fabs(p) + 0x1p-1074};
 }
 
 /// The local coordinate x = sum_k R_k d_k, d_k = p_k - t_k (R_k = R_kj for
