@@ -173,7 +173,8 @@ bool shortRotation(const Pose<double>& pose);
 // (TRICYL_FMA_DISPATCH) runs FMA throughout; both copies give the same bits.
 template <bool kFma>
 TRICYL_ALWAYS_INLINE Tri dwTests(const Inputs& in, std::uint32_t tests,
-                                 std::uint32_t* left) {
+                                 std::uint32_t* left,
+                                 detail::EarlyOuts* early) {
   using K = detail::DwKernel<kFma>;
   detail::TriCylLocal<K> q;
   const Vec3<double>* P[3] = {&in.tri.a, &in.tri.b, &in.tri.c};
@@ -181,24 +182,27 @@ TRICYL_ALWAYS_INLINE Tri dwTests(const Inputs& in, std::uint32_t tests,
     K::toLocal(in.pose, *P[i], q.x[i], q.y[i], q.Z[i]);
   q.H = K::lift(in.cyl.lz);
   q.r = K::lift(in.cyl.radius);
-  return detail::triangleCylinderUndecided<K>(q, tests, left);
+  return detail::triangleCylinderUndecided<K>(q, tests, left, early);
 }
 #if TRICYL_FMA_DISPATCH
 __attribute__((target("fma"), flatten, noinline)) Tri dwTestsFma(
-    const Inputs& in, std::uint32_t tests, std::uint32_t* left) {
-  return dwTests<true>(in, tests, left);
+    const Inputs& in, std::uint32_t tests, std::uint32_t* left,
+    detail::EarlyOuts* early) {
+  return dwTests<true>(in, tests, left, early);
 }
 #endif
 TRICYL_FLATTEN TRICYL_NOINLINE Tri dwTestsPlain(const Inputs& in,
                                                 std::uint32_t tests,
-                                                std::uint32_t* left) {
-  return dwTests<TRICYL_HAVE_FMA != 0>(in, tests, left);
+                                                std::uint32_t* left,
+                                                detail::EarlyOuts* early) {
+  return dwTests<TRICYL_HAVE_FMA != 0>(in, tests, left, early);
 }
-Tri dwStage(const Inputs& in, std::uint32_t tests, std::uint32_t* left) {
+Tri dwStage(const Inputs& in, std::uint32_t tests, std::uint32_t* left,
+            detail::EarlyOuts* early) {
 #if TRICYL_FMA_DISPATCH
-  if (detail::fmaAtRunTime()) return dwTestsFma(in, tests, left);
+  if (detail::fmaAtRunTime()) return dwTestsFma(in, tests, left, early);
 #endif
-  return dwTestsPlain(in, tests, left);
+  return dwTestsPlain(in, tests, left, early);
 }
 
 // The whole sequence for validated inputs (src/stages.h): the double filter
@@ -267,23 +271,26 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
     using detail::triangleCylinderUndecided;
     std::uint32_t left = 0;
     Tri t;
+    detail::EarlyOuts early;  // settled here: the double-word stage skips them
     detail::tls_exact_zero = false;
     if (fast == nullptr)
       t = triangleCylinderUndecided<RunningExactKernel>(
           detail::makeLocal<RunningExactKernel>(in.cyl, in.pose, in.tri,
                                                 max_unitless),
-          undecided, &left);
+          undecided, &left, &early);
     else if (shortRotation(in.pose))
       t = triangleCylinderUndecided<RunningExactKernel>(
-          runningLocal<RunningExactKernel>(in, *fast), undecided, &left);
+          runningLocal<RunningExactKernel>(in, *fast), undecided, &left,
+          &early);
     else
       t = triangleCylinderUndecided<RunningDoubleKernel>(
-          runningLocal<RunningDoubleKernel>(in, *fast), undecided, &left);
+          runningLocal<RunningDoubleKernel>(in, *fast), undecided, &left,
+          &early);
     if (t != Tri::kUnknown)
       return {detail::toAnswer(t),
               detail::tls_exact_zero ? Stage::kExact : Stage::kFastPath};
     undecided = left;
-    t = dwStage(in, undecided, &left);
+    t = dwStage(in, undecided, &left, &early);
     if (t != Tri::kUnknown)
       return {detail::toAnswer(t),
               detail::tls_exact_zero ? Stage::kExact : Stage::kExtended};

@@ -292,25 +292,41 @@ Tri triangleCylinder(const TriCylLocal<K>& q, bool* early,
 /// certified rejection is the answer whatever the tests say. `left`
 /// (optional): the tests this run left undecided, when it returns kUnknown
 /// (the double-word kernel, src/dw_kernel.h, can).
+/// Whether the six early-outs are settled: each failed at a certified sign,
+/// so that a stronger kernel would fail them too.
+struct EarlyOuts {
+  bool settled = false;
+};
+
 template <class K>
 Tri triangleCylinderUndecided(const TriCylLocal<K>& q, std::uint32_t tests,
-                              std::uint32_t* left = nullptr) {
+                              std::uint32_t* left = nullptr,
+                              EarlyOuts* early = nullptr) {
   // The early-outs again (the slab, then the disk's bounding square): in
   // the adaptive kernel they often decide what the filter could not, at the
   // cost of a few signs (fewer instructions in every family than going
-  // straight to the undecided tests).
-  {
+  // straight to the undecided tests). Each fails at its first sign that is
+  // not positive; if that sign is certified (not kUnknown) the early-out
+  // fails in every arithmetic, and when all six do, a later stage skips
+  // them (EarlyOuts).
+  if (early == nullptr || !early->settled) {
     using N = typename K::Num;
-    auto pos = [](const N& v) { return K::sign(v) == Sign::kPos; };
+    bool settled = true;
     auto allPos = [&](const N* c, bool negate, const N& d) {
-      for (int i = 0; i < 3; ++i)
-        if (!pos(negate ? N(-c[i] - d) : N(c[i] - d))) return false;
+      for (int i = 0; i < 3; ++i) {
+        const Sign s = K::sign(negate ? N(-c[i] - d) : N(c[i] - d));
+        if (s != Sign::kPos) {
+          settled &= s != Sign::kUnknown;
+          return false;
+        }
+      }
       return true;
     };
     if (allPos(q.Z, false, q.H) || allPos(q.Z, true, q.H) ||
         allPos(q.x, false, q.r) || allPos(q.x, true, q.r) ||
         allPos(q.y, false, q.r) || allPos(q.y, true, q.r))
       return Tri::kFalse;
+    if (early) early->settled = settled;
   }
   std::uint32_t need[2] = {0, 0};  // per cap: bit i = vertex i's sign
   for (int i = 0; i < 3; ++i)
