@@ -105,7 +105,7 @@ TRICYL_EFT_INLINE void Tape::dwNode(std::uint32_t id) {
       r.e = 0;
       break;
     case kCoord:
-      r = dwCoord<kFma>(nd);
+      r = accurate_ ? dwCoordAccurate(nd) : dwCoord<kFma>(nd);
       break;
     case kNeg: {
       const DwRun& a = get(nd.a);
@@ -159,6 +159,30 @@ DwRun Tape::dw(std::uint32_t id) {
       dwPlain(id);
   }
   return dw_[id];
+}
+
+// A local coordinate to within 2^-104 or so of ITS OWN magnitude, where
+// dwCoord's bound is 2^-100 of the terms' magnitude M: its exact value as
+// an expansion (expansionCoord, below), compressed, rounded to its two
+// largest components (hi, lo) = TwoSum(c_n-1, c_n-2), with the bound
+// e = (sum of the other components' magnitudes) (1 + 2^-40): the sum of at
+// most 96 non-negative doubles rounds down by less than that factor, and
+// the components are exact. For needles and discs, whose local coordinates
+// are far smaller than the terms they cancel from, this is what decides a
+// near tie that dwCoord's absolute bound leaves to the expansions. An
+// expansion that cannot be formed (src/expansion.h) keeps dwCoord's value.
+DwRun Tape::dwCoordAccurate(const Node& nd) const {
+  const Expansion x = expansionCoord(nd).compressed();
+  if (!x.ok()) return dwCoord<false>(nd);
+  const int n = x.size();
+  const double* c = x.data();
+  DwRun r{{0.0, 0.0}, 0.0};
+  if (n == 0) return r;
+  twoSum(c[n - 1], n >= 2 ? c[n - 2] : 0.0, r.v.hi, r.v.lo);
+  double rest = 0;
+  for (int i = 0; i + 2 < n; ++i) rest += std::fabs(c[i]);
+  r.e = rest * (1 + 0x1p-40);
+  return r;
 }
 
 // ---------------------------------------------------------------------------
@@ -442,11 +466,22 @@ Sign Tape::escalate(std::uint32_t id, double v) {
       return exact > 0 ? Sign::kPos : (exact < 0 ? Sign::kNeg : Sign::kZero);
     }
   }
-  const DwRun d = dw(id);
-  const double b = (d.e + std::fabs(d.v.lo)) * (1 + 0x1p-40) + 0x1p-600;
+  DwRun d = dw(id);
+  double b = (d.e + std::fabs(d.v.lo)) * (1 + 0x1p-40) + 0x1p-600;
   if (level_ < 1) level_ = 1;
   if (d.v.hi > b) return Sign::kPos;
   if (d.v.hi < -b) return Sign::kNeg;
+  if (!accurate_) {
+    // Once more with the coordinates to their own precision
+    // (dwCoordAccurate), for this sign and every later one of the run:
+    // the memo is cleared and refilled, and its values keep valid bounds.
+    accurate_ = true;
+    std::memset(memo_, 0, sizeof memo_);
+    d = dw(id);
+    b = (d.e + std::fabs(d.v.lo)) * (1 + 0x1p-40) + 0x1p-600;
+    if (d.v.hi > b) return Sign::kPos;
+    if (d.v.hi < -b) return Sign::kNeg;
+  }
   const Expansion x = expansion(id);
   if (x.ok()) {
     if (level_ < 2) level_ = 2;

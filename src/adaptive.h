@@ -165,6 +165,12 @@ class Tape {
     *e = d.e;
   }
   Dyadic exact(std::uint32_t id) const { return dyadic(id); }
+  /// For tests: double-word values from here on with the coordinates to
+  /// their own precision (dwCoordAccurate), as escalate switches to.
+  void useAccurateCoordinates() {
+    accurate_ = true;
+    std::memset(memo_, 0, sizeof memo_);
+  }
 
  private:
   // No member of a character type: a store through one may alias anything,
@@ -192,6 +198,7 @@ class Tape {
   void dwNode(std::uint32_t id);
   template <bool kFma>
   DwRun dwCoord(const Node& nd) const;
+  DwRun dwCoordAccurate(const Node& nd) const;
   Expansion expansionCoord(const Node& nd) const;
   Dyadic dyadicCoord(const Node& nd) const;
   Expansion expansion(std::uint32_t id);
@@ -200,6 +207,9 @@ class Tape {
   Dyadic dyadic(std::uint32_t id) const;
 
   bool overflow_ = false;
+  // Coordinates to their own precision (dwCoordAccurate): set by the first
+  // sign that the plain double-word values could not decide.
+  bool accurate_ = false;
   int level_ = 0;
   int n_ = 0;
   int leaves_ = 0;

@@ -89,6 +89,13 @@ class Expansion {
     if (n_ == 0) return 0;
     return c_[n_ - 1] > 0 ? 1 : -1;
   }
+  /// The same value in fewer non-overlapping components (Compress), so
+  /// that the largest component approximates the value.
+  Expansion compressed() const {
+    Expansion r = *this;
+    r.compress();
+    return r;
+  }
   double approx() const {
     double s = 0;
     for (int i = 0; i < n_; ++i) s += c_[i];

@@ -265,6 +265,49 @@ TEST(DoubleWordFrame, BoundEnclosesTheExactLocalCoordinates) {
   EXPECT_EQ(failures, 0);
 }
 
+// The accurate coordinates the tape switches to when double word cannot
+// decide a sign (Tape::dwCoordAccurate): the bound encloses the exact
+// value, and it is relative to the coordinate itself (far below dwCoord's
+// 2^-100 of the terms where the coordinate cancels: regime 1).
+TEST(DoubleWordFrame, AccurateCoordinatesEncloseTheExact) {
+  const std::uint64_t seed = test::baseSeed() + 77;
+  SCOPED_TRACE(test::seedTrace(seed));
+  std::mt19937_64 g(seed);
+  const long n = test::scaled(3000);
+  long failures = 0, tight = 0, eligible = 0;
+  for (long i = 0; i < n && failures < 10; ++i) {
+    Pose<double> pose;
+    Vec3<double> p;
+    framePoint(g, i, pose, p);
+    detail::Tape tape;
+    detail::TapeScope scope(&tape);
+    detail::An c[3];
+    tape.toLocal(pose, p, c[0], c[1], c[2]);
+    tape.useAccurateCoordinates();
+    const oracle::Q3 ex = oracle::toLocal(pose, p);
+    const Q exact[3] = {ex.x, ex.y, 2 * ex.z};
+    for (int k = 0; k < 3; ++k) {
+      detail::DW v;
+      double e;
+      tape.doubleWord(c[k].id, &v, &e);
+      const Q err = abs(exactly(v.hi) + exactly(v.lo) - exact[k]);
+      if (err > exactly(e)) {
+        ++failures;
+        ADD_FAILURE() << "case " << i << ", coordinate " << k << ": error "
+                      << err.get_d() << " > bound " << e;
+      }
+      // Regime 3's products underflow: no expansion, dwCoord's bound kept.
+      if (i % 4 != 3) {
+        ++eligible;
+        tight += e <= std::fabs(v.hi) * 0x1p-100;
+      }
+    }
+  }
+  EXPECT_EQ(failures, 0);
+  // Every other bound relative to the coordinate.
+  EXPECT_EQ(tight, eligible);
+}
+
 // Each running kernel alone, through the whole triangle kernel (the
 // largest predicate set in tricyl), on every case of the families (not only
 // those the double filter leaves): whatever it decides is the oracle's
