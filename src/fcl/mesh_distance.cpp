@@ -44,8 +44,7 @@ using namespace traversal;  // NOLINT: this file's own internal helpers
 constexpr double kLeafRel = 0x1p-40;
 
 /// A node still to visit, or (leaf) a triangle still to measure, with a
-/// lower bound of its distance. NaN bounds order as -Inf (visited first,
-/// never pruned).
+/// lower bound of its distance.
 enum Kind : unsigned char {
   kInner,         // an inner node, its box bound
   kLeafBoxBound,  // a leaf, its box bound only
@@ -58,29 +57,63 @@ struct Entry {
   Kind kind;
 };
 
-/// The open entries, smallest bound first (best-first: a triangle is
-/// measured only if no open entry could hold a nearer one).
+// ORDER. Entries whose bound is positive wait in a heap, smallest bound
+// first (best-first: a triangle is measured only if no open entry could hold
+// a nearer one). Entries whose bound proves nothing (<= 0 or NaN: the box
+// may meet the cylinder) cannot be ordered by it: every bound of a box that
+// the cylinder enters is <= 0, and the larger the box the more negative, so
+// a heap would expand the whole overlapping part of the tree breadth-first,
+// largest boxes first, before its first leaf (about 110 bounds for one
+// triangle measured on the colliding poses of bench_fcl_distance's env.obj
+// scene). They go on a stack instead and are taken first, depth-first, the
+// child with the more negative bound first (it holds the deeper part of
+// the overlap), as tricyl::collide's walk: a pose in collision stops at the
+// first colliding triangle that walk meets. A pose clear of the mesh must
+// visit every such entry whatever the order (none can be pruned while the
+// best distance is positive), so the order changes nothing for it. The
+// answer does not depend on the order (PRUNING).
 class EntryQueue {
  public:
-  EntryQueue() { items_.reserve(256); }
-  void push(double lb, int node, Kind kind) {
-    items_.push_back({std::isnan(lb) ? -kInf : lb, node, kind});
-    std::push_heap(items_.begin(), items_.end(), later);
+  EntryQueue() {
+    heap_.reserve(256);
+    stack_.reserve(64);
   }
-  bool empty() const { return items_.empty(); }
-  /// The smallest bound (the queue is not empty).
-  double topBound() const { return items_.front().lb; }
+  void push(double lb, int node, Kind kind) {
+    if (!gt(lb, 0)) {
+      stack_.push_back({lb, node, kind});
+      return;
+    }
+    heap_.push_back({lb, node, kind});
+    std::push_heap(heap_.begin(), heap_.end(), Later{});
+  }
+  bool empty() const { return stack_.empty() && heap_.empty(); }
+  /// A lower bound of every open entry's bound (-Inf while the stack holds
+  /// any; the queue is not empty).
+  double floor() const {
+    return stack_.empty() ? heap_.front().lb
+                          : -std::numeric_limits<double>::infinity();
+  }
+  /// The next entry: the top of the stack, else the smallest bound.
   Entry pop() {
-    std::pop_heap(items_.begin(), items_.end(), later);
-    const Entry e = items_.back();
-    items_.pop_back();
+    if (!stack_.empty()) {
+      const Entry e = stack_.back();
+      stack_.pop_back();
+      return e;
+    }
+    std::pop_heap(heap_.begin(), heap_.end(), Later{});
+    const Entry e = heap_.back();
+    heap_.pop_back();
     return e;
   }
 
  private:
-  static constexpr double kInf = std::numeric_limits<double>::infinity();
-  static bool later(const Entry& a, const Entry& b) { return a.lb > b.lb; }
-  std::vector<Entry> items_;
+  struct Later {
+    bool operator()(const Entry& a, const Entry& b) const {
+      return a.lb > b.lb;
+    }
+  };
+  std::vector<Entry> heap_;
+  std::vector<Entry> stack_;
 };
 
 class Pruner {
@@ -138,23 +171,24 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
   // cheap bound (mesh_traversal.h, triangleLowerBound) only when it comes
   // to the top of the queue (most leaves never do), and goes back in with
   // the larger bound if another entry is now first.
-  const auto push = [&](int n) {
+  const auto push = [&](int n, double lb) {
     ++tested;
-    const double lb = bound(n);
     if (pruner.prune(lb, best)) {
       ++skipped;
       return;
     }
     queue.push(lb, n, isLeaf(model.getBV(n)) ? kLeafBoxBound : kInner);
   };
-  push(0);
+  push(0, bound(0));
   while (!queue.empty()) {
     const Entry e = queue.pop();
-    // Every open entry is at least e.lb: once that cannot improve on best,
-    // nothing can.
+    // Taken from the heap, every open entry is at least e.lb: once that
+    // cannot improve on best, nothing can. (From the stack, e.lb is <= 0 or
+    // NaN and prunes nothing while best > 0; the loop ends at best <= 0.)
     if (pruner.prune(e.lb, best)) {
       ++skipped;
-      break;
+      if (gt(e.lb, 0)) break;
+      continue;
     }
     const fcl::BVNode<BV>& node = model.getBV(e.node);
     if (e.kind == kLeafBoxBound) {
@@ -168,7 +202,9 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
         ++skipped;
         continue;
       }
-      if (gt(lt, e.lb) && !queue.empty() && gt(lt, queue.topBound())) {
+      // (Not when lt proves nothing: it would come straight back.)
+      if (gt(lt, 0) && gt(lt, e.lb) && !queue.empty() &&
+          gt(lt, queue.floor())) {
         queue.push(lt, e.node, kLeaf);
         continue;
       }
@@ -176,8 +212,16 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
     if (e.kind == kInner) {
       prefetchNode(model.getBV(leftChild(node)));
       prefetchNode(model.getBV(rightChild(node)));
-      push(leftChild(node));
-      push(rightChild(node));
+      const int left = leftChild(node), right = rightChild(node);
+      const double lb_left = bound(left), lb_right = bound(right);
+      // (ORDER: the more negative bound last, taken first from the stack.)
+      if (std::isless(lb_left, lb_right)) {
+        push(right, lb_right);
+        push(left, lb_left);
+      } else {
+        push(left, lb_left);
+        push(right, lb_right);
+      }
       continue;
     }
     const int id = primitiveId(node);
