@@ -161,9 +161,6 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
     worldTriangle(model.vertices, model.tri_indices[primitiveId(node)], tf_mesh,
                   setup.raw, p);
   };
-  // A node's entry: an inner node with its box bound; a leaf with the
-  // larger of its box bound and its triangle's own cheap bound
-  // (mesh_traversal.h, triangleLowerBound).
   std::size_t tested = 0, skipped = 0, leaves = 0, hits = 0;
   double best = result.min_distance;
   EntryQueue queue;
@@ -171,17 +168,29 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
   // cheap bound (mesh_traversal.h, triangleLowerBound) only when it comes
   // to the top of the queue (most leaves never do), and goes back in with
   // the larger bound if another entry is now first.
-  const auto push = [&](int n, double lb) {
-    ++tested;
-    if (pruner.prune(lb, best)) {
-      ++skipped;
-      return;
-    }
-    queue.push(lb, n, isLeaf(model.getBV(n)) ? kLeafBoxBound : kInner);
+  const auto entryOf = [&](int n, double lb) {
+    return Entry{lb, n, isLeaf(model.getBV(n)) ? kLeafBoxBound : kInner};
   };
-  push(0, bound(0));
-  while (!queue.empty()) {
-    const Entry e = queue.pop();
+  const auto survives = [&](double lb) {
+    ++tested;
+    if (!pruner.prune(lb, best)) return true;
+    ++skipped;
+    return false;
+  };
+  // `next`: the entry the queue would give next, taken without the round
+  // trip through it (the nearer child of the node just expanded, below).
+  Entry next{};
+  bool have_next = false;
+  {
+    const double lb = bound(0);
+    if (survives(lb)) {
+      next = entryOf(0, lb);
+      have_next = true;
+    }
+  }
+  while (have_next || !queue.empty()) {
+    const Entry e = have_next ? next : queue.pop();
+    have_next = false;
     // Taken from the heap, every open entry is at least e.lb: once that
     // cannot improve on best, nothing can. (From the stack, e.lb is <= 0 or
     // NaN and prunes nothing while best > 0; the loop ends at best <= 0.)
@@ -214,13 +223,26 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
       prefetchNode(model.getBV(rightChild(node)));
       const int left = leftChild(node), right = rightChild(node);
       const double lb_left = bound(left), lb_right = bound(right);
-      // (ORDER: the more negative bound last, taken first from the stack.)
-      if (std::isless(lb_left, lb_right)) {
-        push(right, lb_right);
-        push(left, lb_left);
-      } else {
-        push(left, lb_left);
-        push(right, lb_right);
+      // ORDER: the child with the smaller bound (more negative: deeper in
+      // the overlap) first. It is what the queue would give next when its
+      // bound proves nothing (the top of the stack) or is at most every
+      // open bound (the top of the heap, the stack empty): then it is taken
+      // directly, else queued.
+      const bool left_first = std::isless(lb_left, lb_right);
+      const int near = left_first ? left : right,
+                far = left_first ? right : left;
+      const double lb_near = left_first ? lb_left : lb_right;
+      const double lb_far = left_first ? lb_right : lb_left;
+      if (survives(lb_far)) {
+        const Entry f = entryOf(far, lb_far);
+        queue.push(f.lb, f.node, f.kind);
+      }
+      if (survives(lb_near)) {
+        next = entryOf(near, lb_near);
+        if (!gt(lb_near, 0) || queue.empty() || !gt(lb_near, queue.floor()))
+          have_next = true;
+        else
+          queue.push(next.lb, next.node, next.kind);
       }
       continue;
     }

@@ -322,16 +322,27 @@ struct BoxOf<fcl::RSS<double>> {
   }
 };
 
+/// sum |A^T A - I| over the nine entries, for the 3x3 matrix whose column i
+/// is a + 3 i (an FCL Matrix3d's storage); NaN for a non-finite A. A^T A is
+/// symmetric, its entries computed the same way either side of the diagonal
+/// (the same products, summed in the same order): the three off-diagonal
+/// ones are computed once and counted twice.
+inline double gramDeparture(const double* a) {
+  const auto dot = [a](int i, int j) {
+    const double* x = a + 3 * i;
+    const double* y = a + 3 * j;
+    return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+  };
+  const double diag = std::fabs(dot(0, 0) - 1) + std::fabs(dot(1, 1) - 1) +
+                      std::fabs(dot(2, 2) - 1);
+  const double off =
+      std::fabs(dot(0, 1)) + std::fabs(dot(0, 2)) + std::fabs(dot(1, 2));
+  return diag + 2 * off;
+}
+
 /// sum |R^T R - I| over the nine entries; NaN for a non-finite R.
 inline double nonOrthogonality(const fcl::Matrix3d& R) {
-  double s = 0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      const double g = R(0, i) * R(0, j) + R(1, i) * R(1, j) +
-                       R(2, i) * R(2, j) - (i == j ? 1.0 : 0.0);
-      s += std::fabs(g);
-    }
-  return s;
+  return gramDeparture(R.data());
 }
 
 inline bool finiteTransform(const Tf& tf) {
@@ -525,16 +536,9 @@ bool prepare(const fcl::BVHModel<BV>& model, const Tf& tf_mesh,
   {
     Box root;
     Boxer::get(model.getBV(0).bv, &root);
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; i < 3; ++i)
       if (!std::isfinite(root.b[i]) || !std::isfinite(root.e[i])) return false;
-      if constexpr (!Boxer::kAligned)
-        for (int j = 0; j < 3; ++j) {
-          const double* ai = root.axis(i);
-          const double* aj = root.axis(j);
-          box_delta += std::fabs(ai[0] * aj[0] + ai[1] * aj[1] + ai[2] * aj[2] -
-                                 (i == j ? 1.0 : 0.0));
-        }
-    }
+    if constexpr (!Boxer::kAligned) box_delta = gramDeparture(root.a);
   }
   const double delta =
       std::max({nonOrthogonality(Rm), nonOrthogonality(Rc), box_delta});
@@ -565,7 +569,7 @@ bool prepare(const fcl::BVHModel<BV>& model, const Tf& tf_mesh,
     // h |u_i| + r |e_i x u| (see THE NODE TEST AND ITS MARGIN): |e_i x u|
     // is the length of u's other two components.
     const double uj = u[(i + 1) % 3], uk = u[(i + 2) % 3];
-    k.support[i] = k.h * k.au[i] + k.r * std::sqrt(uj * uj + uk * uk);
+    k.support[i] = k.h * k.au[i] + k.r * sqrtNonNegative(uj * uj + uk * uk);
   }
 
   // World vertices exactly as the Solver sees them (fcl_solver.h, FRAMES):
