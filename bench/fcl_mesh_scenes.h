@@ -45,6 +45,32 @@ inline fcl::Transform3d frameWithAxis(const fcl::Vector3d& z,
   return tf;
 }
 
+/// The random draws of the scenes below, in the order they make them.
+class PoseSampler {
+ public:
+  PoseSampler(const FclObjModel& m, std::uint64_t seed)
+      : v(m.v), t(m.t), diag(m.diag), rng_(seed) {}
+  double uniform() { return u_(rng_); }
+  /// A triangle drawn uniformly.
+  const fcl::Triangle& triangle() {
+    return t[std::size_t(uniform() * double(t.size())) % t.size()];
+  }
+  /// A uniformly random rotation (a normalised Gaussian quaternion).
+  fcl::Matrix3d rotation() {
+    Eigen::Quaterniond q(g_(rng_), g_(rng_), g_(rng_), g_(rng_));
+    return q.normalized().toRotationMatrix();
+  }
+
+  const std::vector<fcl::Vector3d>& v;
+  const std::vector<fcl::Triangle>& t;
+  const double diag;
+
+ private:
+  std::mt19937_64 rng_;
+  std::uniform_real_distribution<double> u_{0, 1};
+  std::normal_distribution<double> g_;
+};
+
 /// `n` poses near the surface of `m` (seeded): a random triangle's centroid
 /// moved by up to 3 % of the diagonal, random orientation, radius 0.3 .. 2.3
 /// % and length 1 .. 6 % of the diagonal. With `grazing`, every other pose
@@ -55,22 +81,18 @@ inline CylinderPoses nearSurfacePoses(const FclObjModel& m, std::uint64_t seed,
                                       int n, bool grazing) {
   using V3 = fcl::Vector3d;
   CylinderPoses d;
-  const std::vector<V3>& v = m.v;
-  const std::vector<fcl::Triangle>& t = m.t;
-  const double diag = m.diag;
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::normal_distribution<double> g;
+  PoseSampler s(m, seed);
+  const std::vector<V3>& v = s.v;
+  const double diag = s.diag;
   for (int k = 0; k < n; ++k) {
-    const fcl::Triangle& tr =
-        t[std::size_t(u(rng) * double(t.size())) % t.size()];
+    const fcl::Triangle& tr = s.triangle();
     const V3 c = (v[tr[0]] + v[tr[1]] + v[tr[2]]) / 3;
     const V3 nrm = (v[tr[1]] - v[tr[0]]).cross(v[tr[2]] - v[tr[0]]);
     if (grazing && k % 2 == 1 && nrm.norm() > 0) {
       const V3 nn = nrm.normalized();
       const double off = kGraze[std::size_t(k / 2) % std::size(kGraze)] * diag;
-      const double r = diag * (0.003 + 0.02 * u(rng));
-      const double lz = diag * (0.01 + 0.05 * u(rng));
+      const double r = diag * (0.003 + 0.02 * s.uniform());
+      const double lz = diag * (0.01 + 0.05 * s.uniform());
       const bool barrel = (k / 2) % 2 == 0;
       d.poses.push_back(
           barrel ? frameWithAxis(v[tr[1]] - v[tr[0]], c + nn * (r + off))
@@ -79,13 +101,14 @@ inline CylinderPoses nearSurfacePoses(const FclObjModel& m, std::uint64_t seed,
       continue;
     }
     fcl::Transform3d tf = fcl::Transform3d::Identity();
-    Eigen::Quaterniond q(g(rng), g(rng), g(rng), g(rng));
-    tf.linear() = q.normalized().toRotationMatrix();
+    tf.linear() = s.rotation();
     tf.translation() =
-        c + diag * 0.03 * V3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
+        c + diag * 0.03 *
+                V3(s.uniform() - 0.5, s.uniform() - 0.5, s.uniform() - 0.5);
     d.poses.push_back(tf);
-    d.cyls.push_back(std::make_shared<fcl::Cylinderd>(
-        diag * (0.003 + 0.02 * u(rng)), diag * (0.01 + 0.05 * u(rng))));
+    d.cyls.push_back(
+        std::make_shared<fcl::Cylinderd>(diag * (0.003 + 0.02 * s.uniform()),
+                                         diag * (0.01 + 0.05 * s.uniform())));
   }
   return d;
 }
@@ -99,24 +122,19 @@ inline CylinderPoses clearancePoses(const FclObjModel& m, std::uint64_t seed,
                                     int n) {
   using V3 = fcl::Vector3d;
   CylinderPoses d;
-  const std::vector<V3>& v = m.v;
-  const std::vector<fcl::Triangle>& t = m.t;
-  const double diag = m.diag;
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::normal_distribution<double> g;
+  PoseSampler s(m, seed);
+  const std::vector<V3>& v = s.v;
+  const double diag = s.diag;
   while (int(d.poses.size()) < n) {
-    const fcl::Triangle& tr =
-        t[std::size_t(u(rng) * double(t.size())) % t.size()];
+    const fcl::Triangle& tr = s.triangle();
     const V3 nrm = (v[tr[1]] - v[tr[0]]).cross(v[tr[2]] - v[tr[0]]);
     if (!(nrm.norm() > 0)) continue;
     const V3 c = (v[tr[0]] + v[tr[1]] + v[tr[2]]) / 3;
-    const double r = diag * (0.003 + 0.02 * u(rng));
-    const double lz = diag * (0.01 + 0.05 * u(rng));
+    const double r = diag * (0.003 + 0.02 * s.uniform());
+    const double lz = diag * (0.01 + 0.05 * s.uniform());
     fcl::Transform3d tf = fcl::Transform3d::Identity();
-    Eigen::Quaterniond q(g(rng), g(rng), g(rng), g(rng));
-    tf.linear() = q.normalized().toRotationMatrix();
-    const double off = diag * std::pow(10.0, -6 + 5 * u(rng));
+    tf.linear() = s.rotation();
+    const double off = diag * std::pow(10.0, -6 + 5 * s.uniform());
     tf.translation() = c + nrm.normalized() * (r + 0.5 * lz + off);
     d.poses.push_back(tf);
     d.cyls.push_back(std::make_shared<fcl::Cylinderd>(r, lz));
