@@ -451,7 +451,9 @@ lowerBound(const Box& x, const Local& k) {
   const double ud = n.ud;
   const double* ua = n.ua;
   // (A)
-  double g = std::fabs(ud) - (k.h + e[0] * ua[0] + e[1] * ua[1] + e[2] * ua[2]);
+  const double g_axis =
+      std::fabs(ud) - (k.h + e[0] * ua[0] + e[1] * ua[1] + e[2] * ua[2]);
+  double g = g_axis;
   // (B). The radial part r |a_i x u| >= 0 only lowers the gap: computed
   // only when the rest would beat g.
   for (int i = 0; i < 3; ++i) {
@@ -469,17 +471,37 @@ lowerBound(const Box& x, const Local& k) {
   // >= max e_i, so |q| <= g + r + max e_i means gc <= g. (Leaving a gap out
   // only weakens the bound, never invalidates it, so the rounding of this
   // pre-test does not matter.)
+  //
+  // (A) and (C) at once: in the cylinder's frame the cylinder is a disc
+  // times an interval, so a point's distance to it is sqrt(dz^2 + dxy^2)
+  // (to the slab along u, and to the infinite solid cylinder), and every
+  // point of the box has dz >= the gap of (A) and dxy >= the gap of (C)
+  // (its distance to the axis line is at least |q| - |e|). With each gap
+  // less m (a lower bound of the exact gap, above) and both positive, the
+  // root of the sum of squares is a lower bound; its rounding (relative, a
+  // few ulps) is covered by the factor 1 - 2^-50 and the underflow of the
+  // squares by 2^-500 (m >= 2^-500 too). Worth computing when (A) proves a
+  // gap: (C)'s roots are then taken whenever the box is off the line.
   const double q[3] = {d[0] - ud * k.u[0], d[1] - ud * k.u[1],
                        d[2] - ud * k.u[2]};
   const double q2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
   const double e01 = gt(e[1], e[0]) ? e[1] : e[0];
-  const double reach = g + k.r + (gt(e[2], e01) ? e[2] : e01);
+  const double emax = gt(e[2], e01) ? e[2] : e01;
+  const double ga = g_axis - m;
+  const double reach = (gt(ga, 0) ? 0 : g) + k.r + emax;
+  double lb = g - m;
   if (!(std::islessequal(0.0, reach) && std::islessequal(q2, reach * reach))) {
     const double gc = sqrtNonNegative(q2) - k.r -
                       sqrtNonNegative(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-    if (gt(gc, g)) g = gc;
+    if (gt(gc - m, lb)) lb = gc - m;
+    const double gcm = gc - m;
+    if (gt(ga, 0) && gt(gcm, 0)) {
+      const double both =
+          sqrtNonNegative(ga * ga + gcm * gcm) * (1 - 0x1p-50) - 0x1p-500;
+      if (gt(both, lb)) lb = both;
+    }
   }
-  return g - m;
+  return lb;
 }
 
 /// The mesh-frame lower bound `lb` of lowerBound as a lower bound of the
@@ -674,14 +696,27 @@ inline double triangleLowerBound(const double x[3][3], const double R[3][3],
     if (std::isless(y[k][2], zmin)) zmin = y[k][2];
     if (gt(y[k][2], zmax)) zmax = y[k][2];
   }
-  double g = zmin - h;
-  if (gt(-h - zmax, g)) g = -h - zmax;
+  double axial = zmin - h;
+  if (gt(-h - zmax, axial)) axial = -h - zmax;
   // In the caps' plane.
   const double p[3][2] = {
       {y[0][0], y[0][1]}, {y[1][0], y[1][1]}, {y[2][0], y[2][1]}};
   const double radial = originToTriangle2d(p) - r;
-  if (gt(radial, g)) g = radial;
+  double g = gt(radial, axial) ? radial : axial;
   g -= 4 * E;
+  // Both at once: the cylinder is a disc times an interval, so a point's
+  // distance to it is sqrt(dz^2 + dxy^2) (its distances to the slab and to
+  // the infinite solid cylinder), and every point of the triangle has dz >=
+  // the axial gap and dxy >= the radial gap. With each gap less its 4 E,
+  // both positive, the root of the sum of squares is a lower bound; its own
+  // rounding (three operations, relative) is covered by the factor 1 -
+  // 2^-50, the underflow of the squares (< 2^-1073 each) by 2^-530.
+  const double ga = axial - 4 * E, gr = radial - 4 * E;
+  if (gt(ga, 0) && gt(gr, 0)) {
+    const double both =
+        sqrtNonNegative(ga * ga + gr * gr) * (1 - 0x1p-50) - 0x1p-530;
+    if (gt(both, g)) g = both;
+  }
   // Across the triangle's plane.
   const double e1[3] = {y[1][0] - y[0][0], y[1][1] - y[0][1],
                         y[1][2] - y[0][2]};
