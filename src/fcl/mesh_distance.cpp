@@ -150,9 +150,19 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
   const Pose<double> pose = toPose(tf_cyl);
   const Pruner pruner(request);
 
+  // A node's bound. Its children (or its triangle's vertex indices) are
+  // asked for at the same time: about half the nodes bounded are expanded
+  // later, and their children's fetch has then long been under way.
   const auto bound = [&](int n) {
+    const fcl::BVNode<BV>& node = model.getBV(n);
+    if (!isLeaf(node)) {
+      prefetchNode(model.getBV(leftChild(node)));
+      prefetchNode(model.getBV(rightChild(node)));
+    } else {
+      prefetchTriangle(model.tri_indices[primitiveId(node)]);
+    }
     Box box;
-    Boxer::get(model.getBV(n).bv, &box);
+    Boxer::get(node.bv, &box);
     return lowerBoundLocal(lowerBound<Boxer::kAligned>(box, k), k);
   };
   const double t_cyl[3] = {pose.t.x, pose.t.y, pose.t.z};
@@ -219,8 +229,6 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
       }
     }
     if (e.kind == kInner) {
-      prefetchNode(model.getBV(leftChild(node)));
-      prefetchNode(model.getBV(rightChild(node)));
       const int left = leftChild(node), right = rightChild(node);
       const double lb_left = bound(left), lb_right = bound(right);
       // ORDER: the child with the smaller bound (more negative: deeper in

@@ -400,6 +400,16 @@ void prefetchNode(const fcl::BVNode<BV>& node) {
 #endif
 }
 
+/// Asks for a triangle's vertex indices (the vertices themselves depend on
+/// them).
+inline void prefetchTriangle(const fcl::Triangle& t) {
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(&t);
+#else
+  (void)t;
+#endif
+}
+
 /// A small explicit stack (FCL's trees are rarely deeper than 64; deeper
 /// ones spill to the heap).
 class NodeStack {
