@@ -70,8 +70,10 @@ struct Entry {
 // the overlap), as tricyl::collide's walk: a pose in collision stops at the
 // first colliding triangle that walk meets. A pose clear of the mesh must
 // visit every such entry whatever the order (none can be pruned while the
-// best distance is positive), so the order changes nothing for it. The
-// answer does not depend on the order (PRUNING).
+// best distance is positive), so the order changes nothing for it: its
+// answer is the brute-force minimum whatever the order (PRUNING). A pose in
+// collision reports the first colliding triangle the walk meets (any
+// colliding triangle, as FCL's traversal).
 class EntryQueue {
  public:
   EntryQueue() {
