@@ -239,17 +239,17 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
       // open bound (the top of the heap, the stack empty): then it is taken
       // directly, else queued.
       const bool left_first = std::isless(lb_left, lb_right);
-      const int near = left_first ? left : right,
-                far = left_first ? right : left;
-      const double lb_near = left_first ? lb_left : lb_right;
-      const double lb_far = left_first ? lb_right : lb_left;
-      if (survives(lb_far)) {
-        const Entry f = entryOf(far, lb_far);
+      const int first = left_first ? left : right,
+                second = left_first ? right : left;
+      const double lb_first = left_first ? lb_left : lb_right;
+      const double lb_second = left_first ? lb_right : lb_left;
+      if (survives(lb_second)) {
+        const Entry f = entryOf(second, lb_second);
         queue.push(f.lb, f.node, f.kind);
       }
-      if (survives(lb_near)) {
-        next = entryOf(near, lb_near);
-        if (!gt(lb_near, 0) || queue.empty() || !gt(lb_near, queue.floor()))
+      if (survives(lb_first)) {
+        next = entryOf(first, lb_first);
+        if (!gt(lb_first, 0) || queue.empty() || !gt(lb_first, queue.floor()))
           have_next = true;
         else
           queue.push(next.lb, next.node, next.kind);
