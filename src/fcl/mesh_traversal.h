@@ -234,8 +234,8 @@ overlaps(const Box& x, const Local& k) {
   // (max by quiet comparisons, not std::fmax, a libm call: a NaN extent
   // makes m NaN, and the node is visited either way.)
   const double e01 = gt(e[1], e[0]) ? e[1] : e[0];
-  const double near = k.r + (gt(e[2], e01) ? e[2] : e01) + m;
-  if (!gt(q2, near * near)) return true;
+  const double inner = k.r + (gt(e[2], e01) ? e[2] : e01) + m;
+  if (!gt(q2, inner * inner)) return true;
   const double reach =
       k.r + sqrtNonNegative(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) + m;
   return !gt(q2, reach * reach);
