@@ -23,17 +23,15 @@
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
-#include <random>
 #include <string>
 #include <vector>
 
-#include "fcl_obj_model.h"
+#include "fcl_mesh_scenes.h"
 #include "tricyl/fcl_solver.h"
 #include "walk.h"
 
@@ -68,68 +66,17 @@ struct MeshData {
   bool ok = false;
 };
 
-/// Grazing offsets, relative to the mesh's bounding-box diagonal: a planner
-/// grazing an obstacle (exact contact, and just in or out of it).
-constexpr double kGraze[] = {0,    1e-3,  -1e-3, 1e-6, -1e-6,
-                             5e-7, -5e-7, 1e-9,  -1e-9};
-
-/// A proper rotation whose third column (the cylinder's axis) is `z`.
-Tf frameWithAxis(const V3& z, const V3& c) {
-  const V3 zn = z.normalized();
-  V3 x = std::abs(zn.x()) < 0.9 ? V3(1, 0, 0) : V3(0, 1, 0);
-  x = (x - x.dot(zn) * zn).normalized();
-  const V3 y = zn.cross(x);
-  Tf tf = Tf::Identity();
-  tf.linear().col(0) = x;
-  tf.linear().col(1) = y;
-  tf.linear().col(2) = zn;
-  tf.translation() = c;
-  return tf;
-}
-
-/// `grazing`: every other pose touches a random face of the mesh, pushed
-/// out or in by an offset of kGraze (times the diagonal), alternately with
-/// its barrel (axis in the face's plane, along an edge) and its cap (axis
-/// along the face normal); the other poses are the random ones below.
+/// The mesh and its poses (bench/fcl_mesh_scenes.h, nearSurfacePoses).
 MeshData load(const std::string& file, std::uint64_t seed,
               bool grazing = false) {
   MeshData d;
   tricyl::bench::FclObjModel fm;
   if (!tricyl::bench::loadFclObj(file, &fm)) return d;
   d.model = fm.model;
-  const std::vector<V3>& v = fm.v;
-  const std::vector<fcl::Triangle>& t = fm.t;
-  const double diag = fm.diag;
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::normal_distribution<double> g;
-  for (int k = 0; k < kPoses; ++k) {
-    const fcl::Triangle& tr =
-        t[std::size_t(u(rng) * double(t.size())) % t.size()];
-    const V3 c = (v[tr[0]] + v[tr[1]] + v[tr[2]]) / 3;
-    const V3 n = (v[tr[1]] - v[tr[0]]).cross(v[tr[2]] - v[tr[0]]);
-    if (grazing && k % 2 == 1 && n.norm() > 0) {
-      const V3 nn = n.normalized();
-      const double off = kGraze[std::size_t(k / 2) % std::size(kGraze)] * diag;
-      const double r = diag * (0.003 + 0.02 * u(rng));
-      const double lz = diag * (0.01 + 0.05 * u(rng));
-      const bool barrel = (k / 2) % 2 == 0;
-      const Tf tf = barrel
-                        ? frameWithAxis(v[tr[1]] - v[tr[0]], c + nn * (r + off))
-                        : frameWithAxis(nn, c + nn * (lz / 2 + off));
-      d.poses.push_back(tf);
-      d.cyls.push_back(std::make_shared<fcl::Cylinderd>(r, lz));
-      continue;
-    }
-    Tf tf = Tf::Identity();
-    Eigen::Quaterniond q(g(rng), g(rng), g(rng), g(rng));
-    tf.linear() = q.normalized().toRotationMatrix();
-    tf.translation() =
-        c + diag * 0.03 * V3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
-    d.poses.push_back(tf);
-    d.cyls.push_back(std::make_shared<fcl::Cylinderd>(
-        diag * (0.003 + 0.02 * u(rng)), diag * (0.01 + 0.05 * u(rng))));
-  }
+  tricyl::bench::CylinderPoses p =
+      tricyl::bench::nearSurfacePoses(fm, seed, kPoses, grazing);
+  d.cyls = std::move(p.cyls);
+  d.poses = std::move(p.poses);
   d.ok = true;
   return d;
 }

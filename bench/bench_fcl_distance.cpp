@@ -28,16 +28,14 @@
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <random>
 #include <string>
 #include <vector>
 
-#include "fcl_obj_model.h"
+#include "fcl_mesh_scenes.h"
 #include "tricyl/fcl_solver.h"
 #include "walk.h"
 
@@ -62,29 +60,11 @@ Scene load(const std::string& file, std::uint64_t seed) {
   if (!tricyl::bench::loadFclObj(file, &fm)) return d;
   d.model = fm.model;
   d.diag = fm.diag;
-  const std::vector<V3>& v = fm.v;
-  const std::vector<fcl::Triangle>& t = fm.t;
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::normal_distribution<double> g;
-  while (int(d.cyls.size()) < kPoses) {
-    const fcl::Triangle& tr =
-        t[std::size_t(u(rng) * double(t.size())) % t.size()];
-    const V3 n = (v[tr[1]] - v[tr[0]]).cross(v[tr[2]] - v[tr[0]]);
-    if (!(n.norm() > 0)) continue;
-    const V3 c = (v[tr[0]] + v[tr[1]] + v[tr[2]]) / 3;
-    const double r = d.diag * (0.003 + 0.02 * u(rng));
-    const double lz = d.diag * (0.01 + 0.05 * u(rng));
-    Tf tf = Tf::Identity();
-    Eigen::Quaterniond q(g(rng), g(rng), g(rng), g(rng));
-    tf.linear() = q.normalized().toRotationMatrix();
-    const double off = d.diag * std::pow(10.0, -6 + 5 * u(rng));
-    // Clear of the triangle's plane by `off` whatever the orientation: the
-    // cylinder's support along the normal is at most r + lz/2.
-    tf.translation() = c + n.normalized() * (r + 0.5 * lz + off);
-    d.cyls.push_back(std::make_unique<fcl::CollisionObjectd>(
-        std::make_shared<fcl::Cylinderd>(r, lz), tf));
-  }
+  const tricyl::bench::CylinderPoses p =
+      tricyl::bench::clearancePoses(fm, seed, kPoses);
+  for (std::size_t i = 0; i < p.poses.size(); ++i)
+    d.cyls.push_back(
+        std::make_unique<fcl::CollisionObjectd>(p.cyls[i], p.poses[i]));
   d.ok = true;
   return d;
 }

@@ -22,3 +22,18 @@ if(TRICYL_HAVE_FCL AND TARGET tricyl_fcl)
   tricyl_set_warnings(bench_fcl_distance)
   tricyl_set_fp_flags(bench_fcl_distance)
 endif()
+
+# fcl_walk_counts: one call per pose of the two benchmarks' mesh scenes, for
+# callgrind's instruction counts (the A/B metric of the mesh walks).
+if(TRICYL_HAVE_FCL AND TARGET tricyl_fcl)
+  add_executable(fcl_walk_counts ${CMAKE_CURRENT_LIST_DIR}/fcl_walk_counts.cpp)
+  target_link_libraries(fcl_walk_counts PRIVATE tricyl::fcl tricyl_obj_mesh)
+  target_compile_definitions(fcl_walk_counts PRIVATE
+    TRICYL_MESH_DIR="${PROJECT_SOURCE_DIR}/../shared/data/meshes")
+  tricyl_set_warnings(fcl_walk_counts)
+  tricyl_set_fp_flags(fcl_walk_counts)
+  if(TRICYL_BUILD_TESTS)
+    add_test(NAME fcl_walk_counts_smoke COMMAND fcl_walk_counts first rob tricyl)
+    set_tests_properties(fcl_walk_counts_smoke PROPERTIES SKIP_RETURN_CODE 77)
+  endif()
+endif()

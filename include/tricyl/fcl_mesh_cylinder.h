@@ -35,10 +35,10 @@
 ///    box axes (with the cylinder's exact support along them) and the
 ///    distance from the box centre to the axis line. Every comparison carries
 ///    a margin that covers all rounding and the departure of both rotations
-///    from orthonormal (derivation in src/fcl/mesh_collide.cpp), so the
+///    from orthonormal (derivation in src/fcl/mesh_traversal.h), so the
 ///    test never skips a node with a colliding triangle.
-///    A node that passes with at most 8 triangles below it sends them all to
-///    the next step untested (cheaper than testing the nodes in between).
+///    A node that passes with at most 2 triangles below it sends them to
+///    the next step untested (src/fcl/mesh_collide.cpp, kUntestedSubtree).
 /// 3. The surviving leaves' triangles are queued in blocks of up to 64,
 ///    moved to the world frame together and decided one by one by
 ///    tryIntersect (the batch kernel's vertex-code cull rejects few leaves

@@ -44,8 +44,7 @@ using namespace traversal;  // NOLINT: this file's own internal helpers
 constexpr double kLeafRel = 0x1p-40;
 
 /// A node still to visit, or (leaf) a triangle still to measure, with a
-/// lower bound of its distance. NaN bounds order as -Inf (visited first,
-/// never pruned).
+/// lower bound of its distance.
 enum Kind : unsigned char {
   kInner,         // an inner node, its box bound
   kLeafBoxBound,  // a leaf, its box bound only
@@ -58,29 +57,65 @@ struct Entry {
   Kind kind;
 };
 
-/// The open entries, smallest bound first (best-first: a triangle is
-/// measured only if no open entry could hold a nearer one).
+// ORDER. Entries whose bound is positive wait in a heap, smallest bound
+// first (best-first: a triangle is measured only if no open entry could hold
+// a nearer one). Entries whose bound proves nothing (<= 0 or NaN: the box
+// may meet the cylinder) cannot be ordered by it: every bound of a box that
+// the cylinder enters is <= 0, and the larger the box the more negative, so
+// a heap would expand the whole overlapping part of the tree breadth-first,
+// largest boxes first, before its first leaf (about 110 bounds for one
+// triangle measured on the colliding poses of bench_fcl_distance's env.obj
+// scene). They go on a stack instead and are taken first, depth-first, the
+// child with the more negative bound first (it holds the deeper part of
+// the overlap), as tricyl::collide's walk: a pose in collision stops at the
+// first colliding triangle that walk meets. A pose clear of the mesh must
+// visit every such entry whatever the order (none can be pruned while the
+// best distance is positive), so the order changes nothing for it: its
+// answer is the brute-force minimum whatever the order (PRUNING). A pose in
+// collision reports the first colliding triangle the walk meets (any
+// colliding triangle, as FCL's traversal).
 class EntryQueue {
  public:
-  EntryQueue() { items_.reserve(256); }
-  void push(double lb, int node, Kind kind) {
-    items_.push_back({std::isnan(lb) ? -kInf : lb, node, kind});
-    std::push_heap(items_.begin(), items_.end(), later);
+  EntryQueue() {
+    heap_.reserve(256);
+    stack_.reserve(64);
   }
-  bool empty() const { return items_.empty(); }
-  /// The smallest bound (the queue is not empty).
-  double topBound() const { return items_.front().lb; }
+  void push(double lb, int node, Kind kind) {
+    if (!gt(lb, 0)) {
+      stack_.push_back({lb, node, kind});
+      return;
+    }
+    heap_.push_back({lb, node, kind});
+    std::push_heap(heap_.begin(), heap_.end(), Later{});
+  }
+  bool empty() const { return stack_.empty() && heap_.empty(); }
+  /// A lower bound of every open entry's bound (-Inf while the stack holds
+  /// any; the queue is not empty).
+  double floor() const {
+    return stack_.empty() ? heap_.front().lb
+                          : -std::numeric_limits<double>::infinity();
+  }
+  /// The next entry: the top of the stack, else the smallest bound.
   Entry pop() {
-    std::pop_heap(items_.begin(), items_.end(), later);
-    const Entry e = items_.back();
-    items_.pop_back();
+    if (!stack_.empty()) {
+      const Entry e = stack_.back();
+      stack_.pop_back();
+      return e;
+    }
+    std::pop_heap(heap_.begin(), heap_.end(), Later{});
+    const Entry e = heap_.back();
+    heap_.pop_back();
     return e;
   }
 
  private:
-  static constexpr double kInf = std::numeric_limits<double>::infinity();
-  static bool later(const Entry& a, const Entry& b) { return a.lb > b.lb; }
-  std::vector<Entry> items_;
+  struct Later {
+    bool operator()(const Entry& a, const Entry& b) const {
+      return a.lb > b.lb;
+    }
+  };
+  std::vector<Entry> heap_;
+  std::vector<Entry> stack_;
 };
 
 class Pruner {
@@ -117,9 +152,19 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
   const Pose<double> pose = toPose(tf_cyl);
   const Pruner pruner(request);
 
+  // A node's bound. Its children (or its triangle's vertex indices) are
+  // asked for at the same time: about half the nodes bounded are expanded
+  // later, and their children's fetch has then long been under way.
   const auto bound = [&](int n) {
+    const fcl::BVNode<BV>& node = model.getBV(n);
+    if (!isLeaf(node)) {
+      prefetchNode(model.getBV(leftChild(node)));
+      prefetchNode(model.getBV(rightChild(node)));
+    } else {
+      prefetchTriangle(model.tri_indices[primitiveId(node)]);
+    }
     Box box;
-    Boxer::get(model.getBV(n).bv, &box);
+    Boxer::get(node.bv, &box);
     return lowerBoundLocal(lowerBound<Boxer::kAligned>(box, k), k);
   };
   const double t_cyl[3] = {pose.t.x, pose.t.y, pose.t.z};
@@ -128,9 +173,6 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
     worldTriangle(model.vertices, model.tri_indices[primitiveId(node)], tf_mesh,
                   setup.raw, p);
   };
-  // A node's entry: an inner node with its box bound; a leaf with the
-  // larger of its box bound and its triangle's own cheap bound
-  // (mesh_traversal.h, triangleLowerBound).
   std::size_t tested = 0, skipped = 0, leaves = 0, hits = 0;
   double best = result.min_distance;
   EntryQueue queue;
@@ -138,23 +180,36 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
   // cheap bound (mesh_traversal.h, triangleLowerBound) only when it comes
   // to the top of the queue (most leaves never do), and goes back in with
   // the larger bound if another entry is now first.
-  const auto push = [&](int n) {
-    ++tested;
-    const double lb = bound(n);
-    if (pruner.prune(lb, best)) {
-      ++skipped;
-      return;
-    }
-    queue.push(lb, n, isLeaf(model.getBV(n)) ? kLeafBoxBound : kInner);
+  const auto entryOf = [&](int n, double lb) {
+    return Entry{lb, n, isLeaf(model.getBV(n)) ? kLeafBoxBound : kInner};
   };
-  push(0);
-  while (!queue.empty()) {
-    const Entry e = queue.pop();
-    // Every open entry is at least e.lb: once that cannot improve on best,
-    // nothing can.
+  const auto survives = [&](double lb) {
+    ++tested;
+    if (!pruner.prune(lb, best)) return true;
+    ++skipped;
+    return false;
+  };
+  // `next`: the entry the queue would give next, taken without the round
+  // trip through it (the nearer child of the node just expanded, below).
+  Entry next{};
+  bool have_next = false;
+  {
+    const double lb = bound(0);
+    if (survives(lb)) {
+      next = entryOf(0, lb);
+      have_next = true;
+    }
+  }
+  while (have_next || !queue.empty()) {
+    const Entry e = have_next ? next : queue.pop();
+    have_next = false;
+    // Taken from the heap, every open entry is at least e.lb: once that
+    // cannot improve on best, nothing can. (From the stack, e.lb is <= 0 or
+    // NaN and prunes nothing while best > 0; the loop ends at best <= 0.)
     if (pruner.prune(e.lb, best)) {
       ++skipped;
-      break;
+      if (gt(e.lb, 0)) break;
+      continue;
     }
     const fcl::BVNode<BV>& node = model.getBV(e.node);
     if (e.kind == kLeafBoxBound) {
@@ -168,16 +223,37 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
         ++skipped;
         continue;
       }
-      if (gt(lt, e.lb) && !queue.empty() && gt(lt, queue.topBound())) {
+      // (Not when lt proves nothing: it would come straight back.)
+      if (gt(lt, 0) && gt(lt, e.lb) && !queue.empty() &&
+          gt(lt, queue.floor())) {
         queue.push(lt, e.node, kLeaf);
         continue;
       }
     }
     if (e.kind == kInner) {
-      prefetchNode(model.getBV(leftChild(node)));
-      prefetchNode(model.getBV(rightChild(node)));
-      push(leftChild(node));
-      push(rightChild(node));
+      const int left = leftChild(node), right = rightChild(node);
+      const double lb_left = bound(left), lb_right = bound(right);
+      // ORDER: the child with the smaller bound (more negative: deeper in
+      // the overlap) first. It is what the queue would give next when its
+      // bound proves nothing (the top of the stack) or is at most every
+      // open bound (the top of the heap, the stack empty): then it is taken
+      // directly, else queued.
+      const bool left_first = std::isless(lb_left, lb_right);
+      const int first = left_first ? left : right,
+                second = left_first ? right : left;
+      const double lb_first = left_first ? lb_left : lb_right;
+      const double lb_second = left_first ? lb_right : lb_left;
+      if (survives(lb_second)) {
+        const Entry f = entryOf(second, lb_second);
+        queue.push(f.lb, f.node, f.kind);
+      }
+      if (survives(lb_first)) {
+        next = entryOf(first, lb_first);
+        if (!gt(lb_first, 0) || queue.empty() || !gt(lb_first, queue.floor()))
+          have_next = true;
+        else
+          queue.push(next.lb, next.node, next.kind);
+      }
       continue;
     }
     const int id = primitiveId(node);

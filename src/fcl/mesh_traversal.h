@@ -74,9 +74,19 @@ using Tf = fcl::Transform3d;
 // the tilted rim touches was skipped when a box axis lay within ~2^-26 of
 // the cylinder's axis (before 2026-11, on all eight BV types;
 // tests/fcl_mesh_collide_test.cpp, BoxAxisNearlyParallelToTheCylinderAxis).
-// |a_i x u| is computed as the square root of the sum of the squared
-// components of the cross product: the components' rounding is absolute
-// (a few ulps of |a_i| |u|), not amplified.
+// |a_i x u| is computed as sqrt(w_j^2 + w_k^2), w = (a_0.u, a_1.u, a_2.u)
+// the axis in the box's frame and {i, j, k} = {0, 1, 2}: for an orthonormal
+// box frame that is the length of a_i x u exactly (a_i x u = w_j (a_i x a_j)
+// + w_k (a_i x a_k), two orthogonal unit vectors), and each w_j is
+// computed with an absolute rounding of a few ulps of |a_j| |u|, not
+// amplified. For box axes A a hair off orthonormal (A = Q (I + F), Q
+// orthogonal, |F| <= delta: item 2), a_i x u and the w_j move by at most
+// delta |u| against those of Q, so the two lengths differ by at most
+// (1 + sqrt 2) delta |u| <= 3 delta (times r: inside item 2's 16 delta L,
+// of which the moved points and the non-unit u take 6 delta L). The box
+// test needs w anyway (the supports h |w_i| along a_i), so this costs two
+// products and a square root, and only when the rest of (B) does not
+// already decide (the cross products it replaced cost nine products).
 // 3. Underflow, where "a few ulps" fails: a product or square below 2^-1022
 //    is off by up to 2^-1074 absolutely, whatever its size. In the squared
 //    comparisons ((C), and the sum of squares under (B)'s root) that is an
@@ -109,11 +119,20 @@ struct Local {
   double support[3];
 };
 
-/// A node's box. Axis-aligned boxes (AABB, KDOP) leave `a` unset.
+/// A node's box, read in place where the BV stores it (no copy of an OBB:
+/// centre, half extents and the three axes are pointers into the node).
+/// Boxes that are computed (AABB, KDOP, RSS) are stored in `own`; `a` is
+/// null for the axis-aligned ones. Not copyable (the pointers may point
+/// into `own`).
 struct Box {
-  double b[3];
-  double a[3][3];  // a[i] = axis i
-  double e[3];
+  const double* b;  // centre
+  const double* e;  // half extents
+  const double* a;  // axis i at a + 3 i (an FCL Matrix3d's column i)
+  double own[6];
+  Box() = default;
+  Box(const Box&) = delete;
+  Box& operator=(const Box&) = delete;
+  const double* axis(int i) const { return a + 3 * i; }
 };
 
 /// a > b without raising FE_INVALID on a NaN (a quiet comparison): false
@@ -134,22 +153,17 @@ inline double sqrtNonNegative(double x) {
 #endif
 }
 
-/// |a x u|, as the square root of the sum of the squared components of the
-/// cross product (THE NODE TEST AND ITS MARGIN: the components' rounding is
-/// absolute, not amplified near a parallel pair).
-inline double crossLength(const double* a, const double* u) {
-  const double c0 = a[1] * u[2] - a[2] * u[1], c1 = a[2] * u[0] - a[0] * u[2],
-               c2 = a[0] * u[1] - a[1] * u[0];
-  return sqrtNonNegative(c0 * c0 + c1 * c1 + c2 * c2);
-}
-
 /// The terms every test of a node reads: d = b - c, the margin m of THE NODE
-/// TEST AND ITS MARGIN for this box, u.d, and |u.a_i| for the box axes.
+/// TEST AND ITS MARGIN for this box, u.d, |w_i| = |a_i.u| (the axis in the
+/// box's frame; for axis-aligned boxes |u_i|) and, for oriented boxes, the
+/// signed w_i and p_i = a_i.d (d in the box's frame).
 struct NodeTerms {
   double d[3];
   double m;
   double ud;
   double ua[3];
+  double w[3];
+  double p[3];
 };
 
 template <bool kAligned>
@@ -159,18 +173,30 @@ __attribute__((always_inline))
 inline NodeTerms
 nodeTerms(const Box& x, const Local& k) {
   NodeTerms n;
-  for (int i = 0; i < 3; ++i) n.d[i] = x.b[i] - k.c[i];
-  n.m = k.global + k.rel * (std::fabs(x.b[0]) + std::fabs(x.b[1]) +
-                            std::fabs(x.b[2]) + x.e[0] + x.e[1] + x.e[2]);
+  const double* b = x.b;
+  const double* e = x.e;
+  for (int i = 0; i < 3; ++i) n.d[i] = b[i] - k.c[i];
+  n.m = k.global + k.rel * (std::fabs(b[0]) + std::fabs(b[1]) +
+                            std::fabs(b[2]) + e[0] + e[1] + e[2]);
   n.ud = k.u[0] * n.d[0] + k.u[1] * n.d[1] + k.u[2] * n.d[2];
   if constexpr (kAligned) {
     for (int i = 0; i < 3; ++i) n.ua[i] = k.au[i];
   } else {
-    for (int i = 0; i < 3; ++i)
-      n.ua[i] = std::fabs(k.u[0] * x.a[i][0] + k.u[1] * x.a[i][1] +
-                          k.u[2] * x.a[i][2]);
+    for (int i = 0; i < 3; ++i) {
+      const double* a = x.axis(i);
+      n.w[i] = k.u[0] * a[0] + k.u[1] * a[1] + k.u[2] * a[2];
+      n.ua[i] = std::fabs(n.w[i]);
+      n.p[i] = a[0] * n.d[0] + a[1] * n.d[1] + a[2] * n.d[2];
+    }
   }
   return n;
+}
+
+/// |a_i x u| for an oriented box, from the axis in the box's frame (THE
+/// NODE TEST AND ITS MARGIN).
+inline double radialFactor(const NodeTerms& n, int i) {
+  const double wj = n.w[(i + 1) % 3], wk = n.w[(i + 2) % 3];
+  return sqrtNonNegative(wj * wj + wk * wk);
 }
 
 template <bool kAligned>
@@ -181,24 +207,22 @@ inline bool
 overlaps(const Box& x, const Local& k) {
   const NodeTerms n = nodeTerms<kAligned>(x, k);
   const double* d = n.d;
+  const double* e = x.e;
   const double m = n.m;
   const double ud = n.ud;
   const double* ua = n.ua;
   // (A): the cylinder's axis.
-  if (gt(std::fabs(ud),
-         k.h + x.e[0] * ua[0] + x.e[1] * ua[1] + x.e[2] * ua[2] + m))
+  if (gt(std::fabs(ud), k.h + e[0] * ua[0] + e[1] * ua[1] + e[2] * ua[2] + m))
     return false;
   // (B): the box's axes. The radial part r |a_i x u| >= 0 is only computed
   // when the rest does not already pass.
   for (int i = 0; i < 3; ++i) {
     if constexpr (kAligned) {
-      if (gt(std::fabs(d[i]), x.e[i] + k.support[i] + m)) return false;
+      if (gt(std::fabs(d[i]), e[i] + k.support[i] + m)) return false;
     } else {
-      const double ad = x.a[i][0] * d[0] + x.a[i][1] * d[1] + x.a[i][2] * d[2];
-      const double excess = std::fabs(ad) - (x.e[i] + k.h * ua[i] + m);
+      const double excess = std::fabs(n.p[i]) - (e[i] + k.h * ua[i] + m);
       if (!gt(excess, 0)) continue;
-      // r |a_i x u| (see THE NODE TEST AND ITS MARGIN).
-      if (gt(excess, k.r * crossLength(x.a[i], k.u))) return false;
+      if (gt(excess, k.r * radialFactor(n, i))) return false;
     }
   }
   // (C): the axis line, squared on both sides (both non-negative; the
@@ -209,29 +233,33 @@ overlaps(const Box& x, const Local& k) {
   const double q2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
   // (max by quiet comparisons, not std::fmax, a libm call: a NaN extent
   // makes m NaN, and the node is visited either way.)
-  const double e01 = gt(x.e[1], x.e[0]) ? x.e[1] : x.e[0];
-  const double near = k.r + (gt(x.e[2], e01) ? x.e[2] : e01) + m;
-  if (!gt(q2, near * near)) return true;
+  const double e01 = gt(e[1], e[0]) ? e[1] : e[0];
+  const double inner = k.r + (gt(e[2], e01) ? e[2] : e01) + m;
+  if (!gt(q2, inner * inner)) return true;
   const double reach =
-      k.r +
-      sqrtNonNegative(x.e[0] * x.e[0] + x.e[1] * x.e[1] + x.e[2] * x.e[2]) + m;
+      k.r + sqrtNonNegative(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) + m;
   return !gt(q2, reach * reach);
 }
 
 // Box conversions, one per BV type. Each gives a box containing the BV.
+static_assert(!fcl::Matrix3d::IsRowMajor &&
+                  sizeof(fcl::Matrix3d) == 9 * sizeof(double),
+              "an FCL axis matrix is three contiguous columns");
+
 inline void fromObb(const fcl::OBB<double>& o, Box* x) {
-  for (int i = 0; i < 3; ++i) {
-    x->b[i] = o.To[i];
-    x->e[i] = o.extent[i];
-    for (int j = 0; j < 3; ++j) x->a[i][j] = o.axis(j, i);
-  }
+  x->b = o.To.data();
+  x->e = o.extent.data();
+  x->a = o.axis.data();  // column i, axis i, at 3 i
 }
 
 inline void fromMinMax(const double* lo, const double* hi, Box* x) {
   for (int i = 0; i < 3; ++i) {
-    x->b[i] = 0.5 * (lo[i] + hi[i]);
-    x->e[i] = 0.5 * (hi[i] - lo[i]);
+    x->own[i] = 0.5 * (lo[i] + hi[i]);
+    x->own[3 + i] = 0.5 * (hi[i] - lo[i]);
   }
+  x->b = x->own;
+  x->e = x->own + 3;
+  x->a = nullptr;
 }
 
 template <class BV>
@@ -283,26 +311,38 @@ struct BoxOf<fcl::RSS<double>> {
   // centre To + (l0/2) a0 + (l1/2) a1, half extents (l0/2 + r, l1/2 + r, r).
   static void get(const fcl::RSS<double>& v, Box* x) {
     const double h0 = 0.5 * v.l[0], h1 = 0.5 * v.l[1];
-    for (int i = 0; i < 3; ++i) {
-      x->b[i] = v.To[i] + h0 * v.axis(i, 0) + h1 * v.axis(i, 1);
-      for (int j = 0; j < 3; ++j) x->a[i][j] = v.axis(j, i);
-    }
-    x->e[0] = h0 + v.r;
-    x->e[1] = h1 + v.r;
-    x->e[2] = v.r;
+    for (int i = 0; i < 3; ++i)
+      x->own[i] = v.To[i] + h0 * v.axis(i, 0) + h1 * v.axis(i, 1);
+    x->own[3] = h0 + v.r;
+    x->own[4] = h1 + v.r;
+    x->own[5] = v.r;
+    x->b = x->own;
+    x->e = x->own + 3;
+    x->a = v.axis.data();
   }
 };
 
+/// sum |A^T A - I| over the nine entries, for the 3x3 matrix whose column i
+/// is a + 3 i (an FCL Matrix3d's storage); NaN for a non-finite A. A^T A is
+/// symmetric, its entries computed the same way either side of the diagonal
+/// (the same products, summed in the same order): the three off-diagonal
+/// ones are computed once and counted twice.
+inline double gramDeparture(const double* a) {
+  const auto dot = [a](int i, int j) {
+    const double* x = a + 3 * i;
+    const double* y = a + 3 * j;
+    return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+  };
+  const double diag = std::fabs(dot(0, 0) - 1) + std::fabs(dot(1, 1) - 1) +
+                      std::fabs(dot(2, 2) - 1);
+  const double off =
+      std::fabs(dot(0, 1)) + std::fabs(dot(0, 2)) + std::fabs(dot(1, 2));
+  return diag + 2 * off;
+}
+
 /// sum |R^T R - I| over the nine entries; NaN for a non-finite R.
 inline double nonOrthogonality(const fcl::Matrix3d& R) {
-  double s = 0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      const double g = R(0, i) * R(0, j) + R(1, i) * R(1, j) +
-                       R(2, i) * R(2, j) - (i == j ? 1.0 : 0.0);
-      s += std::fabs(g);
-    }
-  return s;
+  return gramDeparture(R.data());
 }
 
 inline bool finiteTransform(const Tf& tf) {
@@ -360,6 +400,16 @@ void prefetchNode(const fcl::BVNode<BV>& node) {
 #endif
 }
 
+/// Asks for a triangle's vertex indices (the vertices themselves depend on
+/// them).
+inline void prefetchTriangle(const fcl::Triangle& t) {
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(&t);
+#else
+  (void)t;
+#endif
+}
+
 /// A small explicit stack (FCL's trees are rarely deeper than 64; deeper
 /// ones spill to the heap).
 class NodeStack {
@@ -406,40 +456,62 @@ inline double
 lowerBound(const Box& x, const Local& k) {
   const NodeTerms n = nodeTerms<kAligned>(x, k);
   const double* d = n.d;
+  const double* e = x.e;
   const double m = n.m;
   const double ud = n.ud;
   const double* ua = n.ua;
   // (A)
-  double g =
-      std::fabs(ud) - (k.h + x.e[0] * ua[0] + x.e[1] * ua[1] + x.e[2] * ua[2]);
-  // (B)
+  const double g_axis =
+      std::fabs(ud) - (k.h + e[0] * ua[0] + e[1] * ua[1] + e[2] * ua[2]);
+  double g = g_axis;
+  // (B). The radial part r |a_i x u| >= 0 only lowers the gap: computed
+  // only when the rest would beat g.
   for (int i = 0; i < 3; ++i) {
-    double gi;
     if constexpr (kAligned) {
-      gi = std::fabs(d[i]) - (x.e[i] + k.support[i]);
+      const double gi = std::fabs(d[i]) - (e[i] + k.support[i]);
+      if (gt(gi, g)) g = gi;
     } else {
-      const double* a = x.a[i];
-      const double ad = a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
-      gi = std::fabs(ad) - (x.e[i] + k.h * ua[i] + k.r * crossLength(a, k.u));
+      const double gi = std::fabs(n.p[i]) - (e[i] + k.h * ua[i]);
+      if (!gt(gi, g)) continue;
+      const double gr = gi - k.r * radialFactor(n, i);
+      if (gt(gr, g)) g = gr;
     }
-    if (gt(gi, g)) g = gi;
   }
   // (C), with its two square roots only when it can beat the others: |e|
   // >= max e_i, so |q| <= g + r + max e_i means gc <= g. (Leaving a gap out
   // only weakens the bound, never invalidates it, so the rounding of this
   // pre-test does not matter.)
+  //
+  // (A) and (C) at once: in the cylinder's frame the cylinder is a disc
+  // times an interval, so a point's distance to it is sqrt(dz^2 + dxy^2)
+  // (to the slab along u, and to the infinite solid cylinder), and every
+  // point of the box has dz >= the gap of (A) and dxy >= the gap of (C)
+  // (its distance to the axis line is at least |q| - |e|). With each gap
+  // less m (a lower bound of the exact gap, above) and both positive, the
+  // root of the sum of squares is a lower bound; its rounding (relative, a
+  // few ulps) is covered by the factor 1 - 2^-50 and the underflow of the
+  // squares by 2^-500 (m >= 2^-500 too). Worth computing when (A) proves a
+  // gap: (C)'s roots are then taken whenever the box is off the line.
   const double q[3] = {d[0] - ud * k.u[0], d[1] - ud * k.u[1],
                        d[2] - ud * k.u[2]};
   const double q2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
-  const double e01 = gt(x.e[1], x.e[0]) ? x.e[1] : x.e[0];
-  const double reach = g + k.r + (gt(x.e[2], e01) ? x.e[2] : e01);
+  const double e01 = gt(e[1], e[0]) ? e[1] : e[0];
+  const double emax = gt(e[2], e01) ? e[2] : e01;
+  const double ga = g_axis - m;
+  const double reach = (gt(ga, 0) ? 0 : g) + k.r + emax;
+  double lb = g - m;
   if (!(std::islessequal(0.0, reach) && std::islessequal(q2, reach * reach))) {
-    const double gc =
-        sqrtNonNegative(q2) - k.r -
-        sqrtNonNegative(x.e[0] * x.e[0] + x.e[1] * x.e[1] + x.e[2] * x.e[2]);
-    if (gt(gc, g)) g = gc;
+    const double gc = sqrtNonNegative(q2) - k.r -
+                      sqrtNonNegative(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    if (gt(gc - m, lb)) lb = gc - m;
+    const double gcm = gc - m;
+    if (gt(ga, 0) && gt(gcm, 0)) {
+      const double both =
+          sqrtNonNegative(ga * ga + gcm * gcm) * (1 - 0x1p-50) - 0x1p-500;
+      if (gt(both, lb)) lb = both;
+    }
   }
-  return g - m;
+  return lb;
 }
 
 /// The mesh-frame lower bound `lb` of lowerBound as a lower bound of the
@@ -496,14 +568,9 @@ bool prepare(const fcl::BVHModel<BV>& model, const Tf& tf_mesh,
   {
     Box root;
     Boxer::get(model.getBV(0).bv, &root);
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; i < 3; ++i)
       if (!std::isfinite(root.b[i]) || !std::isfinite(root.e[i])) return false;
-      if constexpr (!Boxer::kAligned)
-        for (int j = 0; j < 3; ++j)
-          box_delta += std::fabs(
-              root.a[i][0] * root.a[j][0] + root.a[i][1] * root.a[j][1] +
-              root.a[i][2] * root.a[j][2] - (i == j ? 1.0 : 0.0));
-    }
+    if constexpr (!Boxer::kAligned) box_delta = gramDeparture(root.a);
   }
   const double delta =
       std::max({nonOrthogonality(Rm), nonOrthogonality(Rc), box_delta});
@@ -534,7 +601,7 @@ bool prepare(const fcl::BVHModel<BV>& model, const Tf& tf_mesh,
     // h |u_i| + r |e_i x u| (see THE NODE TEST AND ITS MARGIN): |e_i x u|
     // is the length of u's other two components.
     const double uj = u[(i + 1) % 3], uk = u[(i + 2) % 3];
-    k.support[i] = k.h * k.au[i] + k.r * std::sqrt(uj * uj + uk * uk);
+    k.support[i] = k.h * k.au[i] + k.r * sqrtNonNegative(uj * uj + uk * uk);
   }
 
   // World vertices exactly as the Solver sees them (fcl_solver.h, FRAMES):
@@ -639,14 +706,27 @@ inline double triangleLowerBound(const double x[3][3], const double R[3][3],
     if (std::isless(y[k][2], zmin)) zmin = y[k][2];
     if (gt(y[k][2], zmax)) zmax = y[k][2];
   }
-  double g = zmin - h;
-  if (gt(-h - zmax, g)) g = -h - zmax;
+  double axial = zmin - h;
+  if (gt(-h - zmax, axial)) axial = -h - zmax;
   // In the caps' plane.
   const double p[3][2] = {
       {y[0][0], y[0][1]}, {y[1][0], y[1][1]}, {y[2][0], y[2][1]}};
   const double radial = originToTriangle2d(p) - r;
-  if (gt(radial, g)) g = radial;
+  double g = gt(radial, axial) ? radial : axial;
   g -= 4 * E;
+  // Both at once: the cylinder is a disc times an interval, so a point's
+  // distance to it is sqrt(dz^2 + dxy^2) (its distances to the slab and to
+  // the infinite solid cylinder), and every point of the triangle has dz >=
+  // the axial gap and dxy >= the radial gap. With each gap less its 4 E,
+  // both positive, the root of the sum of squares is a lower bound; its own
+  // rounding (three operations, relative) is covered by the factor 1 -
+  // 2^-50, the underflow of the squares (< 2^-1073 each) by 2^-530.
+  const double ga = axial - 4 * E, gr = radial - 4 * E;
+  if (gt(ga, 0) && gt(gr, 0)) {
+    const double both =
+        sqrtNonNegative(ga * ga + gr * gr) * (1 - 0x1p-50) - 0x1p-530;
+    if (gt(both, g)) g = both;
+  }
   // Across the triangle's plane.
   const double e1[3] = {y[1][0] - y[0][0], y[1][1] - y[0][1],
                         y[1][2] - y[0][2]};
