@@ -83,6 +83,19 @@ double maxLength(const Cylinder<double>& c, const Pose<double>& p,
   return m;
 }
 
+// The inputs `intersect` accepts: every number finite, r >= 0, lz >= 0
+// (-0 passes; NaN fails every comparison). x - x is 0 exactly for a
+// finite x and NaN for an infinite or NaN one.
+bool validInputs(const Cylinder<double>& c, const Pose<double>& p,
+                 const Triangle<double>& t) {
+  double z = c.radius - c.radius + (c.lz - c.lz);
+  for (const auto& row : p.R)
+    for (double x : row) z += x - x;
+  const Vec3<double>* v[4] = {&t.a, &t.b, &t.c, &p.t};
+  for (const auto* x : v) z += (x->x - x->x) + (x->y - x->y) + (x->z - x->z);
+  return z == 0 && c.radius >= 0 && c.lz >= 0;
+}
+
 // v 2^e (std::ldexp: no power of two is formed, so e may exceed the
 // exponent range of a double).
 Vec3<double> scaled(const Vec3<double>& v, int e) {
@@ -95,8 +108,25 @@ struct Pass {
   int best = -1;
 };
 
-// The double pass. Vertices first: g_i = v_i - P(v_i), f_i = |g_i|. An
-// edge's phi'(0) and phi'(1) are g_a . d and g_b . d, so an edge whose
+// The vertices' gradients g_i = v_i - P(v_i) and distances f_i = |g_i|,
+// computed first: they decide whether the Boolean is needed before the
+// rest of the double pass (solve).
+struct VertexPass {
+  P3<double> g[3];
+  double f[3];
+};
+
+VertexPass vertexPass(const Problem<double>& P) {
+  VertexPass out;
+  for (int i = 0; i < 3; ++i) {
+    out.g[i] = P.v[i] - detail::dist::project(P.v[i], P.r, P.h);
+    out.f[i] = detail::dist::norm(out.g[i]);
+  }
+  return out;
+}
+
+// The double pass, from the vertices' g_i = v_i - P(v_i), f_i = |g_i|
+// (vertexPass). An edge's phi'(0) and phi'(1) are g_a . d and g_b . d, so an edge whose
 // minimum is at an end costs nothing more. For the others, the tangents of
 // the convex f at both ends bound f from below (f >= f_a + s f'(0) and
 // f >= f_b - (1 - s) f'(1), f' = phi' / f); where the two lines meet is a
@@ -105,14 +135,11 @@ struct Pass {
 // `witness`: the pair intersects, only a common point is wanted (the pass
 // stops at the first candidate at distance 0).
 TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
-                                     double prune_slack, bool witness) {
+                                     const VertexPass& vp, double prune_slack,
+                                     bool witness) {
   Pass out;
-  P3<double> g[3];
-  double f[3];
-  for (int i = 0; i < 3; ++i) {
-    g[i] = P.v[i] - detail::dist::project(P.v[i], P.r, P.h);
-    f[i] = detail::dist::norm(g[i]);
-  }
+  const P3<double>* g = vp.g;
+  const double* f = vp.f;
   auto vertex = [&](int k, int i) {  // vertex i as edge k's candidate
     Candidate<double> c;
     c.valid = true;
@@ -347,11 +374,17 @@ TRICYL_DIST_NOINLINE bool refineFast(const Pass& pass, const Problem<double>& P,
 
 // The distance for valid double inputs of moderate magnitude (no
 // overflow of products of up to six lengths: every length below 2^100).
-template <class DDx>
+// `booleanOf()` returns the exact Boolean (kIntersect or kDisjoint) of the
+// query; it is called only when the double pass cannot prove separation
+// (a certified lower bound of the distance above its own error), and
+// before the rest of the double pass when a vertex lies within that error
+// of C (then the pair usually intersects, and a vertex in C is a witness).
+template <class DDx, class BooleanFn>
 TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
                                   const Pose<double>& pose,
-                                  const Triangle<double>& tri, Answer boolean,
-                                  int rexp, DistanceResult<double>* out) {
+                                  const Triangle<double>& tri,
+                                  BooleanFn&& booleanOf, int rexp,
+                                  DistanceResult<double>* out) {
   const WorldMap wm{&pose, rexp};
   // The vertices in order of increasing magnitude of their local
   // coordinates (kEdge: every edge then starts at its smaller end).
@@ -389,18 +422,30 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   // The double pass: y computed with <= 5 roundings relative to S.
   const double eps_y_d = 6 * kU * S;
   const double slack_d = 2 * eps_y_d + kAlg * kU * Mx;
-  const Pass pass = doublePass(P, slack_d, boolean == Answer::kIntersect);
-
-  if (boolean == Answer::kIntersect) {
+  const VertexPass vp = vertexPass(P);
+  auto intersecting = [&](const P3<double>& p, const P3<double>& q) {
     if (out) {
-      const Candidate<double>& c = pass.cand[pass.best >= 0 ? pass.best : 0];
       out->distance = 0;
       out->error_bound = 0;
-      out->point_on_triangle = toWorld(wm, c.p);
-      out->point_on_cylinder = toWorld(wm, c.q);
+      out->point_on_triangle = toWorld(wm, p);
+      out->point_on_cylinder = toWorld(wm, q);
     }
     return Answer::kIntersect;
+  };
+  int vmin = 0;
+  for (int i = 1; i < 3; ++i)
+    if (vp.f[i] < vp.f[vmin]) vmin = i;
+  if (!(vp.f[vmin] > slack_d)) {
+    if (booleanOf() == Answer::kIntersect) {
+      // A vertex in C (in double) is the witness; otherwise the double
+      // pass's search for a candidate at distance 0.
+      if (vp.f[vmin] == 0) return intersecting(P.v[vmin], P.v[vmin]);
+      const Pass pass = doublePass(P, vp, slack_d, true);
+      const Candidate<double>& c = pass.cand[pass.best >= 0 ? pass.best : 0];
+      return intersecting(c.p, c.q);
+    }
   }
+  const Pass pass = doublePass(P, vp, slack_d, false);
 
   double U = std::numeric_limits<double>::infinity(), L = 0;
   for (int k = 0; k < 4; ++k)
@@ -416,6 +461,14 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   if (!(U - L <= 2 * slack_d))
     for (int k = 0; k < 4; ++k)
       if (k != pass.best) bound(k);
+  // Separation: d >= L - slack_d (section 4) proves the Boolean false.
+  // Otherwise the Boolean decides (it was already known to be false if a
+  // vertex was within slack_d of C: the call is then cached by booleanOf).
+  if (!(L > slack_d * (1 + 0x1p-40)) &&
+      booleanOf() == Answer::kIntersect) {
+    const Candidate<double>& c = pass.cand[pass.best >= 0 ? pass.best : 0];
+    return intersecting(c.p, c.q);
+  }
   // (L > U beyond the rounding allowance cannot happen for consistent
   // bounds; such a pass is not accepted.)
   const double err_d = maxd(U - L, 0.0) + slack_d + kU * U;
@@ -511,8 +564,15 @@ template <class DDx>
 Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
                       const Triangle<double>& tri,
                       DistanceResult<double>* out) {
-  const Answer boolean = tryIntersect(cyl, pose, tri);
-  if (boolean == Answer::kInvalidInput) return boolean;
+  if (!validInputs(cyl, pose, tri)) return Answer::kInvalidInput;
+  // The exact Boolean of the inputs as given, computed at most once and
+  // only when solve asks for it (most disjoint pairs are proved disjoint
+  // by the double pass's certificate alone).
+  Answer boolean = Answer::kInvalidInput;
+  auto booleanOf = [&]() {
+    if (boolean == Answer::kInvalidInput) boolean = tryIntersect(cyl, pose, tri);
+    return boolean;
+  };
   // Power-of-two scaling keeps the products of up to six local lengths
   // finite and normal. The local problem's magnitude is at most
   // M = max(4 max|R_ij| * (world lengths), r, lz) = 2^eM (exponents
@@ -532,7 +592,7 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
     return x == 0 || (x <= lim && x >= 1 / lim);
   };
   if (moderate(mr, 0x1p30) && moderate(mw, 0x1p60) && moderate(mc, 0x1p60))
-    return solve<DDx>(cyl, pose, tri, boolean, 0, out);
+    return solve<DDx>(cyl, pose, tri, booleanOf, 0, out);
   int ea = 0, ew = 0, ec = 0;
   if (mr > 0) (void)std::frexp(mr, &ea);
   if (mw > 0) (void)std::frexp(mw, &ew);
@@ -542,7 +602,7 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   if (mc > 0 && ec > eM) eM = ec;
   if (eM == -2000) eM = 0;  // everything 0: nothing to scale
   if (eM >= -80 && eM <= 80 && ea >= -40 && ea <= 40)
-    return solve<DDx>(cyl, pose, tri, boolean, 0, out);
+    return solve<DDx>(cyl, pose, tri, booleanOf, 0, out);
   // The world lengths' scale, kept so that they stay within 2^+-100 (with
   // R = 0, or a tiny R, the world lengths hardly matter); the local
   // frame's scale is then 2^-(ea + el) (>= 2^-eM).
@@ -563,7 +623,12 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   const Triangle<double> t2{scaled(tri.a, -el), scaled(tri.b, -el),
                             scaled(tri.c, -el)};
   DistanceResult<double> r2{};
-  const Answer a = solve<DDx>(c2, p2, t2, boolean, 2 * ea, &r2);
+  // The scaled problem may lose parts below the underflow threshold, so its
+  // double pass cannot prove separation for the inputs as given: the
+  // Boolean (of the unscaled inputs) comes first here.
+  const Answer exact = booleanOf();
+  const Answer a = solve<DDx>(
+      c2, p2, t2, [exact]() { return exact; }, 2 * ea, &r2);
   if (out) {
     out->distance = std::ldexp(r2.distance, eM);
     out->error_bound = std::ldexp(r2.error_bound, eM);
