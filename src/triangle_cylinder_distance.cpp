@@ -70,8 +70,23 @@ constexpr int kRefineIter = 240;
 // from the double pass's parameter; it stops at a step below 2^-90).
 constexpr int kFastNewton = 5;
 
-inline double absd(double x) { return x < 0 ? -x : x; }
+inline double absd(double x) { return std::fabs(x); }
 inline double maxd(double a, double b) { return a > b ? a : b; }
+
+// a + b + c summed in a canonical order (least and greatest first, then
+// the middle one; branch-free min and max): the same double for any order
+// of the terms, so that an exact signed permutation of the world axes
+// (which permutes the terms of R^T (x - t)) leaves the double pulled-back
+// triangle, and with it the whole double pass, unchanged. (A +-0 pair may
+// come out either way, but a sum with a +0 term is not -0.) Its error is
+// that of any order: within 2u (|a| + |b| + |c|).
+inline double sum3(double a, double b, double c) {
+  auto mn = [](double x, double y) { return x < y ? x : y; };
+  auto mx = [](double x, double y) { return x > y ? x : y; };
+  const double lo = mn(mn(a, b), c), hi = mx(mx(a, b), c);
+  const double mid = mx(mn(a, b), mn(mx(a, b), c));
+  return (lo + hi) + mid;
+}
 
 // Largest magnitude of the lengths (vertices, translation, r, lz).
 double maxLength(const Cylinder<double>& c, const Pose<double>& p,
@@ -240,6 +255,128 @@ DDx hSupport(const P3<DDx>& w, const DDx& r, const DDx& h) {
   return r * sqrt(w.x * w.x + w.y * w.y) + h * abs(w.z);
 }
 
+// The distance of a double-word point p to C and the direction of
+// p - P(p), finished in double from the double-word differences where
+// the cancellation is: e = rho - r = (rho^2 - r^2) / (rho + r) outside the
+// barrel (rho = |p_xy|; rho^2 - r^2 in double-word), ez = |p_z| - h outside
+// the slab, U = |(e, ez)|. Relative error of U (first order, from the
+// roundings of rho, rho + r, the quotient, the squares, the sum and the
+// square root): below 3.3 u (kLeanU rounds it up), plus the double-word
+// roundings (absolute, within the slack of section 4). w = p - P(p) to a
+// few ulps of its norm (its direction only matters to second order).
+struct LeanPoint {
+  double U;
+  P3<double> w;
+};
+template <class DDx>
+LeanPoint leanPoint(const P3<DDx>& p, double r, double h) {
+  LeanPoint out{0, {0, 0, 0}};
+  double ez = 0;
+  if (p.z > DDx(h)) ez = double(p.z - DDx(h));
+  if (p.z < DDx(-h)) ez = double(p.z + DDx(h));
+  const DDx rho2 = p.x * p.x + p.y * p.y;
+  const double t = double(rho2 - detail::mulD(DDx(r), r));
+  double e = 0;
+  if (t > 0) {
+    const double rho = std::sqrt(double(rho2));
+    e = t / (rho + r);
+    const double k = e / rho;  // 1 - r / rho, in (0, 1]
+    out.w = {double(p.x) * k, double(p.y) * k, 0};
+  }
+  out.w.z = ez;
+  out.U = std::sqrt(e * e + ez * ez);
+  return out;
+}
+constexpr double kLeanU = 4 * kU;  // relative error of LeanPoint::U
+constexpr double kLeanL = 3 * kU;  // of the quotient num / |w| (leanRefine)
+
+// The lean refinement (the usual case, no iteration in double-word): the
+// double pass's best candidate re-evaluated at its double parameter with
+// the double-word vertices: U = leanPoint(p).U, an upper bound (p is a
+// point of the triangle), and the separating-plane bound L of the
+// direction w = leanPoint(p).w, made orthogonal to the edge in double-word
+// for an edge point (W = w - D c, c = (w . D) / |D|^2: the residual W . D
+// is 2u |w . D|, so min(W . a, W . b) loses nothing to first order),
+//   L = (min_i W . v_i - r |W_xy| - h |W_z|) / |W|,
+// numerator in double-word, quotient in double (relative error < 2.75 u).
+// The distance is returned as (U + L) / 2 with the bound
+// max(U_hi - d, d - L_lo) + u d. Accepted when that is within kAcceptRel
+// of d; otherwise (a face candidate, an edge parameter too far from the
+// root for its second-order error, bounds that do not meet) the caller
+// runs refineFast. The vertices outside the plane's contact enter L only
+// when a double evaluation cannot place them beyond it (as in
+// refineFast). An accepted result also proves the pair disjoint (L_lo > 0).
+template <class DDx, class VertexFn>
+TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
+                                     VertexFn&& vertex, double eps_y_d,
+                                     double M, double slack_dd,
+                                     const WorldMap& wm,
+                                     DistanceResult<double>* out) {
+  if (pass.best < 0 || pass.best > 2) return false;
+  const Candidate<double>& cb = pass.cand[pass.best];
+  if (!cb.valid) return false;
+  const int vb = vertexOf(cb);
+  const int i = vb >= 0 ? vb : detail::dist::kEdgeA[cb.kind];
+  const int j = vb >= 0 ? vb : detail::dist::kEdgeB[cb.kind];
+  const P3<DDx>& a = vertex(i);
+  P3<DDx> p = a, d{};
+  if (vb < 0) {
+    d = vertex(j) - a;
+    p = {a.x + detail::mulD(d.x, cb.s), a.y + detail::mulD(d.y, cb.s),
+         a.z + detail::mulD(d.z, cb.s)};
+  }
+  const LeanPoint lp = leanPoint(p, P.r, P.h);
+  if (!(lp.U > 0)) return false;
+  P3<DDx> W{DDx(lp.w.x), DDx(lp.w.y), DDx(lp.w.z)};
+  DDx m;
+  if (vb >= 0) {
+    m = detail::mulD(a.x, lp.w.x) + detail::mulD(a.y, lp.w.y) +
+        detail::mulD(a.z, lp.w.z);
+  } else {
+    const DDx wd = detail::mulD(d.x, lp.w.x) + detail::mulD(d.y, lp.w.y) +
+                   detail::mulD(d.z, lp.w.z);
+    const double dx = double(d.x), dy = double(d.y), dz = double(d.z);
+    const double dd = dx * dx + dy * dy + dz * dz;
+    if (!(dd > detail::dist::kTinyDen)) return false;
+    const double c = double(wd) / dd;
+    W = {DDx(lp.w.x) - detail::mulD(d.x, c), DDx(lp.w.y) - detail::mulD(d.y, c),
+         DDx(lp.w.z) - detail::mulD(d.z, c)};
+    const DDx ma = detail::dist::dot(W, a), mb = detail::dist::dot(W, vertex(j));
+    m = ma < mb ? ma : mb;
+  }
+  const P3<double> wd{double(W.x), double(W.y), double(W.z)};
+  const double w1 = absd(wd.x) + absd(wd.y) + absd(wd.z);
+  const double margin = w1 * (eps_y_d + 5 * kU * M) * (1 + 0x1p-50);
+  for (int v = 0; v < 3; ++v) {
+    if (v == i || v == j) continue;
+    if (!(detail::dist::dot(wd, P.v[v]) - margin >= m.hi + 4 * kU * absd(m.hi))) {
+      const DDx x = detail::dist::dot(W, vertex(v));
+      if (x < m) m = x;
+    }
+  }
+  const double ww = wd.x * wd.x + wd.y * wd.y + wd.z * wd.z;
+  if (!(ww > detail::dist::kTinyDen)) return false;
+  const DDx hc = detail::mulD(sqrt(W.x * W.x + W.y * W.y), P.r) +
+                 detail::mulD(abs(W.z), P.h);
+  const double L = double(m - hc) / std::sqrt(ww);
+  const double U = lp.U;
+  if (!(L > 0)) return false;
+  const double u_hi = U * (1 + kLeanU) + slack_dd;
+  const double l_lo = L * (1 - kLeanL) - slack_dd;
+  if (!(l_lo <= u_hi)) return false;  // inconsistent: not accepted
+  const double dist = 0.5 * (U + L);
+  const double err = maxd(u_hi - dist, dist - l_lo) + kU * dist;
+  if (!(err <= kAcceptRel * dist)) return false;
+  if (out) {
+    out->distance = dist;
+    out->error_bound = err * (1 + 0x1p-50);
+    const P3<double> pd{double(p.x), double(p.y), double(p.z)};
+    out->point_on_triangle = toWorld(wm, pd);
+    out->point_on_cylinder = toWorld(wm, pd - lp.w);
+  }
+  return true;
+}
+
 // The usual refinement: the candidates of the double pass within its
 // error of the best (usually the best alone), each re-solved in
 // double-word: a vertex as it is, an edge point by two Newton steps from
@@ -400,7 +537,8 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
     const double dx[3] = {x[0] - tt[0], x[1] - tt[1], x[2] - tt[2]};
     double y[3];
     for (int i = 0; i < 3; ++i) {
-      y[i] = pose.R[0][i] * dx[0] + pose.R[1][i] * dx[1] + pose.R[2][i] * dx[2];
+      y[i] = sum3(pose.R[0][i] * dx[0], pose.R[1][i] * dx[1],
+                  pose.R[2][i] * dx[2]);
       S = maxd(S, absd(pose.R[0][i]) * absd(dx[0]) +
                       absd(pose.R[1][i]) * absd(dx[1]) +
                       absd(pose.R[2][i]) * absd(dx[2]));
@@ -447,6 +585,39 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   }
   const Pass pass = doublePass(P, vp, slack_d, false);
 
+  // Double-word refinement. x - t is exact as a pair (TwoSum); the sum
+  // of three double-word products is within 2^-101 S (dd.h).
+  auto ddVertex = [&](int v) {
+    const double x[3] = {X[v]->x, X[v]->y, X[v]->z};
+    DDx dx[3];
+    for (int k = 0; k < 3; ++k) {
+      double s, e;
+      detail::twoSum(x[k], -tt[k], s, e);
+      dx[k] = DDx(s, e);
+    }
+    DDx y[3];
+    for (int i = 0; i < 3; ++i)
+      y[i] = detail::mulD(dx[0], pose.R[0][i]) +
+             detail::mulD(dx[1], pose.R[1][i]) +
+             detail::mulD(dx[2], pose.R[2][i]);
+    return P3<DDx>{y[0], y[1], y[2]};
+  };
+  const double slack_dd = 2 * kUdd * S + kAlg * kUdd * Mx;
+  {
+    P3<DDx> Y[3];
+    bool have[3] = {false, false, false};
+    auto vertex = [&](int v) -> const P3<DDx>& {
+      if (!have[v]) {
+        Y[v] = ddVertex(v);
+        have[v] = true;
+      }
+      return Y[v];
+    };
+    // Accepted: L_lo > 0 proves the pair disjoint, no Boolean needed.
+    if (leanRefine<DDx>(pass, P, vertex, eps_y_d, M, slack_dd, wm, out))
+      return Answer::kDisjoint;
+  }
+
   double U = std::numeric_limits<double>::infinity(), L = 0;
   for (int k = 0; k < 4; ++k)
     if (pass.cand[k].valid && pass.cand[k].f < U) U = pass.cand[k].f;
@@ -483,24 +654,6 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
     return Answer::kDisjoint;
   }
 
-  // Double-word refinement. x - t is exact as a pair (TwoSum); the sum
-  // of three double-word products is within 2^-101 S (dd.h).
-  auto ddVertex = [&](int v) {
-    const double x[3] = {X[v]->x, X[v]->y, X[v]->z};
-    DDx dx[3];
-    for (int k = 0; k < 3; ++k) {
-      double s, e;
-      detail::twoSum(x[k], -tt[k], s, e);
-      dx[k] = DDx(s, e);
-    }
-    DDx y[3];
-    for (int i = 0; i < 3; ++i)
-      y[i] = detail::mulD(dx[0], pose.R[0][i]) +
-             detail::mulD(dx[1], pose.R[1][i]) +
-             detail::mulD(dx[2], pose.R[2][i]);
-    return P3<DDx>{y[0], y[1], y[2]};
-  };
-  const double slack_dd = 2 * kUdd * S + kAlg * kUdd * Mx;
   const double tie = 2 * err_d;
   if (refineFast<DDx>(pass, P, ddVertex, U, tie, eps_y_d, M, slack_dd, wm, out))
     return Answer::kDisjoint;
