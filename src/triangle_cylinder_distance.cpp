@@ -319,11 +319,20 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
   const int i = vb >= 0 ? vb : detail::dist::kEdgeA[cb.kind];
   const int j = vb >= 0 ? vb : detail::dist::kEdgeB[cb.kind];
   const P3<DDx>& a = vertex(i);
-  P3<DDx> p = a, d{};
+  P3<DDx> d{};
+  if (vb < 0) d = vertex(j) - a;
+  // An edge point is a + d (s + sc): s the double pass's parameter, sc a
+  // Newton correction (second attempt) from phi'(s) = w . d (w = p - P(p)
+  // to a few ulps, the product in double-word) and the double phi''(s).
+  double sc = 0;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+  P3<DDx> p = a;
   if (vb < 0) {
-    d = vertex(j) - a;
     p = {a.x + detail::mulD(d.x, cb.s), a.y + detail::mulD(d.y, cb.s),
          a.z + detail::mulD(d.z, cb.s)};
+    if (sc != 0)
+      p = {p.x + detail::mulD(d.x, sc), p.y + detail::mulD(d.y, sc),
+           p.z + detail::mulD(d.z, sc)};
   }
   const LeanPoint lp = leanPoint(p, P.r, P.h);
   if (!(lp.U > 0)) return false;
@@ -366,7 +375,21 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
   if (!(l_lo <= u_hi)) return false;  // inconsistent: not accepted
   const double dist = 0.5 * (U + L);
   const double err = maxd(u_hi - dist, dist - l_lo) + kU * dist;
-  if (!(err <= kAcceptRel * dist)) return false;
+  // As in refineFast: accepted within kAcceptRel, or when U and L met and
+  // it is the a-priori double-word allowance that is wider.
+  if (!(err <= kAcceptRel * dist || U - L <= kTightGap * dist)) {
+    if (vb >= 0 || attempt > 0) return false;
+    const int ki = detail::dist::kEdgeA[cb.kind];
+    const P3<double> dd = P.v[detail::dist::kEdgeB[cb.kind]] - P.v[ki];
+    const double g2 =
+        detail::dist::edgeDphi(P.v[ki], dd, cb.s, P.r, P.h).g2;
+    const DDx wdd = detail::mulD(d.x, lp.w.x) + detail::mulD(d.y, lp.w.y) +
+                    detail::mulD(d.z, lp.w.z);
+    if (!(g2 > detail::dist::kTinyDen)) return false;
+    sc = -double(wdd) / g2;
+    if (!(absd(sc) < 0x1p-20)) return false;
+    continue;
+  }
   if (out) {
     out->distance = dist;
     out->error_bound = err * (1 + 0x1p-50);
@@ -375,6 +398,8 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
     out->point_on_cylinder = toWorld(wm, pd - lp.w);
   }
   return true;
+  }
+  return false;
 }
 
 // The usual refinement: the candidates of the double pass within its
