@@ -120,8 +120,28 @@ Vec3<double> scaled(const Vec3<double>& v, int e) {
 struct Pass {
   Candidate<double> cand[4];  // edges 0..2, face 3
   bool face_cut = false;
+  bool face_pending = false;  // cand[3] not computed yet (addFace)
   int best = -1;
 };
+
+// The face's candidate (faceCandidate) into the pass.
+void addFace(const Problem<double>& P, Pass* pass) {
+  bool cut = false;
+  pass->cand[3] = detail::dist::faceCandidate(P, &cut);
+  pass->face_cut = cut;
+  pass->face_pending = false;
+  if (pass->cand[3].valid &&
+      (pass->best < 0 || pass->cand[3].f < pass->cand[pass->best].f))
+    pass->best = 3;
+}
+
+// The vertex index of a candidate at an edge's end, else -1.
+int vertexOf(const Candidate<double>& c) {
+  if (c.kind > 2) return -1;
+  if (c.s == 0) return detail::dist::kEdgeA[c.kind];
+  if (c.s == 1) return detail::dist::kEdgeB[c.kind];
+  return -1;
+}
 
 // The vertices' gradients g_i = v_i - P(v_i) and distances f_i = |g_i|,
 // computed first: they decide whether the Boolean is needed before the
@@ -176,14 +196,11 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
     }
   }
   if (witness && best == 0) return out;
-  bool cut = false;
-  out.cand[3] = detail::dist::faceCandidate(P, &cut);
-  out.face_cut = cut;
-  if (out.cand[3].valid && out.cand[3].f < best) {
-    best = out.cand[3].f;
-    out.best = 3;
+  if (witness) {
+    addFace(P, &out);
+    if (out.best == 3 && out.cand[3].f == 0) return out;
+    best = out.cand[out.best].f;
   }
-  if (witness && best == 0) return out;
   for (int k = 0; k < 3; ++k) {
     const int i = detail::dist::kEdgeA[k], j = detail::dist::kEdgeB[k];
     const P3<double> d = P.v[j] - P.v[i];
@@ -211,6 +228,28 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
       best = out.cand[k].f;
       out.best = k;
     }
+  }
+  // The face last, and only when the best vertex or edge point p fails
+  // the optimality test of the convex f over T in double: its direction
+  // w (p - P(p), orthogonal to the edge for an edge point) has w . (v - p)
+  // >= 0 for the vertices v off its feature (then p is the minimiser, up
+  // to the double pass's rounding, and the face's candidate cannot beat
+  // it). The test only saves work: the refinements certify the result,
+  // and complete the face (addFace) before anything but the lean one.
+  if (!witness) {
+    const Candidate<double>& c = out.cand[out.best];
+    const int vb = vertexOf(c);
+    bool kkt = c.f > 0;
+    for (int v = 0; v < 3 && kkt; ++v) {
+      if (v == vb || (vb < 0 && (v == detail::dist::kEdgeA[c.kind] ||
+                                 v == detail::dist::kEdgeB[c.kind])))
+        continue;
+      kkt = detail::dist::dot(c.w, P.v[v] - c.p) > 0;
+    }
+    if (kkt)
+      out.face_pending = true;
+    else
+      addFace(P, &out);
   }
   return out;
 }
@@ -240,14 +279,6 @@ Vec3<double> toWorld(const WorldMap& wm, const P3<double>& y) {
 template <class DDx>
 Vec3<double> toWorld(const WorldMap& wm, const P3<DDx>& y) {
   return toWorld(wm, P3<double>{double(y.x), double(y.y), double(y.z)});
-}
-
-// The vertex index of a candidate at an edge's end, else -1.
-int vertexOf(const Candidate<double>& c) {
-  if (c.kind > 2) return -1;
-  if (c.s == 0) return detail::dist::kEdgeA[c.kind];
-  if (c.s == 1) return detail::dist::kEdgeB[c.kind];
-  return -1;
 }
 
 template <class DDx>
@@ -375,9 +406,12 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
   if (!(l_lo <= u_hi)) return false;  // inconsistent: not accepted
   const double dist = 0.5 * (U + L);
   const double err = maxd(u_hi - dist, dist - l_lo) + kU * dist;
-  // As in refineFast: accepted within kAcceptRel, or when U and L met and
-  // it is the a-priori double-word allowance that is wider.
-  if (!(err <= kAcceptRel * dist || U - L <= kTightGap * dist)) {
+  // As in refineFast: accepted within kAcceptRel, or when U and L met (to
+  // their own final roundings, kLeanU + kLeanL) and it is the a-priori
+  // double-word allowance that is wider (d below about 2^-45 Mx).
+  if (!(err <= kAcceptRel * dist ||
+        (slack_dd > kTightGap * dist &&
+         U - L <= (kLeanU + kLeanL + kTightGap) * dist))) {
     if (vb >= 0 || attempt > 0) return false;
     const int ki = detail::dist::kEdgeA[cb.kind];
     const P3<double> dd = P.v[detail::dist::kEdgeB[cb.kind]] - P.v[ki];
@@ -608,7 +642,7 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
       return intersecting(c.p, c.q);
     }
   }
-  const Pass pass = doublePass(P, vp, slack_d, false);
+  Pass pass = doublePass(P, vp, slack_d, false);
 
   // Double-word refinement. x - t is exact as a pair (TwoSum); the sum
   // of three double-word products is within 2^-101 S (dd.h).
@@ -642,6 +676,7 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
     if (leanRefine<DDx>(pass, P, vertex, eps_y_d, M, slack_dd, wm, out))
       return Answer::kDisjoint;
   }
+  if (pass.face_pending) addFace(P, &pass);
 
   double U = std::numeric_limits<double>::infinity(), L = 0;
   for (int k = 0; k < 4; ++k)
