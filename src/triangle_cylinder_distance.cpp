@@ -662,6 +662,14 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
     return P3<DDx>{y[0], y[1], y[2]};
   };
   const double slack_dd = 2 * kUdd * S + kAlg * kUdd * Mx;
+  // A best candidate within the double pass's error of C: usually an
+  // intersecting pair, which the Boolean decides before any refinement.
+  if (!(pass.cand[pass.best].f > 2 * slack_d) &&
+      booleanOf() == Answer::kIntersect) {
+    if (pass.face_pending) addFace(P, &pass);
+    const Candidate<double>& c = pass.cand[pass.best];
+    return intersecting(c.p, c.q);
+  }
   {
     P3<DDx> Y[3];
     bool have[3] = {false, false, false};
