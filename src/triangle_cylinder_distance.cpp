@@ -221,8 +221,23 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
       if (lb > best * (1 + 0x1p-40) + prune_slack) continue;
       if (t > 0 && t < 1) s0 = t;
     }
-    const double s = detail::dist::edgeSolveIn(
-        P.v[i], d, P.r, P.h, 0.0, 1.0, s0, kSolveIter, 0x1p-53, 0x1p-40);
+    // The closed form first: where the edge's root lies in the barrel's
+    // region (|z| <= h, rho > r), phi' = (1 - r/rho) p_xy . d_xy vanishes
+    // exactly where p_xy . d_xy = 0, a linear equation in s. Otherwise
+    // the safeguarded Newton iteration.
+    double s = -1;
+    const double dxy2 = d.x * d.x + d.y * d.y;
+    if (dxy2 > detail::dist::kTinyDen) {
+      const P3<double>& a = P.v[i];
+      const double sb = -(a.x * d.x + a.y * d.y) / dxy2;
+      if (sb > 0 && sb < 1) {
+        const P3<double> p = a + d * sb;
+        if (absd(p.z) < P.h && p.x * p.x + p.y * p.y > P.r * P.r) s = sb;
+      }
+    }
+    if (!(s >= 0))
+      s = detail::dist::edgeSolveIn(P.v[i], d, P.r, P.h, 0.0, 1.0, s0,
+                                    kSolveIter, 0x1p-53, 0x1p-40);
     out.cand[k] = detail::dist::edgeCandidate(P, k, s);
     if (out.cand[k].f < best) {
       best = out.cand[k].f;
