@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// tricyl::distance: the exact Boolean for the zero test, a double pass that
-// finds the nearest pair and certifies it when the double result is already
-// within a few ulps, and a double-word refinement of the nearest candidates
-// otherwise. Method and error bound: docs/distance.md;
-// the generic algorithm: src/triangle_cylinder_distance_impl.h.
+// tricyl::distance: a double pass that finds the nearest pair, a lean
+// re-evaluation of its best candidate with double-word vertices (which
+// usually certifies the distance to 8 ulps and, with it, that the pair is
+// disjoint), the exact Boolean for the zero test whenever no certified
+// lower bound proves the pair disjoint, and a double-word refinement of the
+// nearest candidates when the lean one does not certify. Method and error
+// bound: docs/distance.md; the generic algorithm:
+// src/triangle_cylinder_distance_impl.h.
 #include "tricyl/triangle_cylinder_distance.h"
 
 #include <cmath>
@@ -161,10 +164,10 @@ VertexPass vertexPass(const Problem<double>& P) {
 }
 
 // The double pass, from the vertices' g_i = v_i - P(v_i), f_i = |g_i|
-// (vertexPass). An edge's phi'(0) and phi'(1) are g_a . d and g_b . d, so an edge whose
-// minimum is at an end costs nothing more. For the others, the tangents of
-// the convex f at both ends bound f from below (f >= f_a + s f'(0) and
-// f >= f_b - (1 - s) f'(1), f' = phi' / f); where the two lines meet is a
+// (vertexPass). An edge's phi'(0) and phi'(1) are g_a . d and g_b . d, so an
+// edge whose minimum is at an end costs nothing more. For the others, the
+// tangents of the convex f at both ends bound f from below (f >= f_a + s f'(0)
+// and f >= f_b - (1 - s) f'(1), f' = phi' / f); where the two lines meet is a
 // lower bound of the edge's minimum (the edge is skipped when it cannot
 // beat the best so far) and the start of the Newton iteration.
 // `witness`: the pair intersects, only a common point is wanted (the pass
@@ -372,81 +375,83 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
   // to a few ulps, the product in double-word) and the double phi''(s).
   double sc = 0;
   for (int attempt = 0; attempt < 2; ++attempt) {
-  P3<DDx> p = a;
-  if (vb < 0) {
-    p = {a.x + detail::mulD(d.x, cb.s), a.y + detail::mulD(d.y, cb.s),
-         a.z + detail::mulD(d.z, cb.s)};
-    if (sc != 0)
-      p = {p.x + detail::mulD(d.x, sc), p.y + detail::mulD(d.y, sc),
-           p.z + detail::mulD(d.z, sc)};
-  }
-  const LeanPoint lp = leanPoint(p, P.r, P.h);
-  if (!(lp.U > 0)) return false;
-  P3<DDx> W{DDx(lp.w.x), DDx(lp.w.y), DDx(lp.w.z)};
-  DDx m;
-  if (vb >= 0) {
-    m = detail::mulD(a.x, lp.w.x) + detail::mulD(a.y, lp.w.y) +
-        detail::mulD(a.z, lp.w.z);
-  } else {
-    const DDx wd = detail::mulD(d.x, lp.w.x) + detail::mulD(d.y, lp.w.y) +
-                   detail::mulD(d.z, lp.w.z);
-    const double dx = double(d.x), dy = double(d.y), dz = double(d.z);
-    const double dd = dx * dx + dy * dy + dz * dz;
-    if (!(dd > detail::dist::kTinyDen)) return false;
-    const double c = double(wd) / dd;
-    W = {DDx(lp.w.x) - detail::mulD(d.x, c), DDx(lp.w.y) - detail::mulD(d.y, c),
-         DDx(lp.w.z) - detail::mulD(d.z, c)};
-    const DDx ma = detail::dist::dot(W, a), mb = detail::dist::dot(W, vertex(j));
-    m = ma < mb ? ma : mb;
-  }
-  const P3<double> wd{double(W.x), double(W.y), double(W.z)};
-  const double w1 = absd(wd.x) + absd(wd.y) + absd(wd.z);
-  const double margin = w1 * (eps_y_d + 5 * kU * M) * (1 + 0x1p-50);
-  for (int v = 0; v < 3; ++v) {
-    if (v == i || v == j) continue;
-    if (!(detail::dist::dot(wd, P.v[v]) - margin >= m.hi + 4 * kU * absd(m.hi))) {
-      const DDx x = detail::dist::dot(W, vertex(v));
-      if (x < m) m = x;
+    P3<DDx> p = a;
+    if (vb < 0) {
+      p = {a.x + detail::mulD(d.x, cb.s), a.y + detail::mulD(d.y, cb.s),
+           a.z + detail::mulD(d.z, cb.s)};
+      if (sc != 0)
+        p = {p.x + detail::mulD(d.x, sc), p.y + detail::mulD(d.y, sc),
+             p.z + detail::mulD(d.z, sc)};
     }
-  }
-  const double ww = wd.x * wd.x + wd.y * wd.y + wd.z * wd.z;
-  if (!(ww > detail::dist::kTinyDen)) return false;
-  const DDx hc = detail::mulD(sqrt(W.x * W.x + W.y * W.y), P.r) +
-                 detail::mulD(abs(W.z), P.h);
-  const double L = double(m - hc) / std::sqrt(ww);
-  const double U = lp.U;
-  if (!(L > 0)) return false;
-  const double u_hi = U * (1 + kLeanU) + slack_dd;
-  const double l_lo = L * (1 - kLeanL) - slack_dd;
-  if (!(l_lo <= u_hi)) return false;  // inconsistent: not accepted
-  const double dist = 0.5 * (U + L);
-  const double err = maxd(u_hi - dist, dist - l_lo) + kU * dist;
-  // As in refineFast: accepted within kAcceptRel, or when U and L met (to
-  // their own final roundings, kLeanU + kLeanL) and it is the a-priori
-  // double-word allowance that is wider (d below about 2^-45 Mx).
-  if (!(err <= kAcceptRel * dist ||
-        (slack_dd > kTightGap * dist &&
-         U - L <= (kLeanU + kLeanL + kTightGap) * dist))) {
-    if (vb >= 0 || attempt > 0) return false;
-    const int ki = detail::dist::kEdgeA[cb.kind];
-    const P3<double> dd = P.v[detail::dist::kEdgeB[cb.kind]] - P.v[ki];
-    const double g2 =
-        detail::dist::edgeDphi(P.v[ki], dd, cb.s, P.r, P.h).g2;
-    const DDx wdd = detail::mulD(d.x, lp.w.x) + detail::mulD(d.y, lp.w.y) +
-                    detail::mulD(d.z, lp.w.z);
-    if (!(g2 > detail::dist::kTinyDen)) return false;
-    sc = -double(wdd) / g2;
-    if (!(absd(sc) < 0x1p-20)) return false;
-    continue;
-  }
-  if (out) {
-    out->distance = dist;
-    out->error_bound = err * (1 + 0x1p-50);
-    const P3<double> pd{double(p.x), double(p.y), double(p.z)};
-    out->point_on_triangle = toWorld(wm, pd);
-    out->point_on_cylinder = toWorld(wm, pd - lp.w);
-  }
-  return true;
+    const LeanPoint lp = leanPoint(p, P.r, P.h);
+    if (!(lp.U > 0)) return false;
+    P3<DDx> W{DDx(lp.w.x), DDx(lp.w.y), DDx(lp.w.z)};
+    DDx m;
+    if (vb >= 0) {
+      m = detail::mulD(a.x, lp.w.x) + detail::mulD(a.y, lp.w.y) +
+          detail::mulD(a.z, lp.w.z);
+    } else {
+      const DDx wd = detail::mulD(d.x, lp.w.x) + detail::mulD(d.y, lp.w.y) +
+                     detail::mulD(d.z, lp.w.z);
+      const double dx = double(d.x), dy = double(d.y), dz = double(d.z);
+      const double dd = dx * dx + dy * dy + dz * dz;
+      if (!(dd > detail::dist::kTinyDen)) return false;
+      const double c = double(wd) / dd;
+      W = {DDx(lp.w.x) - detail::mulD(d.x, c),
+           DDx(lp.w.y) - detail::mulD(d.y, c),
+           DDx(lp.w.z) - detail::mulD(d.z, c)};
+      const DDx ma = detail::dist::dot(W, a),
+                mb = detail::dist::dot(W, vertex(j));
+      m = ma < mb ? ma : mb;
+    }
+    const P3<double> wd{double(W.x), double(W.y), double(W.z)};
+    const double w1 = absd(wd.x) + absd(wd.y) + absd(wd.z);
+    const double margin = w1 * (eps_y_d + 5 * kU * M) * (1 + 0x1p-50);
+    for (int v = 0; v < 3; ++v) {
+      if (v == i || v == j) continue;
+      if (!(detail::dist::dot(wd, P.v[v]) - margin >=
+            m.hi + 4 * kU * absd(m.hi))) {
+        const DDx x = detail::dist::dot(W, vertex(v));
+        if (x < m) m = x;
+      }
+    }
+    const double ww = wd.x * wd.x + wd.y * wd.y + wd.z * wd.z;
+    if (!(ww > detail::dist::kTinyDen)) return false;
+    const DDx hc = detail::mulD(sqrt(W.x * W.x + W.y * W.y), P.r) +
+                   detail::mulD(abs(W.z), P.h);
+    const double L = double(m - hc) / std::sqrt(ww);
+    const double U = lp.U;
+    if (!(L > 0)) return false;
+    const double u_hi = U * (1 + kLeanU) + slack_dd;
+    const double l_lo = L * (1 - kLeanL) - slack_dd;
+    if (!(l_lo <= u_hi)) return false;  // inconsistent: not accepted
+    const double dist = 0.5 * (U + L);
+    const double err = maxd(u_hi - dist, dist - l_lo) + kU * dist;
+    // As in refineFast: accepted within kAcceptRel, or when U and L met (to
+    // their own final roundings, kLeanU + kLeanL) and it is the a-priori
+    // double-word allowance that is wider (d below about 2^-45 Mx).
+    if (!(err <= kAcceptRel * dist ||
+          (slack_dd > kTightGap * dist &&
+           U - L <= (kLeanU + kLeanL + kTightGap) * dist))) {
+      if (vb >= 0 || attempt > 0) return false;
+      const int ki = detail::dist::kEdgeA[cb.kind];
+      const P3<double> dd = P.v[detail::dist::kEdgeB[cb.kind]] - P.v[ki];
+      const double g2 = detail::dist::edgeDphi(P.v[ki], dd, cb.s, P.r, P.h).g2;
+      const DDx wdd = detail::mulD(d.x, lp.w.x) + detail::mulD(d.y, lp.w.y) +
+                      detail::mulD(d.z, lp.w.z);
+      if (!(g2 > detail::dist::kTinyDen)) return false;
+      sc = -double(wdd) / g2;
+      if (!(absd(sc) < 0x1p-20)) return false;
+      continue;
+    }
+    if (out) {
+      out->distance = dist;
+      out->error_bound = err * (1 + 0x1p-50);
+      const P3<double> pd{double(p.x), double(p.y), double(p.z)};
+      out->point_on_triangle = toWorld(wm, pd);
+      out->point_on_cylinder = toWorld(wm, pd - lp.w);
+    }
+    return true;
   }
   return false;
 }
@@ -718,8 +723,7 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   // Separation: d >= L - slack_d (section 4) proves the Boolean false.
   // Otherwise the Boolean decides (it was already known to be false if a
   // vertex was within slack_d of C: the call is then cached by booleanOf).
-  if (!(L > slack_d * (1 + 0x1p-40)) &&
-      booleanOf() == Answer::kIntersect) {
+  if (!(L > slack_d * (1 + 0x1p-40)) && booleanOf() == Answer::kIntersect) {
     const Candidate<double>& c = pass.cand[pass.best >= 0 ? pass.best : 0];
     return intersecting(c.p, c.q);
   }
@@ -806,7 +810,8 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   // by the double pass's certificate alone).
   Answer boolean = Answer::kInvalidInput;
   auto booleanOf = [&]() {
-    if (boolean == Answer::kInvalidInput) boolean = tryIntersect(cyl, pose, tri);
+    if (boolean == Answer::kInvalidInput)
+      boolean = tryIntersect(cyl, pose, tri);
     return boolean;
   };
   // Power-of-two scaling keeps the products of up to six local lengths
