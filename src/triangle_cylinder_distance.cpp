@@ -456,6 +456,23 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
   return false;
 }
 
+// The double-word pulled-back vertices, each formed once, when first
+// asked for (by the lean refinement, refineFast or the general one).
+template <class DDx, class MakeFn>
+struct DDVertices {
+  MakeFn& make;
+  P3<DDx> y[3]{};
+  bool have[3] = {false, false, false};
+  const P3<DDx>& operator()(int v) {
+    if (!have[v]) {
+      y[v] = make(v);
+      have[v] = true;
+    }
+    return y[v];
+  }
+  bool has(int v) const { return have[v]; }
+};
+
 // The usual refinement: the candidates of the double pass within its
 // error of the best (usually the best alone), each re-solved in
 // double-word: a vertex as it is, an edge point by two Newton steps from
@@ -468,20 +485,12 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
 // result is not within kAcceptRel: the general refinement then runs.
 template <class DDx, class VertexFn>
 TRICYL_DIST_NOINLINE bool refineFast(const Pass& pass, const Problem<double>& P,
-                                     VertexFn ddVertex, double U, double tie,
+                                     VertexFn& ddVertex, double U, double tie,
                                      double eps_y_d, double M, double slack_dd,
                                      const WorldMap& wm,
                                      DistanceResult<double>* out) {
   const DDx r(P.r), h(P.h);
-  P3<DDx> Y[3];
-  bool have[3] = {false, false, false};
-  auto vertex = [&](int v) -> const P3<DDx>& {
-    if (!have[v]) {
-      Y[v] = ddVertex(v);
-      have[v] = true;
-    }
-    return Y[v];
-  };
+  auto& vertex = ddVertex;
   DDx Ubest(std::numeric_limits<double>::infinity()), Lbest(-1);
   P3<DDx> pb{}, qb{};
   bool done_vertex[3] = {false, false, false};
@@ -548,8 +557,8 @@ TRICYL_DIST_NOINLINE bool refineFast(const Pass& pass, const Problem<double>& P,
       const double w1 = absd(wd.x) + absd(wd.y) + absd(wd.z);
       const double margin = w1 * (eps_y_d + 5 * kU * M) * (1 + 0x1p-50);
       for (int v = 0; v < 3; ++v) {
-        if (have[v]) {
-          const DDx x = detail::dist::dot(w, Y[v]);
+        if (vertex.has(v)) {
+          const DDx x = detail::dist::dot(w, vertex(v));
           if (x < m) m = x;
         } else if (!(detail::dist::dot(wd, P.v[v]) - margin >=
                      m.hi + 4 * kU * absd(m.hi))) {
@@ -690,20 +699,10 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
     const Candidate<double>& c = pass.cand[pass.best];
     return intersecting(c.p, c.q);
   }
-  {
-    P3<DDx> Y[3];
-    bool have[3] = {false, false, false};
-    auto vertex = [&](int v) -> const P3<DDx>& {
-      if (!have[v]) {
-        Y[v] = ddVertex(v);
-        have[v] = true;
-      }
-      return Y[v];
-    };
-    // Accepted: L_lo > 0 proves the pair disjoint, no Boolean needed.
-    if (leanRefine<DDx>(pass, P, vertex, eps_y_d, M, slack_dd, wm, out))
-      return Answer::kDisjoint;
-  }
+  DDVertices<DDx, decltype(ddVertex)> vertex{ddVertex};
+  // Accepted: L_lo > 0 proves the pair disjoint, no Boolean needed.
+  if (leanRefine<DDx>(pass, P, vertex, eps_y_d, M, slack_dd, wm, out))
+    return Answer::kDisjoint;
   if (pass.face_pending) addFace(P, &pass);
 
   double U = std::numeric_limits<double>::infinity(), L = 0;
@@ -742,7 +741,7 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   }
 
   const double tie = 2 * err_d;
-  if (refineFast<DDx>(pass, P, ddVertex, U, tie, eps_y_d, M, slack_dd, wm, out))
+  if (refineFast<DDx>(pass, P, vertex, U, tie, eps_y_d, M, slack_dd, wm, out))
     return Answer::kDisjoint;
 
   // The general refinement: every candidate within the double pass's
@@ -750,7 +749,7 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   Problem<DDx> Q;
   Q.r = DDx(P.r);
   Q.h = DDx(P.h);
-  for (int v = 0; v < 3; ++v) Q.v[v] = ddVertex(v);
+  for (int v = 0; v < 3; ++v) Q.v[v] = vertex(v);
   DDx Ubest(std::numeric_limits<double>::infinity());
   DDx Lbest(0);
   Candidate<DDx> best;
