@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// tricyl::distance: the exact Boolean for the zero test, a double pass that
-// finds the nearest pair and certifies it when the double result is already
-// within a few ulps, and a double-word refinement of the nearest candidates
-// otherwise. Method and error bound: docs/distance.md;
-// the generic algorithm: src/triangle_cylinder_distance_impl.h.
+// tricyl::distance: a double pass that finds the nearest pair, a lean
+// re-evaluation of its best candidate with double-word vertices (which
+// usually certifies the distance to 8 ulps and, with it, that the pair is
+// disjoint), the exact Boolean for the zero test whenever no certified
+// lower bound proves the pair disjoint, and a double-word refinement of the
+// nearest candidates when the lean one does not certify. Method and error
+// bound: docs/distance.md; the generic algorithm:
+// src/triangle_cylinder_distance_impl.h.
 #include "tricyl/triangle_cylinder_distance.h"
 
 #include <cmath>
@@ -70,8 +73,23 @@ constexpr int kRefineIter = 240;
 // from the double pass's parameter; it stops at a step below 2^-90).
 constexpr int kFastNewton = 5;
 
-inline double absd(double x) { return x < 0 ? -x : x; }
+inline double absd(double x) { return std::fabs(x); }
 inline double maxd(double a, double b) { return a > b ? a : b; }
+
+// a + b + c summed in a canonical order (least and greatest first, then
+// the middle one; branch-free min and max): the same double for any order
+// of the terms, so that an exact signed permutation of the world axes
+// (which permutes the terms of R^T (x - t)) leaves the double pulled-back
+// triangle, and with it the whole double pass, unchanged. (A +-0 pair may
+// come out either way, but a sum with a +0 term is not -0.) Its error is
+// that of any order: within 2u (|a| + |b| + |c|).
+inline double sum3(double a, double b, double c) {
+  auto mn = [](double x, double y) { return x < y ? x : y; };
+  auto mx = [](double x, double y) { return x > y ? x : y; };
+  const double lo = mn(mn(a, b), c), hi = mx(mx(a, b), c);
+  const double mid = mx(mn(a, b), mn(mx(a, b), c));
+  return (lo + hi) + mid;
+}
 
 // Largest magnitude of the lengths (vertices, translation, r, lz).
 double maxLength(const Cylinder<double>& c, const Pose<double>& p,
@@ -83,6 +101,19 @@ double maxLength(const Cylinder<double>& c, const Pose<double>& p,
   return m;
 }
 
+// The inputs `intersect` accepts: every number finite, r >= 0, lz >= 0
+// (-0 passes; NaN fails every comparison). x - x is 0 exactly for a
+// finite x and NaN for an infinite or NaN one.
+bool validInputs(const Cylinder<double>& c, const Pose<double>& p,
+                 const Triangle<double>& t) {
+  double z = c.radius - c.radius + (c.lz - c.lz);
+  for (const auto& row : p.R)
+    for (double x : row) z += x - x;
+  const Vec3<double>* v[4] = {&t.a, &t.b, &t.c, &p.t};
+  for (const auto* x : v) z += (x->x - x->x) + (x->y - x->y) + (x->z - x->z);
+  return z == 0 && c.radius >= 0 && c.lz >= 0;
+}
+
 // v 2^e (std::ldexp: no power of two is formed, so e may exceed the
 // exponent range of a double).
 Vec3<double> scaled(const Vec3<double>& v, int e) {
@@ -92,27 +123,61 @@ Vec3<double> scaled(const Vec3<double>& v, int e) {
 struct Pass {
   Candidate<double> cand[4];  // edges 0..2, face 3
   bool face_cut = false;
+  bool face_pending = false;  // cand[3] not computed yet (addFace)
   int best = -1;
 };
 
-// The double pass. Vertices first: g_i = v_i - P(v_i), f_i = |g_i|. An
-// edge's phi'(0) and phi'(1) are g_a . d and g_b . d, so an edge whose
-// minimum is at an end costs nothing more. For the others, the tangents of
-// the convex f at both ends bound f from below (f >= f_a + s f'(0) and
-// f >= f_b - (1 - s) f'(1), f' = phi' / f); where the two lines meet is a
+// The face's candidate (faceCandidate) into the pass.
+void addFace(const Problem<double>& P, Pass* pass) {
+  bool cut = false;
+  pass->cand[3] = detail::dist::faceCandidate(P, &cut);
+  pass->face_cut = cut;
+  pass->face_pending = false;
+  if (pass->cand[3].valid &&
+      (pass->best < 0 || pass->cand[3].f < pass->cand[pass->best].f))
+    pass->best = 3;
+}
+
+// The vertex index of a candidate at an edge's end, else -1.
+int vertexOf(const Candidate<double>& c) {
+  if (c.kind > 2) return -1;
+  if (c.s == 0) return detail::dist::kEdgeA[c.kind];
+  if (c.s == 1) return detail::dist::kEdgeB[c.kind];
+  return -1;
+}
+
+// The vertices' gradients g_i = v_i - P(v_i) and distances f_i = |g_i|,
+// computed first: they decide whether the Boolean is needed before the
+// rest of the double pass (solve).
+struct VertexPass {
+  P3<double> g[3];
+  double f[3];
+};
+
+VertexPass vertexPass(const Problem<double>& P) {
+  VertexPass out;
+  for (int i = 0; i < 3; ++i) {
+    out.g[i] = P.v[i] - detail::dist::project(P.v[i], P.r, P.h);
+    out.f[i] = detail::dist::norm(out.g[i]);
+  }
+  return out;
+}
+
+// The double pass, from the vertices' g_i = v_i - P(v_i), f_i = |g_i|
+// (vertexPass). An edge's phi'(0) and phi'(1) are g_a . d and g_b . d, so an
+// edge whose minimum is at an end costs nothing more. For the others, the
+// tangents of the convex f at both ends bound f from below (f >= f_a + s f'(0)
+// and f >= f_b - (1 - s) f'(1), f' = phi' / f); where the two lines meet is a
 // lower bound of the edge's minimum (the edge is skipped when it cannot
 // beat the best so far) and the start of the Newton iteration.
 // `witness`: the pair intersects, only a common point is wanted (the pass
 // stops at the first candidate at distance 0).
 TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
-                                     double prune_slack, bool witness) {
+                                     const VertexPass& vp, double prune_slack,
+                                     bool witness) {
   Pass out;
-  P3<double> g[3];
-  double f[3];
-  for (int i = 0; i < 3; ++i) {
-    g[i] = P.v[i] - detail::dist::project(P.v[i], P.r, P.h);
-    f[i] = detail::dist::norm(g[i]);
-  }
+  const P3<double>* g = vp.g;
+  const double* f = vp.f;
   auto vertex = [&](int k, int i) {  // vertex i as edge k's candidate
     Candidate<double> c;
     c.valid = true;
@@ -134,14 +199,11 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
     }
   }
   if (witness && best == 0) return out;
-  bool cut = false;
-  out.cand[3] = detail::dist::faceCandidate(P, &cut);
-  out.face_cut = cut;
-  if (out.cand[3].valid && out.cand[3].f < best) {
-    best = out.cand[3].f;
-    out.best = 3;
+  if (witness) {
+    addFace(P, &out);
+    if (out.best == 3 && out.cand[3].f == 0) return out;
+    best = out.cand[out.best].f;
   }
-  if (witness && best == 0) return out;
   for (int k = 0; k < 3; ++k) {
     const int i = detail::dist::kEdgeA[k], j = detail::dist::kEdgeB[k];
     const P3<double> d = P.v[j] - P.v[i];
@@ -162,13 +224,50 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
       if (lb > best * (1 + 0x1p-40) + prune_slack) continue;
       if (t > 0 && t < 1) s0 = t;
     }
-    const double s = detail::dist::edgeSolveIn(
-        P.v[i], d, P.r, P.h, 0.0, 1.0, s0, kSolveIter, 0x1p-53, 0x1p-40);
+    // The closed form first: where the edge's root lies in the barrel's
+    // region (|z| <= h, rho > r), phi' = (1 - r/rho) p_xy . d_xy vanishes
+    // exactly where p_xy . d_xy = 0, a linear equation in s. Otherwise
+    // the safeguarded Newton iteration.
+    double s = -1;
+    const double dxy2 = d.x * d.x + d.y * d.y;
+    if (dxy2 > detail::dist::kTinyDen) {
+      const P3<double>& a = P.v[i];
+      const double sb = -(a.x * d.x + a.y * d.y) / dxy2;
+      if (sb > 0 && sb < 1) {
+        const P3<double> p = a + d * sb;
+        if (absd(p.z) < P.h && p.x * p.x + p.y * p.y > P.r * P.r) s = sb;
+      }
+    }
+    if (!(s >= 0))
+      s = detail::dist::edgeSolveIn(P.v[i], d, P.r, P.h, 0.0, 1.0, s0,
+                                    kSolveIter, 0x1p-53, 0x1p-40);
     out.cand[k] = detail::dist::edgeCandidate(P, k, s);
     if (out.cand[k].f < best) {
       best = out.cand[k].f;
       out.best = k;
     }
+  }
+  // The face last, and only when the best vertex or edge point p fails
+  // the optimality test of the convex f over T in double: its direction
+  // w (p - P(p), orthogonal to the edge for an edge point) has w . (v - p)
+  // >= 0 for the vertices v off its feature (then p is the minimiser, up
+  // to the double pass's rounding, and the face's candidate cannot beat
+  // it). The test only saves work: the refinements certify the result,
+  // and complete the face (addFace) before anything but the lean one.
+  if (!witness) {
+    const Candidate<double>& c = out.cand[out.best];
+    const int vb = vertexOf(c);
+    bool kkt = c.f > 0;
+    for (int v = 0; v < 3 && kkt; ++v) {
+      if (v == vb || (vb < 0 && (v == detail::dist::kEdgeA[c.kind] ||
+                                 v == detail::dist::kEdgeB[c.kind])))
+        continue;
+      kkt = detail::dist::dot(c.w, P.v[v] - c.p) > 0;
+    }
+    if (kkt)
+      out.face_pending = true;
+    else
+      addFace(P, &out);
   }
   return out;
 }
@@ -200,18 +299,179 @@ Vec3<double> toWorld(const WorldMap& wm, const P3<DDx>& y) {
   return toWorld(wm, P3<double>{double(y.x), double(y.y), double(y.z)});
 }
 
-// The vertex index of a candidate at an edge's end, else -1.
-int vertexOf(const Candidate<double>& c) {
-  if (c.kind > 2) return -1;
-  if (c.s == 0) return detail::dist::kEdgeA[c.kind];
-  if (c.s == 1) return detail::dist::kEdgeB[c.kind];
-  return -1;
-}
-
 template <class DDx>
 DDx hSupport(const P3<DDx>& w, const DDx& r, const DDx& h) {
   return r * sqrt(w.x * w.x + w.y * w.y) + h * abs(w.z);
 }
+
+// The distance of a double-word point p to C and the direction of
+// p - P(p), finished in double from the double-word differences where
+// the cancellation is: e = rho - r = (rho^2 - r^2) / (rho + r) outside the
+// barrel (rho = |p_xy|; rho^2 - r^2 in double-word), ez = |p_z| - h outside
+// the slab, U = |(e, ez)|. Relative error of U (first order, from the
+// roundings of rho, rho + r, the quotient, the squares, the sum and the
+// square root): below 3.3 u (kLeanU rounds it up), plus the double-word
+// roundings (absolute, within the slack of section 4). w = p - P(p) to a
+// few ulps of its norm (its direction only matters to second order).
+struct LeanPoint {
+  double U;
+  P3<double> w;
+};
+template <class DDx>
+LeanPoint leanPoint(const P3<DDx>& p, double r, double h) {
+  LeanPoint out{0, {0, 0, 0}};
+  double ez = 0;
+  if (p.z > DDx(h)) ez = double(p.z - DDx(h));
+  if (p.z < DDx(-h)) ez = double(p.z + DDx(h));
+  const DDx rho2 = p.x * p.x + p.y * p.y;
+  const double t = double(rho2 - detail::mulD(DDx(r), r));
+  double e = 0;
+  if (t > 0) {
+    const double rho = std::sqrt(double(rho2));
+    e = t / (rho + r);
+    const double k = e / rho;  // 1 - r / rho, in (0, 1]
+    out.w = {double(p.x) * k, double(p.y) * k, 0};
+  }
+  out.w.z = ez;
+  out.U = std::sqrt(e * e + ez * ez);
+  return out;
+}
+constexpr double kLeanU = 4 * kU;  // relative error of LeanPoint::U
+constexpr double kLeanL = 3 * kU;  // of the quotient num / |w| (leanRefine)
+
+// The lean refinement (the usual case, no iteration in double-word): the
+// double pass's best candidate re-evaluated at its double parameter with
+// the double-word vertices: U = leanPoint(p).U, an upper bound (p is a
+// point of the triangle), and the separating-plane bound L of the
+// direction w = leanPoint(p).w, made orthogonal to the edge in double-word
+// for an edge point (W = w - D c, c = (w . D) / |D|^2: the residual W . D
+// is 2u |w . D|, so min(W . a, W . b) loses nothing to first order),
+//   L = (min_i W . v_i - r |W_xy| - h |W_z|) / |W|,
+// numerator in double-word, quotient in double (relative error < 2.75 u).
+// The distance is returned as (U + L) / 2 with the bound
+// max(U_hi - d, d - L_lo) + u d. Accepted when that is within kAcceptRel
+// of d; otherwise (a face candidate, an edge parameter too far from the
+// root for its second-order error, bounds that do not meet) the caller
+// runs refineFast. The vertices outside the plane's contact enter L only
+// when a double evaluation cannot place them beyond it (as in
+// refineFast). An accepted result also proves the pair disjoint (L_lo > 0).
+template <class DDx, class VertexFn>
+TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
+                                     VertexFn&& vertex, double eps_y_d,
+                                     double M, double slack_dd,
+                                     const WorldMap& wm,
+                                     DistanceResult<double>* out) {
+  if (pass.best < 0 || pass.best > 2) return false;
+  const Candidate<double>& cb = pass.cand[pass.best];
+  if (!cb.valid) return false;
+  const int vb = vertexOf(cb);
+  const int i = vb >= 0 ? vb : detail::dist::kEdgeA[cb.kind];
+  const int j = vb >= 0 ? vb : detail::dist::kEdgeB[cb.kind];
+  const P3<DDx>& a = vertex(i);
+  P3<DDx> d{};
+  if (vb < 0) d = vertex(j) - a;
+  // An edge point is a + d (s + sc): s the double pass's parameter, sc a
+  // Newton correction (second attempt) from phi'(s) = w . d (w = p - P(p)
+  // to a few ulps, the product in double-word) and the double phi''(s).
+  double sc = 0;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    P3<DDx> p = a;
+    if (vb < 0) {
+      p = {a.x + detail::mulD(d.x, cb.s), a.y + detail::mulD(d.y, cb.s),
+           a.z + detail::mulD(d.z, cb.s)};
+      if (sc != 0)
+        p = {p.x + detail::mulD(d.x, sc), p.y + detail::mulD(d.y, sc),
+             p.z + detail::mulD(d.z, sc)};
+    }
+    const LeanPoint lp = leanPoint(p, P.r, P.h);
+    if (!(lp.U > 0)) return false;
+    P3<DDx> W{DDx(lp.w.x), DDx(lp.w.y), DDx(lp.w.z)};
+    DDx m;
+    if (vb >= 0) {
+      m = detail::mulD(a.x, lp.w.x) + detail::mulD(a.y, lp.w.y) +
+          detail::mulD(a.z, lp.w.z);
+    } else {
+      const DDx wd = detail::mulD(d.x, lp.w.x) + detail::mulD(d.y, lp.w.y) +
+                     detail::mulD(d.z, lp.w.z);
+      const double dx = double(d.x), dy = double(d.y), dz = double(d.z);
+      const double dd = dx * dx + dy * dy + dz * dz;
+      if (!(dd > detail::dist::kTinyDen)) return false;
+      const double c = double(wd) / dd;
+      W = {DDx(lp.w.x) - detail::mulD(d.x, c),
+           DDx(lp.w.y) - detail::mulD(d.y, c),
+           DDx(lp.w.z) - detail::mulD(d.z, c)};
+      const DDx ma = detail::dist::dot(W, a),
+                mb = detail::dist::dot(W, vertex(j));
+      m = ma < mb ? ma : mb;
+    }
+    const P3<double> wd{double(W.x), double(W.y), double(W.z)};
+    const double w1 = absd(wd.x) + absd(wd.y) + absd(wd.z);
+    const double margin = w1 * (eps_y_d + 5 * kU * M) * (1 + 0x1p-50);
+    for (int v = 0; v < 3; ++v) {
+      if (v == i || v == j) continue;
+      if (!(detail::dist::dot(wd, P.v[v]) - margin >=
+            m.hi + 4 * kU * absd(m.hi))) {
+        const DDx x = detail::dist::dot(W, vertex(v));
+        if (x < m) m = x;
+      }
+    }
+    const double ww = wd.x * wd.x + wd.y * wd.y + wd.z * wd.z;
+    if (!(ww > detail::dist::kTinyDen)) return false;
+    const DDx hc = detail::mulD(sqrt(W.x * W.x + W.y * W.y), P.r) +
+                   detail::mulD(abs(W.z), P.h);
+    const double L = double(m - hc) / std::sqrt(ww);
+    const double U = lp.U;
+    if (!(L > 0)) return false;
+    const double u_hi = U * (1 + kLeanU) + slack_dd;
+    const double l_lo = L * (1 - kLeanL) - slack_dd;
+    if (!(l_lo <= u_hi)) return false;  // inconsistent: not accepted
+    const double dist = 0.5 * (U + L);
+    const double err = maxd(u_hi - dist, dist - l_lo) + kU * dist;
+    // As in refineFast: accepted within kAcceptRel, or when U and L met (to
+    // their own final roundings, kLeanU + kLeanL) and it is the a-priori
+    // double-word allowance that is wider (d below about 2^-45 Mx).
+    if (!(err <= kAcceptRel * dist ||
+          (slack_dd > kTightGap * dist &&
+           U - L <= (kLeanU + kLeanL + kTightGap) * dist))) {
+      if (vb >= 0 || attempt > 0) return false;
+      const int ki = detail::dist::kEdgeA[cb.kind];
+      const P3<double> dd = P.v[detail::dist::kEdgeB[cb.kind]] - P.v[ki];
+      const double g2 = detail::dist::edgeDphi(P.v[ki], dd, cb.s, P.r, P.h).g2;
+      const DDx wdd = detail::mulD(d.x, lp.w.x) + detail::mulD(d.y, lp.w.y) +
+                      detail::mulD(d.z, lp.w.z);
+      if (!(g2 > detail::dist::kTinyDen)) return false;
+      sc = -double(wdd) / g2;
+      if (!(absd(sc) < 0x1p-20)) return false;
+      continue;
+    }
+    if (out) {
+      out->distance = dist;
+      out->error_bound = err * (1 + 0x1p-50);
+      const P3<double> pd{double(p.x), double(p.y), double(p.z)};
+      out->point_on_triangle = toWorld(wm, pd);
+      out->point_on_cylinder = toWorld(wm, pd - lp.w);
+    }
+    return true;
+  }
+  return false;
+}
+
+// The double-word pulled-back vertices, each formed once, when first
+// asked for (by the lean refinement, refineFast or the general one).
+template <class DDx, class MakeFn>
+struct DDVertices {
+  MakeFn& make;
+  P3<DDx> y[3]{};
+  bool have[3] = {false, false, false};
+  const P3<DDx>& operator()(int v) {
+    if (!have[v]) {
+      y[v] = make(v);
+      have[v] = true;
+    }
+    return y[v];
+  }
+  bool has(int v) const { return have[v]; }
+};
 
 // The usual refinement: the candidates of the double pass within its
 // error of the best (usually the best alone), each re-solved in
@@ -225,20 +485,12 @@ DDx hSupport(const P3<DDx>& w, const DDx& r, const DDx& h) {
 // result is not within kAcceptRel: the general refinement then runs.
 template <class DDx, class VertexFn>
 TRICYL_DIST_NOINLINE bool refineFast(const Pass& pass, const Problem<double>& P,
-                                     VertexFn ddVertex, double U, double tie,
+                                     VertexFn& ddVertex, double U, double tie,
                                      double eps_y_d, double M, double slack_dd,
                                      const WorldMap& wm,
                                      DistanceResult<double>* out) {
   const DDx r(P.r), h(P.h);
-  P3<DDx> Y[3];
-  bool have[3] = {false, false, false};
-  auto vertex = [&](int v) -> const P3<DDx>& {
-    if (!have[v]) {
-      Y[v] = ddVertex(v);
-      have[v] = true;
-    }
-    return Y[v];
-  };
+  auto& vertex = ddVertex;
   DDx Ubest(std::numeric_limits<double>::infinity()), Lbest(-1);
   P3<DDx> pb{}, qb{};
   bool done_vertex[3] = {false, false, false};
@@ -305,8 +557,8 @@ TRICYL_DIST_NOINLINE bool refineFast(const Pass& pass, const Problem<double>& P,
       const double w1 = absd(wd.x) + absd(wd.y) + absd(wd.z);
       const double margin = w1 * (eps_y_d + 5 * kU * M) * (1 + 0x1p-50);
       for (int v = 0; v < 3; ++v) {
-        if (have[v]) {
-          const DDx x = detail::dist::dot(w, Y[v]);
+        if (vertex.has(v)) {
+          const DDx x = detail::dist::dot(w, vertex(v));
           if (x < m) m = x;
         } else if (!(detail::dist::dot(wd, P.v[v]) - margin >=
                      m.hi + 4 * kU * absd(m.hi))) {
@@ -347,11 +599,17 @@ TRICYL_DIST_NOINLINE bool refineFast(const Pass& pass, const Problem<double>& P,
 
 // The distance for valid double inputs of moderate magnitude (no
 // overflow of products of up to six lengths: every length below 2^100).
-template <class DDx>
+// `booleanOf()` returns the exact Boolean (kIntersect or kDisjoint) of the
+// query; it is called only when the double pass cannot prove separation
+// (a certified lower bound of the distance above its own error), and
+// before the rest of the double pass when a vertex lies within that error
+// of C (then the pair usually intersects, and a vertex in C is a witness).
+template <class DDx, class BooleanFn>
 TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
                                   const Pose<double>& pose,
-                                  const Triangle<double>& tri, Answer boolean,
-                                  int rexp, DistanceResult<double>* out) {
+                                  const Triangle<double>& tri,
+                                  BooleanFn&& booleanOf, int rexp,
+                                  DistanceResult<double>* out) {
   const WorldMap wm{&pose, rexp};
   // The vertices in order of increasing magnitude of their local
   // coordinates (kEdge: every edge then starts at its smaller end).
@@ -367,7 +625,8 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
     const double dx[3] = {x[0] - tt[0], x[1] - tt[1], x[2] - tt[2]};
     double y[3];
     for (int i = 0; i < 3; ++i) {
-      y[i] = pose.R[0][i] * dx[0] + pose.R[1][i] * dx[1] + pose.R[2][i] * dx[2];
+      y[i] = sum3(pose.R[0][i] * dx[0], pose.R[1][i] * dx[1],
+                  pose.R[2][i] * dx[2]);
       S = maxd(S, absd(pose.R[0][i]) * absd(dx[0]) +
                       absd(pose.R[1][i]) * absd(dx[1]) +
                       absd(pose.R[2][i]) * absd(dx[2]));
@@ -389,46 +648,30 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   // The double pass: y computed with <= 5 roundings relative to S.
   const double eps_y_d = 6 * kU * S;
   const double slack_d = 2 * eps_y_d + kAlg * kU * Mx;
-  const Pass pass = doublePass(P, slack_d, boolean == Answer::kIntersect);
-
-  if (boolean == Answer::kIntersect) {
+  const VertexPass vp = vertexPass(P);
+  auto intersecting = [&](const P3<double>& p, const P3<double>& q) {
     if (out) {
-      const Candidate<double>& c = pass.cand[pass.best >= 0 ? pass.best : 0];
       out->distance = 0;
       out->error_bound = 0;
-      out->point_on_triangle = toWorld(wm, c.p);
-      out->point_on_cylinder = toWorld(wm, c.q);
+      out->point_on_triangle = toWorld(wm, p);
+      out->point_on_cylinder = toWorld(wm, q);
     }
     return Answer::kIntersect;
-  }
-
-  double U = std::numeric_limits<double>::infinity(), L = 0;
-  for (int k = 0; k < 4; ++k)
-    if (pass.cand[k].valid && pass.cand[k].f < U) U = pass.cand[k].f;
-  // The separating-plane bound of the best candidate first (usually the
-  // tight one); the others only if it leaves a gap.
-  auto bound = [&](int k) {
-    const Candidate<double>& c = pass.cand[k];
-    if (k == 3 ? !pass.face_cut : c.valid)
-      L = maxd(L, detail::dist::certify(P, c.w));
   };
-  if (pass.best >= 0) bound(pass.best);
-  if (!(U - L <= 2 * slack_d))
-    for (int k = 0; k < 4; ++k)
-      if (k != pass.best) bound(k);
-  // (L > U beyond the rounding allowance cannot happen for consistent
-  // bounds; such a pass is not accepted.)
-  const double err_d = maxd(U - L, 0.0) + slack_d + kU * U;
-  if (U > 0 && L <= U + slack_d && err_d <= kAcceptRel * U) {
-    if (out) {
-      const Candidate<double>& c = pass.cand[pass.best];
-      out->distance = U;
-      out->error_bound = err_d * (1 + 0x1p-50);
-      out->point_on_triangle = toWorld(wm, c.p);
-      out->point_on_cylinder = toWorld(wm, c.q);
+  int vmin = 0;
+  for (int i = 1; i < 3; ++i)
+    if (vp.f[i] < vp.f[vmin]) vmin = i;
+  if (!(vp.f[vmin] > slack_d)) {
+    if (booleanOf() == Answer::kIntersect) {
+      // A vertex in C (in double) is the witness; otherwise the double
+      // pass's search for a candidate at distance 0.
+      if (vp.f[vmin] == 0) return intersecting(P.v[vmin], P.v[vmin]);
+      const Pass pass = doublePass(P, vp, slack_d, true);
+      const Candidate<double>& c = pass.cand[pass.best >= 0 ? pass.best : 0];
+      return intersecting(c.p, c.q);
     }
-    return Answer::kDisjoint;
   }
+  Pass pass = doublePass(P, vp, slack_d, false);
 
   // Double-word refinement. x - t is exact as a pair (TwoSum); the sum
   // of three double-word products is within 2^-101 S (dd.h).
@@ -448,8 +691,57 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
     return P3<DDx>{y[0], y[1], y[2]};
   };
   const double slack_dd = 2 * kUdd * S + kAlg * kUdd * Mx;
+  // A best candidate within the double pass's error of C: usually an
+  // intersecting pair, which the Boolean decides before any refinement.
+  if (!(pass.cand[pass.best].f > 2 * slack_d) &&
+      booleanOf() == Answer::kIntersect) {
+    if (pass.face_pending) addFace(P, &pass);
+    const Candidate<double>& c = pass.cand[pass.best];
+    return intersecting(c.p, c.q);
+  }
+  DDVertices<DDx, decltype(ddVertex)> vertex{ddVertex};
+  // Accepted: L_lo > 0 proves the pair disjoint, no Boolean needed.
+  if (leanRefine<DDx>(pass, P, vertex, eps_y_d, M, slack_dd, wm, out))
+    return Answer::kDisjoint;
+  if (pass.face_pending) addFace(P, &pass);
+
+  double U = std::numeric_limits<double>::infinity(), L = 0;
+  for (int k = 0; k < 4; ++k)
+    if (pass.cand[k].valid && pass.cand[k].f < U) U = pass.cand[k].f;
+  // The separating-plane bound of the best candidate first (usually the
+  // tight one); the others only if it leaves a gap.
+  auto bound = [&](int k) {
+    const Candidate<double>& c = pass.cand[k];
+    if (k == 3 ? !pass.face_cut : c.valid)
+      L = maxd(L, detail::dist::certify(P, c.w));
+  };
+  if (pass.best >= 0) bound(pass.best);
+  if (!(U - L <= 2 * slack_d))
+    for (int k = 0; k < 4; ++k)
+      if (k != pass.best) bound(k);
+  // Separation: d >= L - slack_d (section 4) proves the Boolean false.
+  // Otherwise the Boolean decides (it was already known to be false if a
+  // vertex was within slack_d of C: the call is then cached by booleanOf).
+  if (!(L > slack_d * (1 + 0x1p-40)) && booleanOf() == Answer::kIntersect) {
+    const Candidate<double>& c = pass.cand[pass.best >= 0 ? pass.best : 0];
+    return intersecting(c.p, c.q);
+  }
+  // (L > U beyond the rounding allowance cannot happen for consistent
+  // bounds; such a pass is not accepted.)
+  const double err_d = maxd(U - L, 0.0) + slack_d + kU * U;
+  if (U > 0 && L <= U + slack_d && err_d <= kAcceptRel * U) {
+    if (out) {
+      const Candidate<double>& c = pass.cand[pass.best];
+      out->distance = U;
+      out->error_bound = err_d * (1 + 0x1p-50);
+      out->point_on_triangle = toWorld(wm, c.p);
+      out->point_on_cylinder = toWorld(wm, c.q);
+    }
+    return Answer::kDisjoint;
+  }
+
   const double tie = 2 * err_d;
-  if (refineFast<DDx>(pass, P, ddVertex, U, tie, eps_y_d, M, slack_dd, wm, out))
+  if (refineFast<DDx>(pass, P, vertex, U, tie, eps_y_d, M, slack_dd, wm, out))
     return Answer::kDisjoint;
 
   // The general refinement: every candidate within the double pass's
@@ -457,7 +749,7 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   Problem<DDx> Q;
   Q.r = DDx(P.r);
   Q.h = DDx(P.h);
-  for (int v = 0; v < 3; ++v) Q.v[v] = ddVertex(v);
+  for (int v = 0; v < 3; ++v) Q.v[v] = vertex(v);
   DDx Ubest(std::numeric_limits<double>::infinity());
   DDx Lbest(0);
   Candidate<DDx> best;
@@ -511,8 +803,16 @@ template <class DDx>
 Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
                       const Triangle<double>& tri,
                       DistanceResult<double>* out) {
-  const Answer boolean = tryIntersect(cyl, pose, tri);
-  if (boolean == Answer::kInvalidInput) return boolean;
+  if (!validInputs(cyl, pose, tri)) return Answer::kInvalidInput;
+  // The exact Boolean of the inputs as given, computed at most once and
+  // only when solve asks for it (most disjoint pairs are proved disjoint
+  // by the double pass's certificate alone).
+  Answer boolean = Answer::kInvalidInput;
+  auto booleanOf = [&]() {
+    if (boolean == Answer::kInvalidInput)
+      boolean = tryIntersect(cyl, pose, tri);
+    return boolean;
+  };
   // Power-of-two scaling keeps the products of up to six local lengths
   // finite and normal. The local problem's magnitude is at most
   // M = max(4 max|R_ij| * (world lengths), r, lz) = 2^eM (exponents
@@ -532,7 +832,7 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
     return x == 0 || (x <= lim && x >= 1 / lim);
   };
   if (moderate(mr, 0x1p30) && moderate(mw, 0x1p60) && moderate(mc, 0x1p60))
-    return solve<DDx>(cyl, pose, tri, boolean, 0, out);
+    return solve<DDx>(cyl, pose, tri, booleanOf, 0, out);
   int ea = 0, ew = 0, ec = 0;
   if (mr > 0) (void)std::frexp(mr, &ea);
   if (mw > 0) (void)std::frexp(mw, &ew);
@@ -542,7 +842,7 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   if (mc > 0 && ec > eM) eM = ec;
   if (eM == -2000) eM = 0;  // everything 0: nothing to scale
   if (eM >= -80 && eM <= 80 && ea >= -40 && ea <= 40)
-    return solve<DDx>(cyl, pose, tri, boolean, 0, out);
+    return solve<DDx>(cyl, pose, tri, booleanOf, 0, out);
   // The world lengths' scale, kept so that they stay within 2^+-100 (with
   // R = 0, or a tiny R, the world lengths hardly matter); the local
   // frame's scale is then 2^-(ea + el) (>= 2^-eM).
@@ -563,7 +863,12 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   const Triangle<double> t2{scaled(tri.a, -el), scaled(tri.b, -el),
                             scaled(tri.c, -el)};
   DistanceResult<double> r2{};
-  const Answer a = solve<DDx>(c2, p2, t2, boolean, 2 * ea, &r2);
+  // The scaled problem may lose parts below the underflow threshold, so its
+  // double pass cannot prove separation for the inputs as given: the
+  // Boolean (of the unscaled inputs) comes first here.
+  const Answer exact = booleanOf();
+  const Answer a = solve<DDx>(
+      c2, p2, t2, [exact]() { return exact; }, 2 * ea, &r2);
   if (out) {
     out->distance = std::ldexp(r2.distance, eM);
     out->error_bound = std::ldexp(r2.error_bound, eM);

@@ -47,15 +47,20 @@
 ///   kDisjoint (distance > 0), with the result in *out (when out != null).
 ///
 /// ## Method (docs/distance.md)
-/// The zero test is the exact Boolean. Otherwise the distance is the
-/// minimum over the triangle of the convex function dist(., C): per edge,
-/// an end or the root of its monotone derivative (Newton's method in a
-/// shrinking bracket, a fixed cap on the iterations; the hard case, an edge
-/// against a rim circle, is a root of a quartic found this way); for the
-/// face, the projection of C's support point. A double pass finds the
-/// nearest pair; a double-word pass re-solves it. The result is certified
-/// by an upper bound (a point of each set) and a lower bound (a separating
-/// plane: weak duality), whatever the search found.
+/// The zero test is the exact Boolean, run whenever a certified lower bound
+/// (below) does not already prove the pair disjoint. Otherwise the distance
+/// is the minimum over the triangle of the convex function dist(., C): per
+/// edge, an end or the root of its monotone derivative (in closed form in
+/// the barrel's region, else Newton's method in a shrinking bracket, a
+/// fixed cap on the iterations; the hard case, an edge against a rim
+/// circle, is a root of a quartic found this way); for the face, the
+/// projection of C's support point. A double pass finds the nearest pair;
+/// its best candidate is re-evaluated with double-word vertices (the
+/// cancelling differences in double-word, the rest in double), and
+/// re-solved in double-word only when that does not certify the result.
+/// The result is certified by an upper bound (a point of each set) and a
+/// lower bound (a separating plane: weak duality), whatever the search
+/// found.
 #pragma once
 
 #include "tricyl/types.h"
