@@ -507,6 +507,59 @@ Tri segmentCylinder(C& c, bool* early) {
   auto top1 = [](const auto& f) { return f.b().Z - f.H; };
   auto bot0 = [](const auto& f) { return f.a().Z + f.H; };
   auto bot1 = [](const auto& f) { return f.b().Z + f.H; };
+  auto gap0 = [](const auto& f) { return diskGap(f.a(), f.r); };
+  auto gap1 = [](const auto& f) { return diskGap(f.b(), f.r); };
+  if constexpr (C::kEagerFilter) {
+    // The whole test below in double at once, combined without a branch
+    // per sign (as the sphere's and the line's: on the near family the
+    // outcomes are coin flips, which a branch per sign pays for); only an
+    // open answer goes on sign by sign. A sign the filter certifies is
+    // never zero, so "> 0" and ">= 0" have the same certificate (nonNeg),
+    // and so have "< 0" and "<= 0" (nonPos).
+    const Bits t0 = c.filterBits(top0), t1 = c.filterBits(top1);
+    const Bits b0 = c.filterBits(bot0), b1 = c.filterBits(bot1);
+    auto strictlyApart = [](Bits s0, Bits s1) {
+      return kbOr(kbAnd(nonPos(s0), nonNeg(s1)), kbAnd(nonNeg(s0), nonPos(s1)));
+    };
+    const KBool v0 =
+        kbAnd(kbAnd(nonPos(t0), nonNeg(b0)), nonNeg(c.filterBits(gap0)));
+    const KBool v1 =
+        kbAnd(kbAnd(nonPos(t1), nonNeg(b1)), nonNeg(c.filterBits(gap1)));
+    const KBool x_top =
+        kbAnd(strictlyApart(t0, t1), nonNeg(c.filterBits([](const auto& f) {
+                return capCrossingGap(f, 1);
+              })));
+    const KBool x_bot =
+        kbAnd(strictlyApart(b0, b1), nonNeg(c.filterBits([](const auto& f) {
+                return capCrossingGap(f, -1);
+              })));
+    const KBool e = kbAnd(kbAnd(kbAnd(nonNeg(c.filterBits([](const auto& f) {
+                                        return axisLen(f);
+                                      })),
+                                      nonNeg(c.filterBits([](const auto& f) {
+                                        return axisDistanceGap(f);
+                                      }))),
+                                kbAnd(nonNeg(c.filterBits([](const auto& f) {
+                                        return axisFoot(f);
+                                      })),
+                                      nonNeg(c.filterBits([](const auto& f) {
+                                        return axisLen(f) - axisFoot(f);
+                                      })))),
+                          kbAnd(nonNeg(c.filterBits([](const auto& f) {
+                                  return axisFootHeight(f, 1);
+                                })),
+                                nonNeg(c.filterBits([](const auto& f) {
+                                  return axisFootHeight(f, -1);
+                                }))));
+    // Both endpoints strictly beyond the same cap plane.
+    const bool beyond_cap = (t0.pos & t1.pos) | (b0.neg & b1.neg);
+    KBool r = kbOr(kbOr(kbOr(v0, v1), kbOr(x_top, x_bot)), e);
+    r.f = r.f | beyond_cap;
+    if (r.t | r.f) {
+      *early = beyond_cap;
+      return toTri(r.t);
+    }
+  }
   const Sign top[2] = {c.sign(top0), c.sign(top1)};
   // Both endpoints strictly beyond the same cap plane.
   if (top[0] == Sign::kPos && top[1] == Sign::kPos) {
@@ -537,12 +590,8 @@ Tri segmentCylinder(C& c, bool* early) {
   }
   AnyOf any;
   // (V)
-  if (any.add(vertexInside(c, top[0], bot[0],
-                           [](const auto& f) { return diskGap(f.a(), f.r); })))
-    return Tri::kTrue;
-  if (any.add(vertexInside(c, top[1], bot[1],
-                           [](const auto& f) { return diskGap(f.b(), f.r); })))
-    return Tri::kTrue;
+  if (any.add(vertexInside(c, top[0], bot[0], gap0))) return Tri::kTrue;
+  if (any.add(vertexInside(c, top[1], bot[1], gap1))) return Tri::kTrue;
   // (X) a strict crossing of Z = sH at a point of the cap disk.
   for (int side : {1, -1}) {
     const Sign* sa = side > 0 ? top : bot;

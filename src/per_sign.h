@@ -27,16 +27,20 @@
 // Filtered_predicate, Shewchuk's adaptive predicates: the expensive
 // evaluation only for the expression that failed). No tape, no second run
 // of the query. The arithmetics, in order:
-//   1. the same double values with a running error bound
-//      (RunningDoubleKernel, src/filter.h), which follows the values where
-//      the filter's bound follows the magnitudes; a double value that is
-//      exactly 0 (most often a true tie) instead re-done with every
-//      operation checked for exactness (Xd below);
-//   2. double word (about 106 bits, src/eft.h) with the running bound of
-//      the adaptive kernel (src/adaptive.cpp), with the CPU's FMA chosen at
-//      run time on x86-64 builds without it (the same bits either way);
+//   1. for a double value that is exactly 0 (most often a true tie), the
+//      double evaluation re-done with every operation checked for
+//      exactness (Xd below);
+//   2. double word (about 106 bits, src/eft.h), first certified by an
+//      a-priori bound from the filter's magnitude of the same predicate
+//      (DwPt below: no bookkeeping per operation), then, for what that
+//      leaves, by the running bound of the adaptive kernel
+//      (src/adaptive.cpp); with the CPU's FMA chosen at run time on x86-64
+//      builds without it (the same bits either way);
 //   3. exact stack expansions (src/expansion.h);
 //   4. GMP dyadics (ExactKernel), where the expansions give up.
+// (A double stage with a running bound between the filter and double word,
+// RunningDoubleKernel, decided half of the escalated signs but cost about
+// as much as the a-priori double word that decides them all: dropped.)
 // Outside the range gate the query runs on GMP dyadics alone
 // (KernelCtx<ExactKernel>), as in runStages (src/stages.h). KernelCtx<K>
 // runs the same query code with one kernel K of src/filter.h, for
@@ -174,6 +178,83 @@ struct DwArith {
     }
     out[2] = {{out[2].v.hi * 2, out[2].v.lo * 2}, out[2].e * 2};  // exact
     return {out[0], out[1], out[2]};
+  }
+};
+
+// ---------------------------------------------------------------------------
+// Double-word values with an a-priori bound: the same double words as
+// DwEt's (the same operations in the same order), no running bound. A
+// sign escalated from the double filter carries the filter's magnitude m^
+// of its predicate (FilterKernel: the same expression on the absolute
+// values of its leaves, each local coordinate with its one magnitude
+// rho (|d_0| + |d_1| + |d_2|), computed in double). Bound, for a
+// predicate evaluated as a tree of N operations with K local coordinates
+// among its leaves (both counted with multiplicity, as written: at most
+// N = 45 and K = 10 for the sphere's 16 r^2 G - T^2, N = 23 and K = 18 for
+// the cap crossing): a local coordinate is within eta M_c + kDwTiny of its
+// exact value (DwArith::local, eta = 2^-100), M_c = sum_k |R_kj| |D_k| <=
+// m^_c (1 - u)^-3 (rho >= |R_kj|), and the other leaves (r, lz, the
+// sphere's radius) are exact; dwAdd errs by at most 4u^2 (|x_h| + |y_h|)
+// and dwMul by 7u^2 |x y| (src/eft.h), both within eps = 8u^2 = 2^-103 of
+// the operands' magnitudes. By induction over the tree, with M a node's
+// magnitude polynomial at the exact leaf magnitudes, |V - E| <= c M + t
+// where 1 + c <= (1 + eta)^K (1 + eps)^N for both + and * (a product:
+// |V_a V_b - E_a E_b| <= |V_a| c_b M_b + |E_b| c_a M_a, plus eps |V_a V_b|),
+// so c <= 24 * 2^-99.9 + 48 * 2^-103 < 2^-94.9 (with room for larger
+// predicates), and M <= m^ (1 - u)^-(N + 3).
+// The underflow term t is the double filter's (kDwTiny per operation,
+// amplified by at most the predicate's magnitude under the range gate:
+// below 2^-600). So the sign of V = hi + lo is certain where
+// |hi| > 2^-90 m^ + 2^-600 + |lo| (the 2^-90 leaves a factor 20 for the
+// roundings of the bound itself). It decides every sign whose value is
+// not below about 2^-90 of its magnitude: an offset of one ulp (2^-52
+// relative) is far inside it, and the double filter's pessimism after a
+// cancellation (a line given by two points far from the cylinder) does
+// not matter at this precision. What it leaves (true ties, second-order
+// values) goes to the running bound (DwEt), then expansions.
+template <bool kFma>
+struct DwPt {
+  DW v;
+};
+template <bool kFma>
+inline DwPt<kFma> operator+(const DwPt<kFma>& a, const DwPt<kFma>& b) {
+  return {dwAdd(a.v, b.v)};
+}
+template <bool kFma>
+inline DwPt<kFma> operator-(const DwPt<kFma>& a) {
+  return {dwNeg(a.v)};
+}
+template <bool kFma>
+inline DwPt<kFma> operator-(const DwPt<kFma>& a, const DwPt<kFma>& b) {
+  return {dwAdd(a.v, dwNeg(b.v))};
+}
+template <bool kFma>
+inline DwPt<kFma> operator*(const DwPt<kFma>& a, const DwPt<kFma>& b) {
+  return {dwMulT<kFma>(a.v, b.v)};
+}
+template <bool kFma>
+inline DwPt<kFma> absolute(const DwPt<kFma>& a) {
+  return a.v.hi < 0 ? -a : a;
+}
+/// The certified sign of an a-priori double-word value whose predicate has
+/// the double filter's magnitude m (see above), or kUnknown.
+template <bool kFma>
+inline Sign dwPrioriSign(const DwPt<kFma>& d, double m) {
+  const double b = (m * 0x1p-90 + 0x1p-600) + std::fabs(d.v.lo);
+  if (d.v.hi > b) return Sign::kPos;
+  if (d.v.hi < -b) return Sign::kNeg;
+  return Sign::kUnknown;
+}
+template <bool kFma>
+struct DwPrioriArith {
+  using Num = DwPt<kFma>;
+  static constexpr bool kExact = false;
+  static Num lift(double x) { return {{x, 0.0}}; }
+  /// DwArith's values (its bound is the eta above; not computed here).
+  static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
+                       double rho) {
+    const Pt<DwEt<kFma>> w = DwArith<kFma>::local(pose, p, rho);
+    return {{w.x.v}, {w.y.v}, {w.Z.v}};
   }
 };
 
@@ -358,15 +439,7 @@ class PerSign {
   template <class P>
   TRICYL_PER_SIGN_NOINLINE Sign escalate(const P& pred, const Fd& v) {
     Sign s = Sign::kUnknown;
-    if (v.v != 0) {
-      // The same double values with a running bound (src/filter.h,
-      // RunningDoubleKernel): it follows the values where the filter's
-      // bound follows the magnitudes (a small value after cancellation).
-      // Still the double stage.
-      if (!rd_) build(rd_);
-      s = RunningDoubleKernel::sign(pred(*rd_));
-      if (s != Sign::kUnknown) return s;
-    } else {
+    if (v.v == 0) {
       // A double value that is exactly 0 is most often a true tie (exact
       // data in an exact pose), which no bound certifies: was the double
       // evaluation exact?
@@ -377,7 +450,18 @@ class PerSign {
         return x.v > 0 ? Sign::kPos : (x.v < 0 ? Sign::kNeg : Sign::kZero);
       }
     }
+    // Double word, first with the a-priori bound from the filter's
+    // magnitude (it decides nearly every sign that is not a tie: about 2^-90
+    // of the magnitude against the filter's 2^-49), then with the running
+    // bound.
     if (level_ < 1) level_ = 1;
+#if TRICYL_FMA_DISPATCH
+    s = fmaAtRunTime() ? dwPrioriSignFma(pred, v.m)
+                       : dwPrioriSignWith<false>(pred, v.m, dwp_);
+#else
+    s = dwPrioriSignWith<TRICYL_HAVE_FMA != 0>(pred, v.m, dwp_);
+#endif
+    if (s != Sign::kUnknown) return s;
 #if TRICYL_FMA_DISPATCH
     s = fmaAtRunTime() ? dwSignFma(pred) : dwSignWith<false>(pred, dw_);
 #else
@@ -396,6 +480,25 @@ class PerSign {
     return ExactKernel::sign(pred(*gmp_));
   }
 
+  /// The double-word stage with the a-priori bound (with FMA or not), on a
+  /// frame built when first needed; m: the filter's magnitude of pred.
+  template <bool kFma, class P>
+  Sign dwPrioriSignWith(const P& pred, double m,
+                        std::optional<Frame<DwPrioriArith<kFma>>>& frame) {
+    if (!frame) build(frame);
+    return dwPrioriSign(pred(*frame), m);
+  }
+#if TRICYL_FMA_DISPATCH
+  template <class P>
+  TRICYL_TARGET_FMA Sign dwPrioriSignFma(const P& pred, double m) {
+    if (!dwpf_) buildPrioriFma();
+    return dwPrioriSign(pred(*dwpf_), m);
+  }
+  TRICYL_TARGET_FMA TRICYL_PER_SIGN_NOINLINE void buildPrioriFma() {
+    dwpf_.emplace(q_);
+  }
+  std::optional<Frame<DwPrioriArith<true>>> dwpf_;
+#endif
   /// The double-word stage (with FMA or not), on a frame built when first
   /// needed.
   template <bool kFma, class P>
@@ -427,8 +530,8 @@ class PerSign {
   const Q& q_;
   Frame<KernelArith<FilterKernel>> fd_;
   int level_ = 0;
-  std::optional<Frame<KernelArith<RunningDoubleKernel>>> rd_;
   std::optional<Frame<DwArith<TRICYL_HAVE_FMA != 0>>> dw_;
+  std::optional<Frame<DwPrioriArith<TRICYL_HAVE_FMA != 0>>> dwp_;
   std::optional<Frame<ExactDoubleArith>> xd_;
   std::optional<Frame<ExpansionArith>> ex_;
   std::optional<Frame<KernelArith<ExactKernel>>> gmp_;
