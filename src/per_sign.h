@@ -9,9 +9,11 @@
 //   C::cheapSign(pred)  the same, but only from the double filter (may be
 //                       kUnknown): for early-outs, which the later signs
 //                       decide anyway;
-//   C::kEagerFilter, C::filterBits(pred)  (PerSign only) the filter's
-//                       verdict without a branch, for a query that first
-//                       tries its whole formula in double at once;
+//   C::kEagerFilter, C::filterBits(pred), C::value(pred), C::bitsOf(v),
+//   C::resolve(pred, v)  (PerSign only) the filter's value and verdict
+//                       without a branch, for a query that first tries its
+//                       whole formula in double at once, and the certified
+//                       sign from a kept value (escalated if open);
 // where pred is a generic lambda from a frame (the query's local data) to
 // the value of one polynomial. The query describes its frame (Q below):
 //   template <class A> struct/class Frame, constructed from the query, in
@@ -424,9 +426,24 @@ class PerSign {
   static constexpr bool kEagerFilter = true;
   template <class P>
   Bits filterBits(const P& pred) const {
-    const Fd v = pred(fd_);
+    return bitsOf(pred(fd_));
+  }
+  /// The filter's value of pred, for a query that keeps it: bitsOf reads
+  /// the filter's verdict from it, resolve its certified sign (escalated
+  /// only if the filter left it open), with no second evaluation in double.
+  template <class P>
+  Fd value(const P& pred) const {
+    return pred(fd_);
+  }
+  static Bits bitsOf(const Fd& v) {
     const double bound = v.m * 0x1p-49 + FilterKernel::kAbs;
     return {v.v > bound, v.v < -bound};
+  }
+  template <class P>
+  Sign resolve(const P& pred, const Fd& v) {
+    const Sign s = shallowSign(v);
+    if (s != Sign::kUnknown) return s;
+    return escalate(pred, v);
   }
   /// The strongest arithmetic any sign needed: 0 double, 1 double-word,
   /// 2 expansions, 3 GMP.
