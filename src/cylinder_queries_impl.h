@@ -365,15 +365,18 @@ Tri sphereCylinder(C& c, bool* early) {
     // flips, which a branch per sign pays for); only where that leaves the
     // answer open, the open signs it needs, each certified (escalated) by
     // itself from its kept double value (resolve).
-    const Fd va = c.value(near_cap_p), ve = c.value(height_p),
-             vg = c.value(gap_p), vt = c.value(t_p), vq = c.value(q_p);
-    const Bits a = C::bitsOf(va), e = C::bitsOf(ve);
-    const KBool in_slab = kbAnd(nonPos(e), nonNeg(C::bitsOf(vg)));
-    const KBool cap =
-        kbAnd(nonNeg(e), kbOr(nonPos(C::bitsOf(vt)), nonNeg(C::bitsOf(vq))));
-    const KBool r = kbAnd(nonNeg(a), kbOr(in_slab, cap));
+    enum { kA, kE, kG, kT, kQ };
+    const Fp v[] = {c.value(near_cap_p), c.value(height_p), c.value(gap_p),
+                    c.value(t_p), c.value(q_p)};
+    const Verdicts d = C::verdicts(v);
+    const Fp &va = v[kA], &ve = v[kE], &vg = v[kG], &vt = v[kT], &vq = v[kQ];
+    const KBool in_slab = d.all(bit(kG), bit(kE));
+    // E >= 0 and (T <= 0 or Q >= 0).
+    const KBool cap = {bool(d.isPos(kE) & (d.isNeg(kT) | d.isPos(kQ))),
+                       bool(d.isNeg(kE) | (d.isPos(kT) & d.isNeg(kQ)))};
+    const KBool r = kbAnd(d.all(bit(kA), 0), kbOr(in_slab, cap));
     if (r.t | r.f) {
-      *early = a.neg;
+      *early = d.isNeg(kA);
       return toTri(r.t);
     }
     // Exactly: 2 rho - E >= 0 and (E <= 0 and s <= (r + rho)^2, or E >= 0
@@ -594,8 +597,10 @@ struct LinearQuery {
     mutable unsigned have_ = 0;
   };
   template <class A>
-  using Frame = std::conditional_t<std::is_same_v<A, KernelArith<FilterKernel>>,
-                                   EagerFrame<A>, LazyFrame<A>>;
+  using Frame =
+      std::conditional_t<std::is_same_v<A, PairFilterArith> ||
+                             std::is_same_v<A, KernelArith<FilterKernel>>,
+                         EagerFrame<A>, LazyFrame<A>>;
 };
 using SegmentQuery = LinearQuery<true>;
 using LineQuery = LinearQuery<false>;
@@ -614,38 +619,39 @@ Tri segmentCylinder(C& c, bool* early) {
   if constexpr (C::kEagerFilter) {
     // The whole test below in double at once, combined without a branch
     // per sign (as the sphere's and the line's: on the near family the
-    // outcomes are coin flips, which a branch per sign pays for). A sign
-    // the filter certifies is never zero, so "> 0" and ">= 0" have the same
-    // certificate (nonNeg), and so have "< 0" and "<= 0" (nonPos).
+    // outcomes are coin flips, which a branch per sign pays for).
     auto len_p = [](const auto& f) { return axisLen(f); };
     auto sep_p = [](const auto& f) { return axisDistanceGap(f); };
     auto foot_p = [](const auto& f) { return axisFoot(f); };
     auto rest_p = [](const auto& f) { return axisLen(f) - axisFoot(f); };
     auto foot_top = [](const auto& f) { return axisFootHeight(f, 1); };
     auto foot_bot = [](const auto& f) { return axisFootHeight(f, -1); };
-    const Fd vt0 = c.value(top0), vt1 = c.value(top1), vb0 = c.value(bot0),
-             vb1 = c.value(bot1), vg0 = c.value(gap0), vg1 = c.value(gap1),
-             vxt = c.value(cap_top), vxb = c.value(cap_bot),
-             vl = c.value(len_p), vs = c.value(sep_p), vf = c.value(foot_p),
-             vr = c.value(rest_p), vht = c.value(foot_top),
-             vhb = c.value(foot_bot);
-    const Bits t0 = C::bitsOf(vt0), t1 = C::bitsOf(vt1);
-    const Bits b0 = C::bitsOf(vb0), b1 = C::bitsOf(vb1);
-    auto strictlyApart = [](Bits s0, Bits s1) {
-      return kbOr(kbAnd(nonPos(s0), nonNeg(s1)), kbAnd(nonNeg(s0), nonPos(s1)));
+    enum { kT0, kT1, kB0, kB1, kG0, kG1, kXT, kXB, kL, kS, kF, kR, kHT, kHB };
+    const Fp v[] = {c.value(top0),     c.value(top1),    c.value(bot0),
+                    c.value(bot1),     c.value(gap0),    c.value(gap1),
+                    c.value(cap_top),  c.value(cap_bot), c.value(len_p),
+                    c.value(sep_p),    c.value(foot_p),  c.value(rest_p),
+                    c.value(foot_top), c.value(foot_bot)};
+    const Verdicts d = C::verdicts(v);
+    const Fp &vt0 = v[kT0], &vt1 = v[kT1], &vb0 = v[kB0], &vb1 = v[kB1],
+             &vg0 = v[kG0], &vg1 = v[kG1], &vxt = v[kXT], &vxb = v[kXB],
+             &vl = v[kL], &vs = v[kS], &vf = v[kF], &vr = v[kR], &vht = v[kHT],
+             &vhb = v[kHB];
+    // Strictly on opposite sides of a cap plane.
+    auto apartBits = [&d](int k0, int k1) {
+      return KBool{
+          bool((d.isNeg(k0) & d.isPos(k1)) | (d.isPos(k0) & d.isNeg(k1))),
+          bool((d.isPos(k0) | d.isNeg(k1)) & (d.isNeg(k0) | d.isPos(k1)))};
     };
-    const KBool v0 =
-        kbAnd(kbAnd(nonPos(t0), nonNeg(b0)), nonNeg(C::bitsOf(vg0)));
-    const KBool v1 =
-        kbAnd(kbAnd(nonPos(t1), nonNeg(b1)), nonNeg(C::bitsOf(vg1)));
-    const KBool x_top = kbAnd(strictlyApart(t0, t1), nonNeg(C::bitsOf(vxt)));
-    const KBool x_bot = kbAnd(strictlyApart(b0, b1), nonNeg(C::bitsOf(vxb)));
+    const KBool v0 = d.all(bit(kB0) | bit(kG0), bit(kT0));
+    const KBool v1 = d.all(bit(kB1) | bit(kG1), bit(kT1));
+    const KBool x_top = kbAnd(apartBits(kT0, kT1), d.all(bit(kXT), 0));
+    const KBool x_bot = kbAnd(apartBits(kB0, kB1), d.all(bit(kXB), 0));
     const KBool e =
-        kbAnd(kbAnd(kbAnd(nonNeg(C::bitsOf(vl)), nonNeg(C::bitsOf(vs))),
-                    kbAnd(nonNeg(C::bitsOf(vf)), nonNeg(C::bitsOf(vr)))),
-              kbAnd(nonNeg(C::bitsOf(vht)), nonNeg(C::bitsOf(vhb))));
+        d.all(bit(kL) | bit(kS) | bit(kF) | bit(kR) | bit(kHT) | bit(kHB), 0);
     // Both endpoints strictly beyond the same cap plane.
-    const bool beyond_cap = (t0.pos & t1.pos) | (b0.neg & b1.neg);
+    const bool beyond_cap =
+        (d.isPos(kT0) & d.isPos(kT1)) | (d.isNeg(kB0) & d.isNeg(kB1));
     KBool r = kbOr(kbOr(kbOr(v0, v1), kbOr(x_top, x_bot)), e);
     r.f = r.f | beyond_cap;
     if (r.t | r.f) {
@@ -676,8 +682,8 @@ Tri segmentCylinder(C& c, bool* early) {
       }
       return memo[k];
     };
-    auto nonNegR = [&c](const auto& pred, const Fd& v) {
-      return c.resolve(pred, v) != Sign::kNeg;
+    auto nonNegR = [&c](const auto& pred, const Fp& value) {
+      return c.resolve(pred, value) != Sign::kNeg;
     };
     auto apart = [&slab](int k0, int k1) {
       const Sign s0 = slab(k0);
@@ -776,37 +782,62 @@ Tri segmentCylinder(C& c, bool* early) {
 template <class C>
 Tri lineCylinder(C& c, bool* early) {
   *early = false;
-  const Sign sep = c.sign([](const auto& f) { return axisDistanceGap(f); });
+  auto sep_p = [](const auto& f) { return axisDistanceGap(f); };
+  if constexpr (C::kEagerFilter) {
+    // The terms below in double at once, combined without a branch per
+    // sign (as the sphere's); an open answer certifies the open signs it
+    // needs from their kept double values (as the segment's).
+    auto len_p = [](const auto& f) { return axisLen(f); };
+    auto foot_top = [](const auto& f) { return axisFootHeight(f, 1); };
+    auto foot_bot = [](const auto& f) { return axisFootHeight(f, -1); };
+    auto ez_p = [](const auto& f) { return f.e().Z; };
+    auto cap_top = [](const auto& f) { return capCrossingGap(f, 1); };
+    auto cap_bot = [](const auto& f) { return capCrossingGap(f, -1); };
+    auto top_p = [](const auto& f) { return f.a().Z - f.H; };
+    auto bot_p = [](const auto& f) { return f.a().Z + f.H; };
+    auto gap_p = [](const auto& f) { return diskGap(f.a(), f.r); };
+    enum { kS, kL, kHT, kHB, kEZ, kXT, kXB, kT, kB, kG };
+    const Fp v[] = {c.value(sep_p),    c.value(len_p), c.value(foot_top),
+                    c.value(foot_bot), c.value(ez_p),  c.value(cap_top),
+                    c.value(cap_bot),  c.value(top_p), c.value(bot_p),
+                    c.value(gap_p)};
+    const Verdicts d = C::verdicts(v);
+    // Early-out: the projected line stays farther than r from the axis.
+    const bool apart = d.isNeg(kS);
+    const KBool approach = d.all(bit(kS) | bit(kL) | bit(kHT) | bit(kHB), 0);
+    const KBool cross = {
+        bool((d.isPos(kEZ) | d.isNeg(kEZ)) & (d.isPos(kXT) | d.isPos(kXB))),
+        bool(d.isNeg(kXT) & d.isNeg(kXB))};
+    const KBool inside = d.all(bit(kB) | bit(kG), bit(kT));
+    KBool r = kbOr(approach, kbOr(cross, inside));
+    r.f = r.f | apart;
+    if (r.t | r.f) {
+      *early = apart;
+      return toTri(r.t);
+    }
+    if (c.resolve(sep_p, v[kS]) == Sign::kNeg) {
+      *early = true;
+      return Tri::kFalse;
+    }
+    // (E), (X), (V) as below, each skipped if the filter already said false.
+    auto nonNegR = [&c](const auto& pred, const Fp& value) {
+      return c.resolve(pred, value) != Sign::kNeg;
+    };
+    if (!approach.f && c.resolve(len_p, v[kL]) == Sign::kPos &&
+        nonNegR(foot_top, v[kHT]) && nonNegR(foot_bot, v[kHB]))
+      return Tri::kTrue;
+    if (!cross.f && ((!d.isNeg(kXT) && nonNegR(cap_top, v[kXT])) ||
+                     (!d.isNeg(kXB) && nonNegR(cap_bot, v[kXB]))))
+      if (c.resolve(ez_p, v[kEZ]) != Sign::kZero) return Tri::kTrue;
+    if (!inside.f && c.resolve(top_p, v[kT]) != Sign::kPos &&
+        nonNegR(bot_p, v[kB]) && nonNegR(gap_p, v[kG]))
+      return Tri::kTrue;
+    return Tri::kFalse;
+  }
+  const Sign sep = c.sign(sep_p);
   if (sep == Sign::kNeg) {
     *early = true;
     return Tri::kFalse;
-  }
-  if constexpr (C::kEagerFilter) {
-    // The terms below in double at once, combined without a branch per
-    // sign (as the sphere's); only an open answer goes on sign by sign.
-    const KBool approach =
-        kbAnd(nonNeg(c.filterBits([](const auto& f) { return axisLen(f); })),
-              kbAnd(nonNeg(c.filterBits(
-                        [](const auto& f) { return axisFootHeight(f, 1); })),
-                    nonNeg(c.filterBits(
-                        [](const auto& f) { return axisFootHeight(f, -1); }))));
-    const Bits ez = c.filterBits([](const auto& f) { return f.e().Z; });
-    const KBool slanted = {bool(ez.pos | ez.neg), false};
-    const KBool cross =
-        kbAnd(slanted, kbOr(nonNeg(c.filterBits([](const auto& f) {
-                              return capCrossingGap(f, 1);
-                            })),
-                            nonNeg(c.filterBits([](const auto& f) {
-                              return capCrossingGap(f, -1);
-                            }))));
-    const KBool inside = kbAnd(
-        kbAnd(
-            nonPos(c.filterBits([](const auto& f) { return f.a().Z - f.H; })),
-            nonNeg(c.filterBits([](const auto& f) { return f.a().Z + f.H; }))),
-        nonNeg(
-            c.filterBits([](const auto& f) { return diskGap(f.a(), f.r); })));
-    const KBool r = kbOr(approach, kbOr(cross, inside));
-    if (r.t | r.f) return toTri(r.t);
   }
   AnyOf any;
   // (E) the closest approach to the axis, anywhere on the line: first, as

@@ -9,11 +9,12 @@
 //   C::cheapSign(pred)  the same, but only from the double filter (may be
 //                       kUnknown): for early-outs, which the later signs
 //                       decide anyway;
-//   C::kEagerFilter, C::filterBits(pred), C::value(pred), C::bitsOf(v),
-//   C::resolve(pred, v)  (PerSign only) the filter's value and verdict
-//                       without a branch, for a query that first tries its
-//                       whole formula in double at once, and the certified
-//                       sign from a kept value (escalated if open);
+//   C::kEagerFilter, C::value(pred), C::verdicts(values),
+//   C::resolve(pred, value)  (PerSign only) the filter's values and their
+//                       verdicts without a branch, for a query that first
+//                       tries its whole formula in double at once, and the
+//                       certified sign from a kept value (escalated if
+//                       open);
 // where pred is a generic lambda from a frame (the query's local data) to
 // the value of one polynomial. The query describes its frame (Q below):
 //   template <class A> struct/class Frame, constructed from the query, in
@@ -52,9 +53,14 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <optional>
 #include <type_traits>
+
+#if defined(__SSE2__) && !defined(TRICYL_PORTABLE_PROLOGUE)
+#include <emmintrin.h>
+#endif
 
 #include "adaptive.h"
 #include "eft.h"
@@ -348,12 +354,48 @@ struct KernelArith {
   }
 };
 
-/// A sign as two certain facts, for Kleene logic without branches: pos
-/// (certainly > 0) and neg (certainly < 0); neither: open.
-struct Bits {
-  bool pos, neg;
+/// The double filter's arithmetic for PerSign: FilterKernel's Fd (value
+/// and magnitude) with both lanes in one SSE2 register, so that every
+/// operation is one instruction on the pair (a difference: the value lane
+/// plus the negated other, which IEEE defines as the same operation) and a
+/// value takes one register instead of two. The same IEEE operations lane
+/// by lane as Fd's, so the same bits (portable builds use Fd itself).
+#if defined(__SSE2__) && !defined(TRICYL_PORTABLE_PROLOGUE)
+struct Fp {
+  __m128d x;  // lane 0: value, lane 1: magnitude
 };
-/// Kleene's and/or on {certainly true, certainly false} pairs.
+inline __m128d negValueLane() { return _mm_set_pd(0.0, -0.0); }
+inline Fp operator+(const Fp& a, const Fp& b) { return {_mm_add_pd(a.x, b.x)}; }
+inline Fp operator-(const Fp& a) { return {_mm_xor_pd(a.x, negValueLane())}; }
+inline Fp operator-(const Fp& a, const Fp& b) {
+  return {_mm_add_pd(a.x, _mm_xor_pd(b.x, negValueLane()))};
+}
+inline Fp operator*(const Fp& a, const Fp& b) { return {_mm_mul_pd(a.x, b.x)}; }
+inline Fp absolute(const Fp& a) {
+  return {_mm_andnot_pd(_mm_set_pd(0.0, -0.0), a.x)};
+}
+inline Fp toFp(const Fd& a) { return {_mm_set_pd(a.m, a.v)}; }
+inline Fd toFd(const Fp& a) {
+  return {_mm_cvtsd_f64(a.x), _mm_cvtsd_f64(_mm_unpackhi_pd(a.x, a.x))};
+}
+#else
+using Fp = Fd;
+inline Fp toFp(const Fd& a) { return a; }
+inline Fd toFd(const Fp& a) { return a; }
+#endif
+struct PairFilterArith {
+  using Num = Fp;
+  static constexpr bool kExact = false;
+  static Num lift(double x) { return toFp(FilterKernel::lift(x)); }
+  static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
+                       double rho) {
+    const Pt<Fd> q = KernelArith<FilterKernel>::local(pose, p, rho);
+    return {toFp(q.x), toFp(q.y), toFp(q.Z)};
+  }
+};
+
+/// Kleene's and/or on {certainly true, certainly false} pairs, without
+/// branches.
 struct KBool {
   bool t, f;
 };
@@ -363,8 +405,23 @@ inline KBool kbAnd(KBool a, KBool b) {
 inline KBool kbOr(KBool a, KBool b) {
   return {bool(a.t | b.t), bool(a.f & b.f)};
 }
-inline KBool nonNeg(Bits b) { return {b.pos, b.neg}; }  // >= 0 (never 0)
-inline KBool nonPos(Bits b) { return {b.neg, b.pos}; }  // <= 0
+/// The filter's verdicts on a set of values, one bit per value: pos
+/// (certainly > 0), neg (certainly < 0); neither: open. A certified sign is
+/// never zero, so "> 0" and ">= 0" have the same certificate, and so have
+/// "< 0" and "<= 0".
+struct Verdicts {
+  unsigned pos, neg;
+  /// Every value in `nonneg` >= 0 and every value in `nonpos` <= 0 (bit
+  /// masks of the values' indices).
+  KBool all(unsigned nonneg, unsigned nonpos) const {
+    return {(pos & nonneg) == nonneg && (neg & nonpos) == nonpos,
+            ((neg & nonneg) | (pos & nonpos)) != 0};
+  }
+  bool isPos(int k) const { return (pos >> k) & 1; }
+  bool isNeg(int k) const { return (neg >> k) & 1; }
+};
+/// The bit of value k.
+constexpr unsigned bit(int k) { return 1u << k; }
 
 /// One kernel K for every sign (runStages' stages; outside the range gate,
 /// K = ExactKernel).
@@ -412,35 +469,56 @@ class PerSign {
 
   template <class P>
   Sign sign(const P& pred) {
-    const Fd v = pred(fd_);
+    const Fd v = toFd(pred(fd_));
     const Sign s = shallowSign(v);
     if (s != Sign::kUnknown) return s;
     return escalate(pred, v);
   }
   template <class P>
   Sign cheapSign(const P& pred) const {
-    return shallowSign(pred(fd_));
+    return shallowSign(toFd(pred(fd_)));
   }
   /// The filter's verdict on pred without a branch: {certainly > 0,
   /// certainly < 0} (shallowSign's test; both false: open).
   static constexpr bool kEagerFilter = true;
+  /// The filter's value of pred (value and magnitude), for a query that
+  /// keeps it: verdicts reads the filter's verdicts on a set of them at
+  /// once, resolve the certified sign of one (escalated only if the filter
+  /// left it open), with no second evaluation in double.
   template <class P>
-  Bits filterBits(const P& pred) const {
-    return bitsOf(pred(fd_));
-  }
-  /// The filter's value of pred, for a query that keeps it: bitsOf reads
-  /// the filter's verdict from it, resolve its certified sign (escalated
-  /// only if the filter left it open), with no second evaluation in double.
-  template <class P>
-  Fd value(const P& pred) const {
+  Fp value(const P& pred) const {
     return pred(fd_);
   }
-  static Bits bitsOf(const Fd& v) {
-    const double bound = v.m * 0x1p-49 + FilterKernel::kAbs;
-    return {v.v > bound, v.v < -bound};
+  template <std::size_t n>
+  static Verdicts verdicts(const Fp (&v)[n]) {
+    static_assert(n <= 32, "one bit per value");
+    Verdicts out{0, 0};
+    std::size_t i = 0;
+#if defined(__SSE2__) && !defined(TRICYL_PORTABLE_PROLOGUE)
+    // Two values per operation: shallowSign's bound m 2^-49 + kAbs and its
+    // two comparisons, lane by lane the same IEEE operations.
+    const __m128d k = _mm_set1_pd(0x1p-49), a = _mm_set1_pd(FilterKernel::kAbs);
+    for (; i + 1 < n; i += 2) {
+      const __m128d vals = _mm_unpacklo_pd(v[i].x, v[i + 1].x);
+      const __m128d mags = _mm_unpackhi_pd(v[i].x, v[i + 1].x);
+      const __m128d b = _mm_add_pd(_mm_mul_pd(mags, k), a);
+      out.pos |= unsigned(_mm_movemask_pd(_mm_cmpgt_pd(vals, b))) << i;
+      out.neg |= unsigned(_mm_movemask_pd(
+                     _mm_cmplt_pd(vals, _mm_xor_pd(b, _mm_set1_pd(-0.0)))))
+                 << i;
+    }
+#endif
+    for (; i < n; ++i) {
+      const Fd d = toFd(v[i]);
+      const double b = d.m * 0x1p-49 + FilterKernel::kAbs;
+      out.pos |= unsigned(d.v > b) << i;
+      out.neg |= unsigned(d.v < -b) << i;
+    }
+    return out;
   }
   template <class P>
-  Sign resolve(const P& pred, const Fd& v) {
+  Sign resolve(const P& pred, const Fp& value) {
+    const Fd v = toFd(value);
     const Sign s = shallowSign(v);
     if (s != Sign::kUnknown) return s;
     return escalate(pred, v);
@@ -545,7 +623,7 @@ class PerSign {
   }
 
   const Q& q_;
-  Frame<KernelArith<FilterKernel>> fd_;
+  Frame<PairFilterArith> fd_;
   int level_ = 0;
   std::optional<Frame<DwArith<TRICYL_HAVE_FMA != 0>>> dw_;
   std::optional<Frame<DwPrioriArith<TRICYL_HAVE_FMA != 0>>> dwp_;
