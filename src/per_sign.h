@@ -148,6 +148,40 @@ inline Sign dwSign(const DwEt<kFma>& d) {
   return Sign::kUnknown;
 }
 
+/// The double-word local coordinates of DwArith (and DwPrioriArith, which
+/// takes the values only: kBound false, no bookkeeping), Z doubled: v[j]
+/// and, with kBound, its bound e[j] (derivation at DwArith::local).
+template <bool kFma, bool kBound>
+inline void dwLocal(const Pose<double>& pose, const Vec3<double>& p, DW v[3],
+                    double e_out[3]) {
+  const double pp[3] = {p.x, p.y, p.z};
+  const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
+  double D[3], l[3];
+  for (int k = 0; k < 3; ++k) twoSum(pp[k], -tt[k], D[k], l[k]);
+  for (int j = 0; j < 3; ++j) {
+    double P[3], e[3], q[3], m = 0;
+    bool zero = true;
+    for (int k = 0; k < 3; ++k) {
+      const double R = pose.R[k][j];
+      twoProdT<kFma>(R, D[k], P[k], e[k]);
+      q[k] = R * l[k];
+      if constexpr (kBound) {
+        m += std::fabs(R) * std::fabs(D[k]);
+        zero = zero && (R == 0 || D[k] == 0);
+      }
+    }
+    double s1, f1, s, f2;
+    twoSum(P[0], P[1], s1, f1);
+    twoSum(s1, P[2], s, f2);
+    const double low =
+        ((((f1 + f2) + (e[0] + e[1])) + e[2]) + (q[0] + q[1])) + q[2];
+    twoSum(s, low, v[j].hi, v[j].lo);
+    if constexpr (kBound) e_out[j] = zero ? 0.0 : 0x1p-100 * m + kDwTiny;
+  }
+  v[2] = {v[2].hi * 2, v[2].lo * 2};  // exact
+  if constexpr (kBound) e_out[2] *= 2;
+}
+
 template <bool kFma>
 struct DwArith {
   using Num = DwEt<kFma>;
@@ -161,31 +195,10 @@ struct DwArith {
   /// the adaptive kernel's (src/adaptive.cpp, Tape::dwCoord, derives it).
   static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
                        double /*rho*/) {
-    const double pp[3] = {p.x, p.y, p.z};
-    const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
-    double D[3], l[3];
-    for (int k = 0; k < 3; ++k) twoSum(pp[k], -tt[k], D[k], l[k]);
-    Num out[3];
-    for (int j = 0; j < 3; ++j) {
-      double P[3], e[3], q[3], m = 0;
-      bool zero = true;
-      for (int k = 0; k < 3; ++k) {
-        const double R = pose.R[k][j];
-        twoProdT<kFma>(R, D[k], P[k], e[k]);
-        q[k] = R * l[k];
-        m += std::fabs(R) * std::fabs(D[k]);
-        zero = zero && (R == 0 || D[k] == 0);
-      }
-      double s1, f1, s, f2;
-      twoSum(P[0], P[1], s1, f1);
-      twoSum(s1, P[2], s, f2);
-      const double low =
-          ((((f1 + f2) + (e[0] + e[1])) + e[2]) + (q[0] + q[1])) + q[2];
-      twoSum(s, low, out[j].v.hi, out[j].v.lo);
-      out[j].e = zero ? 0.0 : 0x1p-100 * m + kDwTiny;
-    }
-    out[2] = {{out[2].v.hi * 2, out[2].v.lo * 2}, out[2].e * 2};  // exact
-    return {out[0], out[1], out[2]};
+    DW v[3];
+    double e[3];
+    dwLocal<kFma, true>(pose, p, v, e);
+    return {{v[0], e[0]}, {v[1], e[1]}, {v[2], e[2]}};
   }
 };
 
@@ -260,9 +273,10 @@ struct DwPrioriArith {
   static Num lift(double x) { return {{x, 0.0}}; }
   /// DwArith's values (its bound is the eta above; not computed here).
   static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
-                       double rho) {
-    const Pt<DwEt<kFma>> w = DwArith<kFma>::local(pose, p, rho);
-    return {{w.x.v}, {w.y.v}, {w.Z.v}};
+                       double /*rho*/) {
+    DW v[3];
+    dwLocal<kFma, false>(pose, p, v, nullptr);
+    return {{v[0]}, {v[1]}, {v[2]}};
   }
 };
 
