@@ -531,12 +531,14 @@ struct LinearQuery {
   Pose<double> at_p;  // the pose moved to p: toLocal(at_p, q) = R^T (q - p)
 
   /// The double filter's frame: every point at once (every query reads
-  /// them all). The segment's second endpoint is b = a + e in the filter's
-  /// arithmetic: the rounded value of R^T (p - t) + R^T (q - p), whose
-  /// exact value is R^T (q - t), with the magnitude m_a + m_e (the same
-  /// expression on magnitudes) and one more operation on the way (depth 5
-  /// for x and y, 6 for Z; no predicate reading b is deeper than 8, inside
-  /// shallowSign's 12): three additions instead of a third frame point.
+  /// them all). In PerSign's filter (PairFilterArith) the segment's second
+  /// endpoint is b = a + e: the rounded value of R^T (p - t) + R^T (q - p),
+  /// whose exact value is R^T (q - t), with the magnitude m_a + m_e (the
+  /// same expression on magnitudes) and one more operation on the way
+  /// (depth 5 for x and y, 6 for Z; no predicate reading b is deeper than
+  /// 8, inside shallowSign's 12): three additions instead of a third frame
+  /// point. FilterKernel itself (runStages' hand-off) keeps its general
+  /// constant and the frame point.
   template <class A>
   class EagerFrame {
    public:
@@ -546,7 +548,10 @@ struct LinearQuery {
           r(A::lift(q.cyl.radius)),
           a_(A::local(q.pose, q.p, q.max_unitless)),
           e_(A::local(q.at_p, q.q, q.max_unitless)) {
-      if constexpr (kSegment) b_ = {a_.x + e_.x, a_.y + e_.y, a_.Z + e_.Z};
+      if constexpr (kSegment && std::is_same_v<A, PairFilterArith>)
+        b_ = {a_.x + e_.x, a_.y + e_.y, a_.Z + e_.Z};
+      else if constexpr (kSegment)
+        b_ = A::local(q.pose, q.q, q.max_unitless);
     }
     const Pt<N>& a() const { return a_; }
     const Pt<N>& b() const { return b_; }

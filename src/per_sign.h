@@ -431,8 +431,9 @@ struct Verdicts {
     return {(pos & nonneg) == nonneg && (neg & nonpos) == nonpos,
             ((neg & nonneg) | (pos & nonpos)) != 0};
   }
-  bool isPos(int k) const { return (pos >> k) & 1; }
-  bool isNeg(int k) const { return (neg >> k) & 1; }
+  /// Bit k of pos / neg (0 or 1; unsigned, for bitwise Kleene logic).
+  unsigned isPos(int k) const { return (pos >> k) & 1u; }
+  unsigned isNeg(int k) const { return (neg >> k) & 1u; }
 };
 /// The bit of value k.
 constexpr unsigned bit(int k) { return 1u << k; }
