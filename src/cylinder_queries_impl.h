@@ -43,6 +43,10 @@
 #include <initializer_list>
 #include <type_traits>
 
+#if defined(__SSE2__) && !defined(TRICYL_PORTABLE_PROLOGUE)
+#include <emmintrin.h>
+#endif
+
 #include "filter.h"
 #include "per_sign.h"
 #include "stages.h"
@@ -78,6 +82,63 @@ inline bool scanFinite(std::initializer_list<double> lengths,
   std::memcpy(max_unitless, &mu, sizeof mu);
   return true;
 }
+
+/// The common case of validation and range gate in a few SSE2 operations
+/// (the cylinder queries' inputs are 20 doubles; the scalar scan of
+/// scanFinite costs about 80 instructions): true if every input is finite,
+/// every length (cyl, t, u, v, w) below 2^40 and every rotation entry below
+/// 2 in magnitude, and radius, lz and w carry no sign bit; then
+/// *max_unitless = max |R_jk|, the value scanFinite gives. False means
+/// "not known": the caller runs the full scan (which also accepts -0, 2^40
+/// and 2 exactly), so the answers are those of the scan alone, as
+/// TRICYL_PORTABLE_PROLOGUE's builds (no quick gate) check
+/// (tests/answers_digest_check.sh). The top 16 bits of |x| (sign cleared)
+/// order like |x|, so a signed 16-bit max of them is exact; |x| < 2^40 iff
+/// they are <= 0x426f, |x| < 2 iff <= 0x3fff, and NaN and Inf (>= 0x7ff0)
+/// exceed both.
+#if defined(__SSE2__) && !defined(TRICYL_PORTABLE_PROLOGUE)
+inline bool quickGate(const Cylinder<double>& cyl, const Pose<double>& pose,
+                      const Vec3<double>& u, const Vec3<double>& v, double w,
+                      double* max_unitless) {
+  static_assert(sizeof(Pose<double>) == 12 * sizeof(double) &&
+                    sizeof(Cylinder<double>) == 2 * sizeof(double) &&
+                    sizeof(Vec3<double>) == 3 * sizeof(double),
+                "arrays of doubles without padding");
+  const __m128i top = _mm_set1_epi64x(0x7fff000000000000LL);
+  auto hi = [top](__m128d x) {
+    return _mm_and_si128(_mm_castpd_si128(x), top);
+  };
+  auto mx = [](__m128i a, __m128i b) { return _mm_max_epi16(a, b); };
+  const double* R = &pose.R[0][0];
+  const __m128d r0 = _mm_loadu_pd(R), r1 = _mm_loadu_pd(R + 2),
+                r2 = _mm_loadu_pd(R + 4), r3 = _mm_loadu_pd(R + 6);
+  const __m128d r4 = _mm_set_pd(pose.t.x, R[8]);  // R_22 | t.x
+  const __m128d c = _mm_loadu_pd(&cyl.radius);    // radius | lz
+  const __m128i len = mx(mx(mx(hi(c), hi(_mm_loadu_pd(&pose.t.y))),
+                            mx(hi(_mm_loadu_pd(&u.x)), hi(_mm_set_pd(w, u.z)))),
+                         mx(hi(_mm_loadu_pd(&v.x)), hi(_mm_set_sd(v.z))));
+  const __m128i rot = mx(mx(hi(r0), hi(r1)), mx(hi(r2), hi(r3)));
+  const __m128i bad = _mm_or_si128(
+      _mm_or_si128(_mm_cmpgt_epi16(len, _mm_set1_epi16(0x426f)),
+                   _mm_cmpgt_epi16(rot, _mm_set1_epi16(0x3fff))),
+      _mm_cmpgt_epi16(hi(r4), _mm_set_epi16(0x426f, 0, 0, 0, 0x3fff, 0, 0, 0)));
+  if ((_mm_movemask_epi8(bad) | _mm_movemask_pd(c) | std::signbit(w)) != 0)
+    return false;
+  const __m128d abs = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL));
+  __m128d m = _mm_max_pd(_mm_max_pd(_mm_and_pd(r0, abs), _mm_and_pd(r1, abs)),
+                         _mm_max_pd(_mm_and_pd(r2, abs), _mm_and_pd(r3, abs)));
+  m = _mm_max_sd(m, _mm_and_pd(r4, abs));
+  m = _mm_max_sd(m, _mm_unpackhi_pd(m, m));
+  *max_unitless = _mm_cvtsd_f64(m);
+  return true;
+}
+#else
+inline bool quickGate(const Cylinder<double>&, const Pose<double>&,
+                      const Vec3<double>&, const Vec3<double>&, double,
+                      double*) {
+  return false;
+}
+#endif
 
 /// The inputs of a float query are validated in float, by their bits, before
 /// anything is widened: widening a signalling NaN raises FE_INVALID (issue
@@ -259,6 +320,30 @@ inline auto sphereT(const F& f) {
   return times4(f.c.x * f.c.x + f.c.y * f.c.y - f.r * f.r) - G;
 }
 
+/// The sphere's signs one by one (a context whose signs may stay open:
+/// KernelCtx).
+template <class C, class P1, class P2, class P3, class P4, class P5>
+Tri sphereCylinderBySign(C& c, bool* early, const P1& near_cap_p,
+                         const P2& height_p, const P3& gap_p, const P4& t_p,
+                         const P5& q_p) {
+  const Sign near_cap = c.sign(near_cap_p);
+  if (near_cap == Sign::kNeg) {
+    *early = true;
+    return Tri::kFalse;
+  }
+  const Sign height = c.sign(height_p);
+  Tri result = Tri::kFalse;
+  if (isNonPos(height) != Tri::kFalse) {  // within the slab
+    result = kAnd(isNonPos(height), isNonNeg(c.sign(gap_p)));
+    if (result == Tri::kTrue || isPos(height) == Tri::kFalse) return result;
+  }
+  // Beyond a cap: 2 rho - E >= 0, and T <= 0 or 16 r^2 G - T^2 >= 0.
+  Tri t = kAnd(isNonNeg(height), isNonNeg(near_cap));
+  const Tri t_neg = isNonPos(c.sign(t_p));
+  if (t_neg != Tri::kTrue) t = kAnd(t, kOr(t_neg, isNonNeg(c.sign(q_p))));
+  return kOr(result, t);
+}
+
 template <class C>
 Tri sphereCylinder(C& c, bool* early) {
   *early = false;
@@ -278,33 +363,45 @@ Tri sphereCylinder(C& c, bool* early) {
     // First the whole formula below in double, all five signs at once and
     // combined without a branch (the near family's outcomes are coin
     // flips, which a branch per sign pays for); only where that leaves the
-    // answer open, the signs one by one, each escalated if it must be.
-    const Bits a = c.filterBits(near_cap_p), e = c.filterBits(height_p);
-    const KBool in_slab = kbAnd(nonPos(e), nonNeg(c.filterBits(gap_p)));
-    const KBool cap = kbAnd(
-        nonNeg(e), kbOr(nonPos(c.filterBits(t_p)), nonNeg(c.filterBits(q_p))));
-    const KBool r = kbAnd(nonNeg(a), kbOr(in_slab, cap));
+    // answer open, the open signs it needs, each certified (escalated) by
+    // itself from its kept double value (resolve).
+    enum { kA, kE, kG, kT, kQ };
+    const Fp v[] = {c.value(near_cap_p), c.value(height_p), c.value(gap_p),
+                    c.value(t_p), c.value(q_p)};
+    const Verdicts d = C::verdicts(v);
+    const Fp &va = v[kA], &ve = v[kE], &vg = v[kG], &vt = v[kT], &vq = v[kQ];
+    const KBool in_slab = d.all(bit(kG), bit(kE));
+    // E >= 0 and (T <= 0 or Q >= 0).
+    const KBool cap = {bool(d.isPos(kE) & (d.isNeg(kT) | d.isPos(kQ))),
+                       bool(d.isNeg(kE) | (d.isPos(kT) & d.isNeg(kQ)))};
+    const KBool r = kbAnd(d.all(bit(kA), 0), kbOr(in_slab, cap));
     if (r.t | r.f) {
-      *early = a.neg;
+      *early = d.isNeg(kA);
       return toTri(r.t);
     }
-  }
-  const Sign near_cap = c.sign(near_cap_p);
-  if (near_cap == Sign::kNeg) {
-    *early = true;
+    // Exactly: 2 rho - E >= 0 and (E <= 0 and s <= (r + rho)^2, or E >= 0
+    // and (T <= 0 or 16 r^2 G - T^2 >= 0)); a term whose filter verdict is
+    // already false costs nothing more.
+    if (c.resolve(near_cap_p, va) == Sign::kNeg) {
+      *early = true;
+      return Tri::kFalse;
+    }
+    Sign height = Sign::kUnknown;  // certified when first needed
+    auto heightSign = [&] {
+      if (height == Sign::kUnknown) height = c.resolve(height_p, ve);
+      return height;
+    };
+    if (!in_slab.f && heightSign() != Sign::kPos &&
+        c.resolve(gap_p, vg) != Sign::kNeg)
+      return Tri::kTrue;
+    if (!cap.f && heightSign() != Sign::kNeg &&
+        (c.resolve(t_p, vt) != Sign::kPos || c.resolve(q_p, vq) != Sign::kNeg))
+      return Tri::kTrue;
     return Tri::kFalse;
+  } else {
+    return sphereCylinderBySign(c, early, near_cap_p, height_p, gap_p, t_p,
+                                q_p);
   }
-  const Sign height = c.sign(height_p);
-  Tri result = Tri::kFalse;
-  if (isNonPos(height) != Tri::kFalse) {  // within the slab
-    result = kAnd(isNonPos(height), isNonNeg(c.sign(gap_p)));
-    if (result == Tri::kTrue || isPos(height) == Tri::kFalse) return result;
-  }
-  // Beyond a cap: 2 rho - E >= 0, and T <= 0 or 16 r^2 G - T^2 >= 0.
-  Tri t = kAnd(isNonNeg(height), isNonNeg(near_cap));
-  const Tri t_neg = isNonPos(c.sign(t_p));
-  if (t_neg != Tri::kTrue) t = kAnd(t, kOr(t_neg, isNonNeg(c.sign(q_p))));
-  return kOr(result, t);
 }
 
 // ---------------------------------------------------------------------------
@@ -434,7 +531,14 @@ struct LinearQuery {
   Pose<double> at_p;  // the pose moved to p: toLocal(at_p, q) = R^T (q - p)
 
   /// The double filter's frame: every point at once (every query reads
-  /// them all).
+  /// them all). In PerSign's filter (PairFilterArith) the segment's second
+  /// endpoint is b = a + e: the rounded value of R^T (p - t) + R^T (q - p),
+  /// whose exact value is R^T (q - t), with the magnitude m_a + m_e (the
+  /// same expression on magnitudes) and one more operation on the way
+  /// (depth 5 for x and y, 6 for Z; no predicate reading b is deeper than
+  /// 8, inside shallowSign's 12): three additions instead of a third frame
+  /// point. FilterKernel itself (runStages' hand-off) keeps its general
+  /// constant and the frame point.
   template <class A>
   class EagerFrame {
    public:
@@ -443,15 +547,19 @@ struct LinearQuery {
         : H(A::lift(q.cyl.lz)),
           r(A::lift(q.cyl.radius)),
           a_(A::local(q.pose, q.p, q.max_unitless)),
-          b_(kSegment ? A::local(q.pose, q.q, q.max_unitless) : Pt<N>{}),
-          e_(A::local(q.at_p, q.q, q.max_unitless)) {}
+          e_(A::local(q.at_p, q.q, q.max_unitless)) {
+      if constexpr (kSegment && std::is_same_v<A, PairFilterArith>)
+        b_ = {a_.x + e_.x, a_.y + e_.y, a_.Z + e_.Z};
+      else if constexpr (kSegment)
+        b_ = A::local(q.pose, q.q, q.max_unitless);
+    }
     const Pt<N>& a() const { return a_; }
     const Pt<N>& b() const { return b_; }
     const Pt<N>& e() const { return e_; }
     N H, r;
 
    private:
-    Pt<N> a_, b_, e_;
+    Pt<N> a_, e_, b_{};
   };
   /// The later stages' frames: each point computed when first read (an
   /// escalated sign usually reads one or two of the three).
@@ -494,8 +602,10 @@ struct LinearQuery {
     mutable unsigned have_ = 0;
   };
   template <class A>
-  using Frame = std::conditional_t<std::is_same_v<A, KernelArith<FilterKernel>>,
-                                   EagerFrame<A>, LazyFrame<A>>;
+  using Frame =
+      std::conditional_t<std::is_same_v<A, PairFilterArith> ||
+                             std::is_same_v<A, KernelArith<FilterKernel>>,
+                         EagerFrame<A>, LazyFrame<A>>;
 };
 using SegmentQuery = LinearQuery<true>;
 using LineQuery = LinearQuery<false>;
@@ -507,6 +617,101 @@ Tri segmentCylinder(C& c, bool* early) {
   auto top1 = [](const auto& f) { return f.b().Z - f.H; };
   auto bot0 = [](const auto& f) { return f.a().Z + f.H; };
   auto bot1 = [](const auto& f) { return f.b().Z + f.H; };
+  auto gap0 = [](const auto& f) { return diskGap(f.a(), f.r); };
+  auto gap1 = [](const auto& f) { return diskGap(f.b(), f.r); };
+  auto cap_top = [](const auto& f) { return capCrossingGap(f, 1); };
+  auto cap_bot = [](const auto& f) { return capCrossingGap(f, -1); };
+  if constexpr (C::kEagerFilter) {
+    // The whole test below in double at once, combined without a branch
+    // per sign (as the sphere's and the line's: on the near family the
+    // outcomes are coin flips, which a branch per sign pays for).
+    auto len_p = [](const auto& f) { return axisLen(f); };
+    auto sep_p = [](const auto& f) { return axisDistanceGap(f); };
+    auto foot_p = [](const auto& f) { return axisFoot(f); };
+    auto rest_p = [](const auto& f) { return axisLen(f) - axisFoot(f); };
+    auto foot_top = [](const auto& f) { return axisFootHeight(f, 1); };
+    auto foot_bot = [](const auto& f) { return axisFootHeight(f, -1); };
+    enum { kT0, kT1, kB0, kB1, kG0, kG1, kXT, kXB, kL, kS, kF, kR, kHT, kHB };
+    const Fp v[] = {c.value(top0),     c.value(top1),    c.value(bot0),
+                    c.value(bot1),     c.value(gap0),    c.value(gap1),
+                    c.value(cap_top),  c.value(cap_bot), c.value(len_p),
+                    c.value(sep_p),    c.value(foot_p),  c.value(rest_p),
+                    c.value(foot_top), c.value(foot_bot)};
+    const Verdicts d = C::verdicts(v);
+    const Fp &vt0 = v[kT0], &vt1 = v[kT1], &vb0 = v[kB0], &vb1 = v[kB1],
+             &vg0 = v[kG0], &vg1 = v[kG1], &vxt = v[kXT], &vxb = v[kXB],
+             &vl = v[kL], &vs = v[kS], &vf = v[kF], &vr = v[kR], &vht = v[kHT],
+             &vhb = v[kHB];
+    // Strictly on opposite sides of a cap plane.
+    auto apartBits = [&d](int k0, int k1) {
+      return KBool{
+          bool((d.isNeg(k0) & d.isPos(k1)) | (d.isPos(k0) & d.isNeg(k1))),
+          bool((d.isPos(k0) | d.isNeg(k1)) & (d.isNeg(k0) | d.isPos(k1)))};
+    };
+    const KBool v0 = d.all(bit(kB0) | bit(kG0), bit(kT0));
+    const KBool v1 = d.all(bit(kB1) | bit(kG1), bit(kT1));
+    const KBool x_top = kbAnd(apartBits(kT0, kT1), d.all(bit(kXT), 0));
+    const KBool x_bot = kbAnd(apartBits(kB0, kB1), d.all(bit(kXB), 0));
+    const KBool e =
+        d.all(bit(kL) | bit(kS) | bit(kF) | bit(kR) | bit(kHT) | bit(kHB), 0);
+    // Both endpoints strictly beyond the same cap plane.
+    const bool beyond_cap =
+        (d.isPos(kT0) & d.isPos(kT1)) | (d.isNeg(kB0) & d.isNeg(kB1));
+    KBool r = kbOr(kbOr(kbOr(v0, v1), kbOr(x_top, x_bot)), e);
+    r.f = r.f | beyond_cap;
+    if (r.t | r.f) {
+      *early = beyond_cap;
+      return toTri(r.t);
+    }
+    // Open: (V) or (X) or (E), exactly. A term whose filter verdict is
+    // already false is skipped; otherwise its signs are certified one at a
+    // time from their kept double values (resolve: escalated only if open),
+    // each at most once, until the term is decided.
+    Sign memo[4] = {Sign::kUnknown, Sign::kUnknown, Sign::kUnknown,
+                    Sign::kUnknown};
+    auto slab = [&](int k) {  // top0, top1, bot0, bot1, certified
+      if (memo[k] == Sign::kUnknown) {
+        switch (k) {
+          case 0:
+            memo[0] = c.resolve(top0, vt0);
+            break;
+          case 1:
+            memo[1] = c.resolve(top1, vt1);
+            break;
+          case 2:
+            memo[2] = c.resolve(bot0, vb0);
+            break;
+          default:
+            memo[3] = c.resolve(bot1, vb1);
+        }
+      }
+      return memo[k];
+    };
+    auto nonNegR = [&c](const auto& pred, const Fp& value) {
+      return c.resolve(pred, value) != Sign::kNeg;
+    };
+    auto apart = [&slab](int k0, int k1) {
+      const Sign s0 = slab(k0);
+      if (s0 == Sign::kZero) return false;
+      const Sign s1 = slab(k1);
+      return s1 != Sign::kZero && s1 != s0;
+    };
+    if (!v0.f && slab(0) != Sign::kPos && slab(2) != Sign::kNeg &&
+        nonNegR(gap0, vg0))
+      return Tri::kTrue;
+    if (!v1.f && slab(1) != Sign::kPos && slab(3) != Sign::kNeg &&
+        nonNegR(gap1, vg1))
+      return Tri::kTrue;
+    if (!x_top.f && apart(0, 1) && nonNegR(cap_top, vxt)) return Tri::kTrue;
+    if (!x_bot.f && apart(2, 3) && nonNegR(cap_bot, vxb)) return Tri::kTrue;
+    // (E): the low-degree conditions first (any of them may be the one
+    // that fails).
+    if (!e.f && nonNegR(foot_p, vf) && nonNegR(rest_p, vr) &&
+        c.resolve(len_p, vl) == Sign::kPos && nonNegR(foot_top, vht) &&
+        nonNegR(foot_bot, vhb) && nonNegR(sep_p, vs))
+      return Tri::kTrue;
+    return Tri::kFalse;
+  }
   const Sign top[2] = {c.sign(top0), c.sign(top1)};
   // Both endpoints strictly beyond the same cap plane.
   if (top[0] == Sign::kPos && top[1] == Sign::kPos) {
@@ -537,22 +742,16 @@ Tri segmentCylinder(C& c, bool* early) {
   }
   AnyOf any;
   // (V)
-  if (any.add(vertexInside(c, top[0], bot[0],
-                           [](const auto& f) { return diskGap(f.a(), f.r); })))
-    return Tri::kTrue;
-  if (any.add(vertexInside(c, top[1], bot[1],
-                           [](const auto& f) { return diskGap(f.b(), f.r); })))
-    return Tri::kTrue;
+  if (any.add(vertexInside(c, top[0], bot[0], gap0))) return Tri::kTrue;
+  if (any.add(vertexInside(c, top[1], bot[1], gap1))) return Tri::kTrue;
   // (X) a strict crossing of Z = sH at a point of the cap disk.
   for (int side : {1, -1}) {
     const Sign* sa = side > 0 ? top : bot;
     const Tri crossing =
         kOr(kAnd(isNeg(sa[0]), isPos(sa[1])), kAnd(isPos(sa[0]), isNeg(sa[1])));
     if (crossing == Tri::kFalse) continue;
-    if (any.add(kAnd(crossing, isNonNeg(c.sign([side](const auto& f) {
-                       return capCrossingGap(f, side);
-                     })))))
-      return Tri::kTrue;
+    const Sign gap = side > 0 ? c.sign(cap_top) : c.sign(cap_bot);
+    if (any.add(kAnd(crossing, isNonNeg(gap)))) return Tri::kTrue;
   }
   // (E) the closest approach to the axis, interior to the segment.
   const Sign sep = c.sign([](const auto& f) { return axisDistanceGap(f); });
@@ -588,37 +787,62 @@ Tri segmentCylinder(C& c, bool* early) {
 template <class C>
 Tri lineCylinder(C& c, bool* early) {
   *early = false;
-  const Sign sep = c.sign([](const auto& f) { return axisDistanceGap(f); });
+  auto sep_p = [](const auto& f) { return axisDistanceGap(f); };
+  if constexpr (C::kEagerFilter) {
+    // The terms below in double at once, combined without a branch per
+    // sign (as the sphere's); an open answer certifies the open signs it
+    // needs from their kept double values (as the segment's).
+    auto len_p = [](const auto& f) { return axisLen(f); };
+    auto foot_top = [](const auto& f) { return axisFootHeight(f, 1); };
+    auto foot_bot = [](const auto& f) { return axisFootHeight(f, -1); };
+    auto ez_p = [](const auto& f) { return f.e().Z; };
+    auto cap_top = [](const auto& f) { return capCrossingGap(f, 1); };
+    auto cap_bot = [](const auto& f) { return capCrossingGap(f, -1); };
+    auto top_p = [](const auto& f) { return f.a().Z - f.H; };
+    auto bot_p = [](const auto& f) { return f.a().Z + f.H; };
+    auto gap_p = [](const auto& f) { return diskGap(f.a(), f.r); };
+    enum { kS, kL, kHT, kHB, kEZ, kXT, kXB, kT, kB, kG };
+    const Fp v[] = {c.value(sep_p),    c.value(len_p), c.value(foot_top),
+                    c.value(foot_bot), c.value(ez_p),  c.value(cap_top),
+                    c.value(cap_bot),  c.value(top_p), c.value(bot_p),
+                    c.value(gap_p)};
+    const Verdicts d = C::verdicts(v);
+    // Early-out: the projected line stays farther than r from the axis.
+    const bool apart = d.isNeg(kS);
+    const KBool approach = d.all(bit(kS) | bit(kL) | bit(kHT) | bit(kHB), 0);
+    const KBool cross = {
+        bool((d.isPos(kEZ) | d.isNeg(kEZ)) & (d.isPos(kXT) | d.isPos(kXB))),
+        bool(d.isNeg(kXT) & d.isNeg(kXB))};
+    const KBool inside = d.all(bit(kB) | bit(kG), bit(kT));
+    KBool r = kbOr(approach, kbOr(cross, inside));
+    r.f = r.f | apart;
+    if (r.t | r.f) {
+      *early = apart;
+      return toTri(r.t);
+    }
+    if (c.resolve(sep_p, v[kS]) == Sign::kNeg) {
+      *early = true;
+      return Tri::kFalse;
+    }
+    // (E), (X), (V) as below, each skipped if the filter already said false.
+    auto nonNegR = [&c](const auto& pred, const Fp& value) {
+      return c.resolve(pred, value) != Sign::kNeg;
+    };
+    if (!approach.f && c.resolve(len_p, v[kL]) == Sign::kPos &&
+        nonNegR(foot_top, v[kHT]) && nonNegR(foot_bot, v[kHB]))
+      return Tri::kTrue;
+    if (!cross.f && ((!d.isNeg(kXT) && nonNegR(cap_top, v[kXT])) ||
+                     (!d.isNeg(kXB) && nonNegR(cap_bot, v[kXB]))))
+      if (c.resolve(ez_p, v[kEZ]) != Sign::kZero) return Tri::kTrue;
+    if (!inside.f && c.resolve(top_p, v[kT]) != Sign::kPos &&
+        nonNegR(bot_p, v[kB]) && nonNegR(gap_p, v[kG]))
+      return Tri::kTrue;
+    return Tri::kFalse;
+  }
+  const Sign sep = c.sign(sep_p);
   if (sep == Sign::kNeg) {
     *early = true;
     return Tri::kFalse;
-  }
-  if constexpr (C::kEagerFilter) {
-    // The terms below in double at once, combined without a branch per
-    // sign (as the sphere's); only an open answer goes on sign by sign.
-    const KBool approach =
-        kbAnd(nonNeg(c.filterBits([](const auto& f) { return axisLen(f); })),
-              kbAnd(nonNeg(c.filterBits(
-                        [](const auto& f) { return axisFootHeight(f, 1); })),
-                    nonNeg(c.filterBits(
-                        [](const auto& f) { return axisFootHeight(f, -1); }))));
-    const Bits ez = c.filterBits([](const auto& f) { return f.e().Z; });
-    const KBool slanted = {bool(ez.pos | ez.neg), false};
-    const KBool cross =
-        kbAnd(slanted, kbOr(nonNeg(c.filterBits([](const auto& f) {
-                              return capCrossingGap(f, 1);
-                            })),
-                            nonNeg(c.filterBits([](const auto& f) {
-                              return capCrossingGap(f, -1);
-                            }))));
-    const KBool inside = kbAnd(
-        kbAnd(
-            nonPos(c.filterBits([](const auto& f) { return f.a().Z - f.H; })),
-            nonNeg(c.filterBits([](const auto& f) { return f.a().Z + f.H; }))),
-        nonNeg(
-            c.filterBits([](const auto& f) { return diskGap(f.a(), f.r); })));
-    const KBool r = kbOr(approach, kbOr(cross, inside));
-    if (r.t | r.f) return toTri(r.t);
   }
   AnyOf any;
   // (E) the closest approach to the axis, anywhere on the line: first, as

@@ -71,18 +71,21 @@ template <bool kSegment>
 Decision decideLinear(const Cylinder<double>& cyl, const Pose<double>& pose,
                       const Vec3<double>& p, const Vec3<double>& q) {
   double max_len = 0, max_unitless = 0;
-  if (!scanFinite({cyl.radius, cyl.lz, p.x, p.y, p.z, q.x, q.y, q.z}, pose,
-                  &max_len, &max_unitless) ||
-      !(cyl.radius >= 0 && cyl.lz >= 0))
-    return {Answer::kInvalidInput, Stage::kInvalid};
+  bool gate = quickGate(cyl, pose, p, q, 0.0, &max_unitless);
+  if (!gate) {
+    if (!scanFinite({cyl.radius, cyl.lz, p.x, p.y, p.z, q.x, q.y, q.z}, pose,
+                    &max_len, &max_unitless) ||
+        !(cyl.radius >= 0 && cyl.lz >= 0))
+      return {Answer::kInvalidInput, Stage::kInvalid};
+    gate = rangeGateOk(max_len, max_unitless);
+  }
   const LinearQuery<kSegment> lq{cyl, pose, p, q, max_unitless};
-  return runPerSign(lq, rangeGateOk(max_len, max_unitless),
-                    [](auto& c, bool* early) {
-                      if constexpr (kSegment)
-                        return segmentCylinder(c, early);
-                      else
-                        return lineCylinder(c, early);
-                    });
+  return runPerSign(lq, gate, [](auto& c, bool* early) {
+    if constexpr (kSegment)
+      return segmentCylinder(c, early);
+    else
+      return lineCylinder(c, early);
+  });
 }
 
 /// The same on widened inputs (float, and the interval queries, which keep

@@ -9,9 +9,12 @@
 //   C::cheapSign(pred)  the same, but only from the double filter (may be
 //                       kUnknown): for early-outs, which the later signs
 //                       decide anyway;
-//   C::kEagerFilter, C::filterBits(pred)  (PerSign only) the filter's
-//                       verdict without a branch, for a query that first
-//                       tries its whole formula in double at once;
+//   C::kEagerFilter, C::value(pred), C::verdicts(values),
+//   C::resolve(pred, value)  (PerSign only) the filter's values and their
+//                       verdicts without a branch, for a query that first
+//                       tries its whole formula in double at once, and the
+//                       certified sign from a kept value (escalated if
+//                       open);
 // where pred is a generic lambda from a frame (the query's local data) to
 // the value of one polynomial. The query describes its frame (Q below):
 //   template <class A> struct/class Frame, constructed from the query, in
@@ -27,16 +30,20 @@
 // Filtered_predicate, Shewchuk's adaptive predicates: the expensive
 // evaluation only for the expression that failed). No tape, no second run
 // of the query. The arithmetics, in order:
-//   1. the same double values with a running error bound
-//      (RunningDoubleKernel, src/filter.h), which follows the values where
-//      the filter's bound follows the magnitudes; a double value that is
-//      exactly 0 (most often a true tie) instead re-done with every
-//      operation checked for exactness (Xd below);
-//   2. double word (about 106 bits, src/eft.h) with the running bound of
-//      the adaptive kernel (src/adaptive.cpp), with the CPU's FMA chosen at
-//      run time on x86-64 builds without it (the same bits either way);
+//   1. for a double value that is exactly 0 (most often a true tie), the
+//      double evaluation re-done with every operation checked for
+//      exactness (Xd below);
+//   2. double word (about 106 bits, src/eft.h), first certified by an
+//      a-priori bound from the filter's magnitude of the same predicate
+//      (DwPt below: no bookkeeping per operation), then, for what that
+//      leaves, by the running bound of the adaptive kernel
+//      (src/adaptive.cpp); with the CPU's FMA chosen at run time on x86-64
+//      builds without it (the same bits either way);
 //   3. exact stack expansions (src/expansion.h);
 //   4. GMP dyadics (ExactKernel), where the expansions give up.
+// (A double stage with a running bound between the filter and double word,
+// RunningDoubleKernel, decided half of the escalated signs but cost about
+// as much as the a-priori double word that decides them all: dropped.)
 // Outside the range gate the query runs on GMP dyadics alone
 // (KernelCtx<ExactKernel>), as in runStages (src/stages.h). KernelCtx<K>
 // runs the same query code with one kernel K of src/filter.h, for
@@ -46,9 +53,14 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <optional>
 #include <type_traits>
+
+#if defined(__SSE2__) && !defined(TRICYL_PORTABLE_PROLOGUE)
+#include <emmintrin.h>
+#endif
 
 #include "adaptive.h"
 #include "eft.h"
@@ -136,6 +148,40 @@ inline Sign dwSign(const DwEt<kFma>& d) {
   return Sign::kUnknown;
 }
 
+/// The double-word local coordinates of DwArith (and DwPrioriArith, which
+/// takes the values only: kBound false, no bookkeeping), Z doubled: v[j]
+/// and, with kBound, its bound e[j] (derivation at DwArith::local).
+template <bool kFma, bool kBound>
+inline void dwLocal(const Pose<double>& pose, const Vec3<double>& p, DW v[3],
+                    double e_out[3]) {
+  const double pp[3] = {p.x, p.y, p.z};
+  const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
+  double D[3], l[3];
+  for (int k = 0; k < 3; ++k) twoSum(pp[k], -tt[k], D[k], l[k]);
+  for (int j = 0; j < 3; ++j) {
+    double P[3], e[3], q[3], m = 0;
+    bool zero = true;
+    for (int k = 0; k < 3; ++k) {
+      const double R = pose.R[k][j];
+      twoProdT<kFma>(R, D[k], P[k], e[k]);
+      q[k] = R * l[k];
+      if constexpr (kBound) {
+        m += std::fabs(R) * std::fabs(D[k]);
+        zero = zero && (R == 0 || D[k] == 0);
+      }
+    }
+    double s1, f1, s, f2;
+    twoSum(P[0], P[1], s1, f1);
+    twoSum(s1, P[2], s, f2);
+    const double low =
+        ((((f1 + f2) + (e[0] + e[1])) + e[2]) + (q[0] + q[1])) + q[2];
+    twoSum(s, low, v[j].hi, v[j].lo);
+    if constexpr (kBound) e_out[j] = zero ? 0.0 : 0x1p-100 * m + kDwTiny;
+  }
+  v[2] = {v[2].hi * 2, v[2].lo * 2};  // exact
+  if constexpr (kBound) e_out[2] *= 2;
+}
+
 template <bool kFma>
 struct DwArith {
   using Num = DwEt<kFma>;
@@ -149,31 +195,88 @@ struct DwArith {
   /// the adaptive kernel's (src/adaptive.cpp, Tape::dwCoord, derives it).
   static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
                        double /*rho*/) {
-    const double pp[3] = {p.x, p.y, p.z};
-    const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
-    double D[3], l[3];
-    for (int k = 0; k < 3; ++k) twoSum(pp[k], -tt[k], D[k], l[k]);
-    Num out[3];
-    for (int j = 0; j < 3; ++j) {
-      double P[3], e[3], q[3], m = 0;
-      bool zero = true;
-      for (int k = 0; k < 3; ++k) {
-        const double R = pose.R[k][j];
-        twoProdT<kFma>(R, D[k], P[k], e[k]);
-        q[k] = R * l[k];
-        m += std::fabs(R) * std::fabs(D[k]);
-        zero = zero && (R == 0 || D[k] == 0);
-      }
-      double s1, f1, s, f2;
-      twoSum(P[0], P[1], s1, f1);
-      twoSum(s1, P[2], s, f2);
-      const double low =
-          ((((f1 + f2) + (e[0] + e[1])) + e[2]) + (q[0] + q[1])) + q[2];
-      twoSum(s, low, out[j].v.hi, out[j].v.lo);
-      out[j].e = zero ? 0.0 : 0x1p-100 * m + kDwTiny;
-    }
-    out[2] = {{out[2].v.hi * 2, out[2].v.lo * 2}, out[2].e * 2};  // exact
-    return {out[0], out[1], out[2]};
+    DW v[3];
+    double e[3];
+    dwLocal<kFma, true>(pose, p, v, e);
+    return {{v[0], e[0]}, {v[1], e[1]}, {v[2], e[2]}};
+  }
+};
+
+// ---------------------------------------------------------------------------
+// Double-word values with an a-priori bound: the same double words as
+// DwEt's (the same operations in the same order), no running bound. A
+// sign escalated from the double filter carries the filter's magnitude m^
+// of its predicate (FilterKernel: the same expression on the absolute
+// values of its leaves, each local coordinate with its one magnitude
+// rho (|d_0| + |d_1| + |d_2|), computed in double). Bound, for a
+// predicate evaluated as a tree of N operations with K local coordinates
+// among its leaves (both counted with multiplicity, as written: at most
+// N = 45 and K = 10 for the sphere's 16 r^2 G - T^2, N = 23 and K = 18 for
+// the cap crossing): a local coordinate is within eta M_c + kDwTiny of its
+// exact value (DwArith::local, eta = 2^-100), M_c = sum_k |R_kj| |D_k| <=
+// m^_c (1 - u)^-3 (rho >= |R_kj|), and the other leaves (r, lz, the
+// sphere's radius) are exact; dwAdd errs by at most 4u^2 (|x_h| + |y_h|)
+// and dwMul by 7u^2 |x y| (src/eft.h), both within eps = 8u^2 = 2^-103 of
+// the operands' magnitudes. By induction over the tree, with M a node's
+// magnitude polynomial at the exact leaf magnitudes, |V - E| <= c M + t
+// where 1 + c <= (1 + eta)^K (1 + eps)^N for both + and * (a product:
+// |V_a V_b - E_a E_b| <= |V_a| c_b M_b + |E_b| c_a M_a, plus eps |V_a V_b|),
+// so c <= 24 * 2^-99.9 + 48 * 2^-103 < 2^-94.9 (with room for larger
+// predicates), and M <= m^ (1 - u)^-(N + 3).
+// The underflow term t is the double filter's (kDwTiny per operation,
+// amplified by at most the predicate's magnitude under the range gate:
+// below 2^-600). So the sign of V = hi + lo is certain where
+// |hi| > 2^-90 m^ + 2^-600 + |lo| (the 2^-90 leaves a factor 20 for the
+// roundings of the bound itself). It decides every sign whose value is
+// not below about 2^-90 of its magnitude: an offset of one ulp (2^-52
+// relative) is far inside it, and the double filter's pessimism after a
+// cancellation (a line given by two points far from the cylinder) does
+// not matter at this precision. What it leaves (true ties, second-order
+// values) goes to the running bound (DwEt), then expansions.
+template <bool kFma>
+struct DwPt {
+  DW v;
+};
+template <bool kFma>
+inline DwPt<kFma> operator+(const DwPt<kFma>& a, const DwPt<kFma>& b) {
+  return {dwAdd(a.v, b.v)};
+}
+template <bool kFma>
+inline DwPt<kFma> operator-(const DwPt<kFma>& a) {
+  return {dwNeg(a.v)};
+}
+template <bool kFma>
+inline DwPt<kFma> operator-(const DwPt<kFma>& a, const DwPt<kFma>& b) {
+  return {dwAdd(a.v, dwNeg(b.v))};
+}
+template <bool kFma>
+inline DwPt<kFma> operator*(const DwPt<kFma>& a, const DwPt<kFma>& b) {
+  return {dwMulT<kFma>(a.v, b.v)};
+}
+template <bool kFma>
+inline DwPt<kFma> absolute(const DwPt<kFma>& a) {
+  return a.v.hi < 0 ? -a : a;
+}
+/// The certified sign of an a-priori double-word value whose predicate has
+/// the double filter's magnitude m (see above), or kUnknown.
+template <bool kFma>
+inline Sign dwPrioriSign(const DwPt<kFma>& d, double m) {
+  const double b = (m * 0x1p-90 + 0x1p-600) + std::fabs(d.v.lo);
+  if (d.v.hi > b) return Sign::kPos;
+  if (d.v.hi < -b) return Sign::kNeg;
+  return Sign::kUnknown;
+}
+template <bool kFma>
+struct DwPrioriArith {
+  using Num = DwPt<kFma>;
+  static constexpr bool kExact = false;
+  static Num lift(double x) { return {{x, 0.0}}; }
+  /// DwArith's values (its bound is the eta above; not computed here).
+  static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
+                       double /*rho*/) {
+    DW v[3];
+    dwLocal<kFma, false>(pose, p, v, nullptr);
+    return {{v[0]}, {v[1]}, {v[2]}};
   }
 };
 
@@ -265,12 +368,48 @@ struct KernelArith {
   }
 };
 
-/// A sign as two certain facts, for Kleene logic without branches: pos
-/// (certainly > 0) and neg (certainly < 0); neither: open.
-struct Bits {
-  bool pos, neg;
+/// The double filter's arithmetic for PerSign: FilterKernel's Fd (value
+/// and magnitude) with both lanes in one SSE2 register, so that every
+/// operation is one instruction on the pair (a difference: the value lane
+/// plus the negated other, which IEEE defines as the same operation) and a
+/// value takes one register instead of two. The same IEEE operations lane
+/// by lane as Fd's, so the same bits (portable builds use Fd itself).
+#if defined(__SSE2__) && !defined(TRICYL_PORTABLE_PROLOGUE)
+struct Fp {
+  __m128d x;  // lane 0: value, lane 1: magnitude
 };
-/// Kleene's and/or on {certainly true, certainly false} pairs.
+inline __m128d negValueLane() { return _mm_set_pd(0.0, -0.0); }
+inline Fp operator+(const Fp& a, const Fp& b) { return {_mm_add_pd(a.x, b.x)}; }
+inline Fp operator-(const Fp& a) { return {_mm_xor_pd(a.x, negValueLane())}; }
+inline Fp operator-(const Fp& a, const Fp& b) {
+  return {_mm_add_pd(a.x, _mm_xor_pd(b.x, negValueLane()))};
+}
+inline Fp operator*(const Fp& a, const Fp& b) { return {_mm_mul_pd(a.x, b.x)}; }
+inline Fp absolute(const Fp& a) {
+  return {_mm_andnot_pd(_mm_set_pd(0.0, -0.0), a.x)};
+}
+inline Fp toFp(const Fd& a) { return {_mm_set_pd(a.m, a.v)}; }
+inline Fd toFd(const Fp& a) {
+  return {_mm_cvtsd_f64(a.x), _mm_cvtsd_f64(_mm_unpackhi_pd(a.x, a.x))};
+}
+#else
+using Fp = Fd;
+inline Fp toFp(const Fd& a) { return a; }
+inline Fd toFd(const Fp& a) { return a; }
+#endif
+struct PairFilterArith {
+  using Num = Fp;
+  static constexpr bool kExact = false;
+  static Num lift(double x) { return toFp(FilterKernel::lift(x)); }
+  static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
+                       double rho) {
+    const Pt<Fd> q = KernelArith<FilterKernel>::local(pose, p, rho);
+    return {toFp(q.x), toFp(q.y), toFp(q.Z)};
+  }
+};
+
+/// Kleene's and/or on {certainly true, certainly false} pairs, without
+/// branches.
 struct KBool {
   bool t, f;
 };
@@ -280,8 +419,24 @@ inline KBool kbAnd(KBool a, KBool b) {
 inline KBool kbOr(KBool a, KBool b) {
   return {bool(a.t | b.t), bool(a.f & b.f)};
 }
-inline KBool nonNeg(Bits b) { return {b.pos, b.neg}; }  // >= 0 (never 0)
-inline KBool nonPos(Bits b) { return {b.neg, b.pos}; }  // <= 0
+/// The filter's verdicts on a set of values, one bit per value: pos
+/// (certainly > 0), neg (certainly < 0); neither: open. A certified sign is
+/// never zero, so "> 0" and ">= 0" have the same certificate, and so have
+/// "< 0" and "<= 0".
+struct Verdicts {
+  unsigned pos, neg;
+  /// Every value in `nonneg` >= 0 and every value in `nonpos` <= 0 (bit
+  /// masks of the values' indices).
+  KBool all(unsigned nonneg, unsigned nonpos) const {
+    return {(pos & nonneg) == nonneg && (neg & nonpos) == nonpos,
+            ((neg & nonneg) | (pos & nonpos)) != 0};
+  }
+  /// Bit k of pos / neg (0 or 1; unsigned, for bitwise Kleene logic).
+  unsigned isPos(int k) const { return (pos >> k) & 1u; }
+  unsigned isNeg(int k) const { return (neg >> k) & 1u; }
+};
+/// The bit of value k.
+constexpr unsigned bit(int k) { return 1u << k; }
 
 /// One kernel K for every sign (runStages' stages; outside the range gate,
 /// K = ExactKernel).
@@ -329,23 +484,59 @@ class PerSign {
 
   template <class P>
   Sign sign(const P& pred) {
-    const Fd v = pred(fd_);
+    const Fd v = toFd(pred(fd_));
     const Sign s = shallowSign(v);
     if (s != Sign::kUnknown) return s;
     return escalate(pred, v);
   }
   template <class P>
   Sign cheapSign(const P& pred) const {
-    return shallowSign(pred(fd_));
+    return shallowSign(toFd(pred(fd_)));
   }
   /// The filter's verdict on pred without a branch: {certainly > 0,
   /// certainly < 0} (shallowSign's test; both false: open).
   static constexpr bool kEagerFilter = true;
+  /// The filter's value of pred (value and magnitude), for a query that
+  /// keeps it: verdicts reads the filter's verdicts on a set of them at
+  /// once, resolve the certified sign of one (escalated only if the filter
+  /// left it open), with no second evaluation in double.
   template <class P>
-  Bits filterBits(const P& pred) const {
-    const Fd v = pred(fd_);
-    const double bound = v.m * 0x1p-49 + FilterKernel::kAbs;
-    return {v.v > bound, v.v < -bound};
+  Fp value(const P& pred) const {
+    return pred(fd_);
+  }
+  template <std::size_t n>
+  static Verdicts verdicts(const Fp (&v)[n]) {
+    static_assert(n <= 32, "one bit per value");
+    Verdicts out{0, 0};
+    std::size_t i = 0;
+#if defined(__SSE2__) && !defined(TRICYL_PORTABLE_PROLOGUE)
+    // Two values per operation: shallowSign's bound m 2^-49 + kAbs and its
+    // two comparisons, lane by lane the same IEEE operations.
+    const __m128d k = _mm_set1_pd(0x1p-49), a = _mm_set1_pd(FilterKernel::kAbs);
+    for (; i + 1 < n; i += 2) {
+      const __m128d vals = _mm_unpacklo_pd(v[i].x, v[i + 1].x);
+      const __m128d mags = _mm_unpackhi_pd(v[i].x, v[i + 1].x);
+      const __m128d b = _mm_add_pd(_mm_mul_pd(mags, k), a);
+      out.pos |= unsigned(_mm_movemask_pd(_mm_cmpgt_pd(vals, b))) << i;
+      out.neg |= unsigned(_mm_movemask_pd(
+                     _mm_cmplt_pd(vals, _mm_xor_pd(b, _mm_set1_pd(-0.0)))))
+                 << i;
+    }
+#endif
+    for (; i < n; ++i) {
+      const Fd d = toFd(v[i]);
+      const double b = d.m * 0x1p-49 + FilterKernel::kAbs;
+      out.pos |= unsigned(d.v > b) << i;
+      out.neg |= unsigned(d.v < -b) << i;
+    }
+    return out;
+  }
+  template <class P>
+  Sign resolve(const P& pred, const Fp& value) {
+    const Fd v = toFd(value);
+    const Sign s = shallowSign(v);
+    if (s != Sign::kUnknown) return s;
+    return escalate(pred, v);
   }
   /// The strongest arithmetic any sign needed: 0 double, 1 double-word,
   /// 2 expansions, 3 GMP.
@@ -358,15 +549,7 @@ class PerSign {
   template <class P>
   TRICYL_PER_SIGN_NOINLINE Sign escalate(const P& pred, const Fd& v) {
     Sign s = Sign::kUnknown;
-    if (v.v != 0) {
-      // The same double values with a running bound (src/filter.h,
-      // RunningDoubleKernel): it follows the values where the filter's
-      // bound follows the magnitudes (a small value after cancellation).
-      // Still the double stage.
-      if (!rd_) build(rd_);
-      s = RunningDoubleKernel::sign(pred(*rd_));
-      if (s != Sign::kUnknown) return s;
-    } else {
+    if (v.v == 0) {
       // A double value that is exactly 0 is most often a true tie (exact
       // data in an exact pose), which no bound certifies: was the double
       // evaluation exact?
@@ -377,7 +560,18 @@ class PerSign {
         return x.v > 0 ? Sign::kPos : (x.v < 0 ? Sign::kNeg : Sign::kZero);
       }
     }
+    // Double word, first with the a-priori bound from the filter's
+    // magnitude (it decides nearly every sign that is not a tie: about 2^-90
+    // of the magnitude against the filter's 2^-49), then with the running
+    // bound.
     if (level_ < 1) level_ = 1;
+#if TRICYL_FMA_DISPATCH
+    s = fmaAtRunTime() ? dwPrioriSignFma(pred, v.m)
+                       : dwPrioriSignWith<false>(pred, v.m, dwp_);
+#else
+    s = dwPrioriSignWith<TRICYL_HAVE_FMA != 0>(pred, v.m, dwp_);
+#endif
+    if (s != Sign::kUnknown) return s;
 #if TRICYL_FMA_DISPATCH
     s = fmaAtRunTime() ? dwSignFma(pred) : dwSignWith<false>(pred, dw_);
 #else
@@ -396,6 +590,25 @@ class PerSign {
     return ExactKernel::sign(pred(*gmp_));
   }
 
+  /// The double-word stage with the a-priori bound (with FMA or not), on a
+  /// frame built when first needed; m: the filter's magnitude of pred.
+  template <bool kFma, class P>
+  Sign dwPrioriSignWith(const P& pred, double m,
+                        std::optional<Frame<DwPrioriArith<kFma>>>& frame) {
+    if (!frame) build(frame);
+    return dwPrioriSign(pred(*frame), m);
+  }
+#if TRICYL_FMA_DISPATCH
+  template <class P>
+  TRICYL_TARGET_FMA Sign dwPrioriSignFma(const P& pred, double m) {
+    if (!dwpf_) buildPrioriFma();
+    return dwPrioriSign(pred(*dwpf_), m);
+  }
+  TRICYL_TARGET_FMA TRICYL_PER_SIGN_NOINLINE void buildPrioriFma() {
+    dwpf_.emplace(q_);
+  }
+  std::optional<Frame<DwPrioriArith<true>>> dwpf_;
+#endif
   /// The double-word stage (with FMA or not), on a frame built when first
   /// needed.
   template <bool kFma, class P>
@@ -425,10 +638,10 @@ class PerSign {
   }
 
   const Q& q_;
-  Frame<KernelArith<FilterKernel>> fd_;
+  Frame<PairFilterArith> fd_;
   int level_ = 0;
-  std::optional<Frame<KernelArith<RunningDoubleKernel>>> rd_;
   std::optional<Frame<DwArith<TRICYL_HAVE_FMA != 0>>> dw_;
+  std::optional<Frame<DwPrioriArith<TRICYL_HAVE_FMA != 0>>> dwp_;
   std::optional<Frame<ExactDoubleArith>> xd_;
   std::optional<Frame<ExpansionArith>> ex_;
   std::optional<Frame<KernelArith<ExactKernel>>> gmp_;

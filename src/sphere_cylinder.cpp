@@ -14,15 +14,18 @@ Decision decide(const Cylinder<double>& cyl, const Pose<double>& pose,
                 const Sphere<double>& sph) {
   double max_len = 0, max_unitless = 0;
   const Vec3<double>& c = sph.center;
-  if (!detail::scanFinite({cyl.radius, cyl.lz, sph.radius, c.x, c.y, c.z}, pose,
-                          &max_len, &max_unitless) ||
-      !(cyl.radius >= 0 && cyl.lz >= 0 && sph.radius >= 0))
-    return {Answer::kInvalidInput, Stage::kInvalid};
+  bool gate = detail::quickGate(cyl, pose, c, c, sph.radius, &max_unitless);
+  if (!gate) {
+    if (!detail::scanFinite({cyl.radius, cyl.lz, sph.radius, c.x, c.y, c.z},
+                            pose, &max_len, &max_unitless) ||
+        !(cyl.radius >= 0 && cyl.lz >= 0 && sph.radius >= 0))
+      return {Answer::kInvalidInput, Stage::kInvalid};
+    gate = detail::rangeGateOk(max_len, max_unitless);
+  }
   const detail::SphereQuery q{cyl, pose, sph, max_unitless};
-  return detail::runPerSign(q, detail::rangeGateOk(max_len, max_unitless),
-                            [](auto& ctx, bool* early) {
-                              return detail::sphereCylinder(ctx, early);
-                            });
+  return detail::runPerSign(q, gate, [](auto& ctx, bool* early) {
+    return detail::sphereCylinder(ctx, early);
+  });
 }
 
 template <class S>

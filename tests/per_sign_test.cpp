@@ -5,7 +5,9 @@
 // families (compare/query_scenes.h, seeded; TRICYL_SEED overrides, the seed
 // and index are printed on failure):
 //   - the double filter with the shallow-depth constant 2^-49;
-//   - the running double bound;
+//   - the double-word stage with the a-priori bound (2^-90 of the filter's
+//     magnitude): its value within 2^-95 of that magnitude (the derived
+//     bound) of the exact one, and the FMA path bit for bit;
 //   - the double-word stage: its value within its bound of the exact one,
 //     and, on x86-64 built without FMA, the run-time FMA path giving the
 //     same double words, bit for bit, as Dekker's TwoProduct;
@@ -28,11 +30,12 @@ namespace {
 
 using detail::DwArith;
 using detail::DwEt;
+using detail::DwPrioriArith;
+using detail::DwPt;
 using detail::ExactDoubleArith;
 using detail::ExpansionArith;
 using detail::Fd;
 using detail::KernelArith;
-using detail::Rd;
 using detail::Sign;
 using qscenes::Family;
 using qscenes::Query;
@@ -51,6 +54,20 @@ bool withinBound(const DwEt<kFma>& d, const detail::Dyadic& exact) {
       ExactKernel::lift(d.v.hi) + ExactKernel::lift(d.v.lo) - exact;
   const detail::Dyadic slack =
       ExactKernel::lift(d.e * (1 + 0x1p-40) + 0x1p-600);
+  return sgn((slack - diff).m) >= 0 && sgn((slack + diff).m) >= 0;
+}
+
+/// |dw - exact| <= the a-priori bound of dwPrioriSign for the filter's
+/// magnitude m, without its 2^5 room (2^-95 m + 2^-600), decided exactly:
+/// the derivation's bound itself, not only the signs it certifies.
+template <bool kFma>
+bool withinPrioriBound(const detail::DwPt<kFma>& d, double m,
+                       const detail::Dyadic& exact) {
+  using detail::ExactKernel;
+  const detail::Dyadic diff =
+      ExactKernel::lift(d.v.hi) + ExactKernel::lift(d.v.lo) - exact;
+  const detail::Dyadic slack =
+      ExactKernel::lift(m * 0x1p-95) + ExactKernel::lift(0x1p-600);
   return sgn((slack - diff).m) >= 0 && sgn((slack + diff).m) >= 0;
 }
 
@@ -74,14 +91,29 @@ void checkPredicate(const Q& q, const P& pred, long* certified) {
     EXPECT_EQ(signOf(sf), truth);
     ++certified[0];
   }
-  // Running double bound.
-  const typename Q::template Frame<KernelArith<detail::RunningDoubleKernel>> fr(
-      q);
-  const Sign sr = detail::RunningDoubleKernel::sign(pred(fr));
-  if (sr != Sign::kUnknown) {
-    EXPECT_EQ(signOf(sr), truth);
+  // Double word with the a-priori bound from the filter's magnitude: the
+  // bound holds; a certified sign is the true one; the FMA path gives the
+  // same double words.
+  const double mag = pred(ff).m;
+  const typename Q::template Frame<DwPrioriArith<kPlainFma>> fp(q);
+  const DwPt<kPlainFma> dp = pred(fp);
+  EXPECT_TRUE(withinPrioriBound(dp, mag, exact))
+      << "a-priori double word " << dp.v.hi << " + " << dp.v.lo
+      << ", magnitude " << mag;
+  const Sign sp = detail::dwPrioriSign(dp, mag);
+  if (sp != Sign::kUnknown) {
+    EXPECT_EQ(signOf(sp), truth);
     ++certified[1];
   }
+#if TRICYL_FMA_DISPATCH
+  if (detail::fmaAtRunTime()) {
+    const typename Q::template Frame<DwPrioriArith<true>> fpm(q);
+    const DwPt<true> pm = pred(fpm);
+    EXPECT_EQ(std::memcmp(&pm, &dp, sizeof pm), 0)
+        << "FMA path " << pm.v.hi << " + " << pm.v.lo << " vs " << dp.v.hi
+        << " + " << dp.v.lo;
+  }
+#endif
   // Double word: the bound holds; a certified sign is the true one.
   const typename Q::template Frame<DwArith<kPlainFma>> fd(q);
   const DwEt<kPlainFma> d = pred(fd);
@@ -162,8 +194,9 @@ TEST(PerSign, SphereSignsOfEveryStageAreExact) {
       if (testing::Test::HasFailure()) return;
     }
   std::printf(
-      "[ stats    ] sphere signs certified: filter %ld, running %ld, "
-      "double word %ld, exact in double %ld\n",
+      "[ stats    ] sphere signs certified: filter %ld, a-priori double "
+      "word %ld, "
+      "running double word %ld, exact in double %ld\n",
       certified[0], certified[1], certified[2], certified[3]);
 }
 
@@ -188,22 +221,29 @@ void linearSigns(Query qy) {
             q,
             [side](const auto& f) { return detail::capCrossingGap(f, side); },
             certified);
+      for (int side : {1, -1})
+        checkPredicate(
+            q,
+            [side](const auto& f) { return detail::axisFootHeight(f, side); },
+            certified);
       checkPredicate(
           q,
           [](const auto& f) {
-            const auto L = f.e().x * f.e().x + f.e().y * f.e().y;
-            const auto g = -(f.a().x * f.e().x + f.a().y * f.e().y);
-            return f.H * L - (f.a().Z * L + g * f.e().Z);
+            return detail::axisLen(f) - detail::axisFoot(f);
           },
           certified);
       checkPredicate(
           q, [](const auto& f) { return detail::diskGap(f.a(), f.r); },
           certified);
+      if (kSegment)
+        checkPredicate(
+            q, [](const auto& f) { return detail::diskGap(f.b(), f.r); },
+            certified);
       if (testing::Test::HasFailure()) return;
     }
   std::printf(
-      "[ stats    ] %s signs certified: filter %ld, running %ld, double "
-      "word %ld, exact in double %ld\n",
+      "[ stats    ] %s signs certified: filter %ld, a-priori double word "
+      "%ld, running double word %ld, exact in double %ld\n",
       kSegment ? "segment" : "line", certified[0], certified[1], certified[2],
       certified[3]);
 }
