@@ -48,6 +48,7 @@
 
 #include <gmpxx.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -359,44 +360,91 @@ struct Query {
   }
 };
 
+/// A finite double as m 2^e with m an odd integer (|m| < 2^53), or m = 0.
+struct Dyadic {
+  std::int64_t m = 0;
+  int e = 0;
+};
+Dyadic dyadic(double x) {
+  if (x == 0) return {};
+  int e = 0;
+  const double f = std::frexp(x, &e);  // x = f 2^e, 0.5 <= |f| < 1
+  std::int64_t m = std::int64_t(std::ldexp(f, 53));
+  e -= 53;
+  while ((m & 1) == 0) {
+    m /= 2;
+    ++e;
+  }
+  return {m, e};
+}
+
 /// The doubled local coordinates and sizes of the torus at height sgn * h,
 /// exactly, mirrored in z for the bottom one (sgn = -1) so that its rim is
-/// at +lz, all multiplied by one power of two that makes them integers
-/// (every value here is a dyadic rational).
+/// at +lz, all multiplied by one power of two that makes them integers.
+/// Every length input is an integer times 2^eL (eL the least exponent of
+/// the nonzero lengths' odd mantissas) and every rotation entry an integer
+/// times 2^eR, so the local coordinates are integers times 2^(eL + eR):
+/// the unit is 2^(eL + min(eR, 0)), in which the sizes are integers too.
+/// Integer shifts only (no rationals, no gcd).
 TorusInput<ZKernel> torusExactInput(const Query& q, int sgn) {
   const Vec3<double>* v[3] = {&q.tri.a, &q.tri.b, &q.tri.c};
-  mpq_class vals[12];  // X, Y, Z of the three vertices, then R, M, C
+  Dyadic len[14];  // the 9 vertex coordinates, t, then r, m, lz
   for (int i = 0; i < 3; ++i) {
-    const mpq_class d[3] = {mpq_class(v[i]->x) - q.pose.t.x,
-                            mpq_class(v[i]->y) - q.pose.t.y,
-                            mpq_class(v[i]->z) - q.pose.t.z};
-    for (int k = 0; k < 3; ++k)
-      vals[3 * i + k] = 2 * (mpq_class(q.pose.R[0][k]) * d[0] +
-                             mpq_class(q.pose.R[1][k]) * d[1] +
-                             mpq_class(q.pose.R[2][k]) * d[2]);
-    if (sgn < 0) vals[3 * i + 2] = -vals[3 * i + 2];
+    len[3 * i] = dyadic(v[i]->x);
+    len[3 * i + 1] = dyadic(v[i]->y);
+    len[3 * i + 2] = dyadic(v[i]->z);
   }
-  vals[9] = 2 * mpq_class(q.cyl.radius);
-  vals[10] = 2 * mpq_class(q.m);
-  vals[11] = mpq_class(q.cyl.lz);
-  // The largest denominator (a power of two) is a common one.
-  mpz_class den = 1;
-  for (const auto& x : vals)
-    if (x.get_den() > den) den = x.get_den();
-  mpz_class ints[12];
-  for (int i = 0; i < 12; ++i)
-    mpz_divexact(ints[i].get_mpz_t(),
-                 mpz_class(vals[i].get_num() * den).get_mpz_t(),
-                 vals[i].get_den_mpz_t());
+  len[9] = dyadic(q.pose.t.x);
+  len[10] = dyadic(q.pose.t.y);
+  len[11] = dyadic(q.pose.t.z);
+  const Dyadic sizes[3] = {dyadic(q.cyl.radius), dyadic(q.m), dyadic(q.cyl.lz)};
+  Dyadic rot[3][3];
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k < 3; ++k) rot[j][k] = dyadic(q.pose.R[j][k]);
+  int eL = std::numeric_limits<int>::max(), eR = eL;
+  for (const Dyadic& d : len)
+    if (d.m != 0) eL = std::min(eL, d.e);
+  for (const Dyadic& d : sizes)
+    if (d.m != 0) eL = std::min(eL, d.e);
+  for (const auto& row : rot)
+    for (const Dyadic& d : row)
+      if (d.m != 0) eR = std::min(eR, d.e);
+  if (eL == std::numeric_limits<int>::max()) eL = 0;  // every length 0
+  if (eR == std::numeric_limits<int>::max()) eR = 0;  // R = 0
+  // x 2^(e - unit) as an integer (e >= unit).
+  auto toInt = [](const Dyadic& d, int unit) {
+    mpz_class z = static_cast<long>(d.m);
+    if (d.m != 0)
+      mpz_mul_2exp(z.get_mpz_t(), z.get_mpz_t(), mp_bitcnt_t(d.e - unit));
+    return z;
+  };
+  mpz_class diff[3][3];  // v_i - t in units of 2^eL
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k)
+      diff[i][k] = toInt(len[3 * i + k], eL) - toInt(len[9 + k], eL);
+  mpz_class rz[3][3];  // R in units of 2^eR
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k < 3; ++k) rz[j][k] = toInt(rot[j][k], eR);
+  // Local coordinates in units of 2^(eL + eR), moved to the common unit
+  // 2^(eL + min(eR, 0)), doubled (one more bit) for X, Y, Z.
+  const mp_bitcnt_t local_shift = mp_bitcnt_t(std::max(eR, 0) + 1);
+  const int unit = eL + std::min(eR, 0);
   TorusInput<ZKernel> t;
   for (int i = 0; i < 3; ++i) {
-    t.X[i] = ints[3 * i];
-    t.Y[i] = ints[3 * i + 1];
-    t.Z[i] = ints[3 * i + 2];
+    mpz_class c[3];
+    for (int k = 0; k < 3; ++k) {
+      c[k] =
+          rz[0][k] * diff[i][0] + rz[1][k] * diff[i][1] + rz[2][k] * diff[i][2];
+      mpz_mul_2exp(c[k].get_mpz_t(), c[k].get_mpz_t(), local_shift);
+    }
+    t.X[i] = c[0];
+    t.Y[i] = c[1];
+    t.Z[i] = sgn < 0 ? mpz_class(-c[2]) : c[2];
   }
-  t.R = ints[9];
-  t.M = ints[10];
-  t.C = ints[11];
+  // R = 2r, M = 2m, C = lz in the same unit.
+  t.R = toInt(sizes[0], unit - 1);
+  t.M = toInt(sizes[1], unit - 1);
+  t.C = toInt(sizes[2], unit);
   return t;
 }
 
@@ -458,6 +506,82 @@ TorusInput<K> torusInput(const detail::TriCylLocal<K>& l, double m, bool top) {
   return t;
 }
 
+/// The tori's inputs for the running-bound filter when the exact scaling of
+/// scaleInputs fails (a length would become subnormal) or the inputs are
+/// outside the range gate: every length scaled by 2^-k (k the exponent of
+/// the largest length), the rotation by 2^-j (j >= 0 the exponent of its
+/// largest entry) and the sizes by 2^-(k + j) as well, so that the local
+/// coordinates R^T (p - t) scale by the same 2^-(k + j) as the sizes (the
+/// torus test is invariant under a common scaling). A scaled input that
+/// rounded (it became subnormal) is off by less than the smallest
+/// subnormal, which it carries as its running error bound; the local
+/// coordinates are then formed by the running rules of src/filter.h, so
+/// every bound stays certified. Afterwards every length is below 2, every
+/// rotation entry below 2 and every local coordinate below 24: the torus
+/// tests' magnitudes stay below 2^60, far inside the budget of the absolute
+/// slack (src/filter.h, "Underflow"). Needs q.scan() first and
+/// q.max_len > 0.
+TorusInput<Rk> torusRobustInput(const Query& q, bool top) {
+  constexpr double eta = std::numeric_limits<double>::denorm_min();
+  const int k = std::ilogb(q.max_len);
+  const int j =
+      q.max_unitless > 0 ? std::max(0, std::ilogb(q.max_unitless)) : 0;
+  auto sc = [](double v, int e) -> Rd {
+    const double w = std::ldexp(v, -e);
+    return {w, std::ldexp(w, e) == v ? 0.0 : eta};
+  };
+  const Rd tx = sc(q.pose.t.x, k), ty = sc(q.pose.t.y, k),
+           tz = sc(q.pose.t.z, k);
+  Rd R[3][3];
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) R[a][b] = sc(q.pose.R[a][b], j);
+  const Vec3<double>* v[3] = {&q.tri.a, &q.tri.b, &q.tri.c};
+  const Rd two = Rk::lift(2.0);
+  TorusInput<Rk> t;
+  for (int i = 0; i < 3; ++i) {
+    const Rd d[3] = {sc(v[i]->x, k) - tx, sc(v[i]->y, k) - ty,
+                     sc(v[i]->z, k) - tz};
+    Rd c[3];
+    for (int b = 0; b < 3; ++b)
+      c[b] = two * ((R[0][b] * d[0] + R[1][b] * d[1]) + R[2][b] * d[2]);
+    t.X[i] = c[0];
+    t.Y[i] = c[1];
+    t.Z[i] = top ? c[2] : -c[2];
+  }
+  t.R = two * sc(q.cyl.radius, k + j);
+  t.M = two * sc(q.m, k + j);
+  t.C = sc(q.cyl.lz, k + j);
+  // The largest length need not be one that the torus test sees (a huge
+  // coordinate along an axis that a tiny rotation entry maps, a huge
+  // margin on the other torus...): scale up once more so that the largest
+  // of these values is in [1, 2), else the tests' values may fall below
+  // the absolute slack 2^-600 and the filter would decide nothing. Scaling
+  // up by a power of two is exact for the values and their bounds; the
+  // bound computations above may have lost up to 2^-1075 absolutely per
+  // rounding when they underflowed (about 7 operations of at most 4
+  // roundings each per value), which the slack of 32 smallest subnormals
+  // added here covers before it is scaled with the rest.
+  double big = std::max({std::fabs(t.R.v), std::fabs(t.M.v), std::fabs(t.C.v)});
+  for (int i = 0; i < 3; ++i)
+    big = std::max(
+        {big, std::fabs(t.X[i].v), std::fabs(t.Y[i].v), std::fabs(t.Z[i].v)});
+  if (big > 0 && big < 1) {
+    const int up = -std::ilogb(big);
+    auto grow = [up](Rd& x) {
+      x = {std::ldexp(x.v, up), std::ldexp(x.e + 32 * eta, up)};
+    };
+    for (int i = 0; i < 3; ++i) {
+      grow(t.X[i]);
+      grow(t.Y[i]);
+      grow(t.Z[i]);
+    }
+    grow(t.R);
+    grow(t.M);
+    grow(t.C);
+  }
+  return t;
+}
+
 /// The face part of one torus through the stage driver (src/stages.h):
 /// FilterKernel, then the adaptive kernel, on the scaled inputs; GMP
 /// dyadics alone on the original ones where the scaling is not exact.
@@ -469,7 +593,15 @@ Decision faceStage(const Query& q, const ScaledInputs& s, bool top) {
              : detail::makeLocal<K>(q.cyl, q.pose, q.tri, q.max_unitless);
     return faceFeet<K>(torusInput<K>(l, s.ok ? s.m : q.m, top));
   };
-  if (!s.ok) return detail::runAdaptive(pred, false);
+  if (!s.ok) {
+    if (q.max_len > 0) {
+      const Tri f = faceFeet<Rk>(torusRobustInput(q, top));
+      if (f != Tri::kUnknown)
+        return {f == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
+                Stage::kFastPath};
+    }
+    return detail::runAdaptive(pred, false);
+  }
   return detail::runStages(pred, 2.0, q.max_unitless);
 }
 
@@ -574,6 +706,10 @@ Decision decide(Query& q) {
     const auto l = detail::makeLocal<Rk>(s.cyl, s.pose, s.tri, q.max_unitless);
     for (int i = 0; i < 2; ++i)
       if (edgesFilter(torusInput<Rk>(l, s.m, i == 0), open[i]) == Tri::kTrue)
+        return yes(stage);
+  } else if (q.max_len > 0) {
+    for (int i = 0; i < 2; ++i)
+      if (edgesFilter(torusRobustInput(q, i == 0), open[i]) == Tri::kTrue)
         return yes(stage);
   }
   static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
