@@ -7,6 +7,8 @@
 
 #include <gmpxx.h>
 
+#include <algorithm>
+#include <cstddef>
 #include <utility>
 #include <vector>
 
@@ -65,6 +67,10 @@ inline Poly positiveRemainder(Poly a, const Poly& b) {
   return a;
 }
 
+/// Above this coefficient size (bits) rootsInUnit divides each remainder by
+/// its content rather than by the reduced PRS's factor (see there).
+constexpr std::size_t kReducedPrsBits = 4096;
+
 /// Number of distinct real roots of p in (0, 1), for p(0) != 0, p(1) != 0
 /// (Sturm's theorem: sign variations of the sequence at 0 minus at 1; the
 /// value of a polynomial at 0 is its constant term, at 1 the sum of its
@@ -79,22 +85,32 @@ inline int rootsInUnit(Poly p) {
   for (size_t i = 1; i < p.size(); ++i) d.push_back(p[i] * int(i));
   trim(d);
   // Each remainder is reduced by a POSITIVE factor, which leaves its signs
-  // alone: first by |lc(c_{i-1})|^(delta + 1), c_{i-1} the divisor of the
-  // previous step and delta the degree drop of that step (Collins' reduced
-  // PRS: the pseudo-remainder of c_{i-1} by c_i is divisible by it; Knuth,
-  // TAOCP vol. 2, 4.6.1, and Brown and Traub 1971). The divisibility is
-  // checked, not assumed; where it fails (never seen) the content is divided
-  // out instead. Either way the chain is exact, and the reduction keeps the
-  // coefficients of the last elements near the size of the subresultants
-  // (degree 6 in those of p for a quartic) instead of growing by a factor
-  // of 17, without the gcds that dominated the cost.
+  // alone. Two ways, chosen by the size of p's coefficients:
+  // - small (at most kReducedPrsBits bits: every input inside the range
+  //   gate): by |lc(c_{i-1})|^(delta + 1), c_{i-1} the divisor of the
+  //   previous step and delta the degree drop of that step (Collins'
+  //   reduced PRS: the pseudo-remainder of c_{i-1} by c_i is divisible by
+  //   it; Knuth, TAOCP vol. 2, 4.6.1, and Brown and Traub 1971). The
+  //   divisibility is checked, not assumed; where it fails (never seen) the
+  //   content is divided out instead. This keeps the coefficients near the
+  //   size of the subresultants without a gcd, which cost more than the
+  //   rest of the chain at these sizes;
+  // - large (hostile inputs spanning thousands of binary orders): by the
+  //   content, whose gcds are then cheap beside the products and which
+  //   removes the large common factors that such inputs' polynomials carry
+  //   (measured on the hostile set of tricyl-margin-stage-costs: the
+  //   reduced chain was 2 to 3 times slower there).
+  std::size_t bits = 0;
+  for (const auto& c : p)
+    bits = std::max(bits, mpz_sizeinbase(c.get_mpz_t(), 2));
+  const bool reduced = bits <= kReducedPrsBits;
   mpz_class beta = 1;
   while (!d.empty()) {
     chain.push_back(d);
     Poly r = positiveRemainder(chain[chain.size() - 2], d);
-    if (beta > 1 && dividesAll(r, beta))
+    if (reduced && beta > 1 && dividesAll(r, beta))
       divideExact(r, beta);
-    else if (beta > 1)
+    else if (!reduced || beta > 1)
       divideExact(r, content(r));
     for (auto& c : r) c = -c;
     trim(r);

@@ -247,6 +247,57 @@ void edgePolys(const TorusInput<K>& t, int a, int b, typename K::Num* l,
 
 using Rd = detail::Rd;
 
+/// The running-bound filter of src/filter.h with the underflow of the bound
+/// computations themselves charged to the bounds, so that its signs need no
+/// absolute slack (RunningKernel's kAbs = 2^-600, valid only for inputs
+/// under the range gate) and values far below 2^-600 can be certified: the
+/// torus filter on hostile inputs (torusRobustInput). Rules, with u' and
+/// eta (the smallest subnormal) as in src/filter.h:
+///   a + b:  e = e_a + e_b + u' |v| + eta
+///   a * b:  e = |v_a| e_b + |v_b| e_a + e_a e_b + u' |v| + 4 eta.
+/// The exact bound of a sum is e_a + e_b + |v - (v_a + v_b)|, the rounding
+/// of a sum being within u' |v| (exact in the subnormal range); of a
+/// product |v_a| e_b + |v_b| e_a + e_a e_b + u' |v| + eta / 2 (the last
+/// for an underflowed v). Computing e rounds to nearest: relatively
+/// (non-negative terms; at most 8 roundings per operation, a factor
+/// (1 - u)^8 per operation, covered by the final inflation (1 + 2^-40) for
+/// chains of up to 1000 operations: the deepest here, a Bernstein
+/// coefficient after 24 halvings, is about 130), and absolutely by at most
+/// eta / 2 per rounding that underflows (the product's four products, the
+/// sum's one: covered by the added eta terms). sign() compares v with
+/// fl(e (1 + 2^-40)) + eta, the last covering that product's underflow.
+struct Ru {
+  double v;
+  double e;
+};
+constexpr double kEta = std::numeric_limits<double>::denorm_min();
+inline Ru operator+(Ru a, Ru b) {
+  const double v = a.v + b.v;
+  return {v, a.e + b.e + detail::kU1d * std::fabs(v) + kEta};
+}
+inline Ru operator-(Ru a, Ru b) {
+  const double v = a.v - b.v;
+  return {v, a.e + b.e + detail::kU1d * std::fabs(v) + kEta};
+}
+inline Ru operator-(Ru a) { return {-a.v, a.e}; }
+inline Ru operator*(Ru a, Ru b) {
+  const double v = a.v * b.v;
+  return {v, std::fabs(a.v) * b.e + std::fabs(b.v) * a.e + a.e * b.e +
+                 detail::kU1d * std::fabs(v) + 4 * kEta};
+}
+struct UnderflowKernel {
+  using Num = Ru;
+  static constexpr bool kExact = false;
+  static Num lift(double x) { return {x, 0}; }
+  static Sign sign(const Num& a) {
+    const double bound = a.e * (1 + 0x1p-40) + kEta;
+    if (a.v > bound) return Sign::kPos;
+    if (a.v < -bound) return Sign::kNeg;
+    return Sign::kUnknown;
+  }
+};
+using Uk = UnderflowKernel;
+
 /// Is some value of the polynomial with Bernstein coefficients b[0..n] on
 /// an interval <= 0? kTrue if an end value is certainly < 0, kFalse if every
 /// coefficient is certainly > 0 (convex-hull property), else subdivides at
@@ -255,47 +306,79 @@ using Rd = detail::Rd;
 /// `*budget` intervals in all (a near-double root needs a few intervals per
 /// level around it; a polynomial that is 0 within its bound everywhere, e.g.
 /// a point edge on the torus, would need all 2^depth).
-Tri bernsteinAnyNonPos(const Rd* b, int n, int depth, int* budget) {
+template <class K>
+Tri bernsteinAnyNonPos(const typename K::Num* b, int n, int depth,
+                       int* budget) {
+  using N = typename K::Num;
   if (--*budget < 0) return Tri::kUnknown;
-  const Sign s0 = Rk::sign(b[0]), sn = Rk::sign(b[n]);
+  const Sign s0 = K::sign(b[0]), sn = K::sign(b[n]);
   if (s0 == Sign::kNeg || sn == Sign::kNeg) return Tri::kTrue;
   bool all_pos = true;
   for (int i = 0; i <= n; ++i)
-    if (Rk::sign(b[i]) != Sign::kPos) all_pos = false;
+    if (K::sign(b[i]) != Sign::kPos) all_pos = false;
   if (all_pos) return Tri::kFalse;
   if (depth == 0) return Tri::kUnknown;
-  Rd left[5], right[5], w[5];
+  N left[5], right[5], w[5];
   for (int i = 0; i <= n; ++i) w[i] = b[i];
-  const Rd half = Rk::lift(0.5);
+  const N half = K::lift(0.5);
   for (int k = 0; k <= n; ++k) {
     left[k] = w[0];
     right[n - k] = w[n - k];
     for (int i = 0; i < n - k; ++i) w[i] = (w[i] + w[i + 1]) * half;
   }
-  const Tri l = bernsteinAnyNonPos(left, n, depth - 1, budget);
+  const Tri l = bernsteinAnyNonPos<K>(left, n, depth - 1, budget);
   if (l == Tri::kTrue) return l;
-  return kOr(l, bernsteinAnyNonPos(right, n, depth - 1, budget));
+  return kOr(l, bernsteinAnyNonPos<K>(right, n, depth - 1, budget));
 }
 
 constexpr int kBernsteinDepth = 24;
 constexpr int kBernsteinBudget = 96;
 
-Tri edgeFilter(const TorusInput<Rk>& t, int a, int b) {
-  Rd l[3], q[5];
-  edgePolys<Rk>(t, a, b, l, q);
-  auto k = [](double v) { return Rk::lift(v); };
-  // Bernstein coefficients times 2 (L) and 12 (Q): power -> Bernstein.
-  const Rd lb[3] = {k(2) * l[0], k(2) * l[0] + l[1],
-                    k(2) * (l[0] + l[1] + l[2])};
-  const Rd q0 = k(12) * q[0];
-  const Rd qb[5] = {q0, q0 + k(3) * q[1], q0 + k(6) * q[1] + k(2) * q[2],
-                    q0 + k(9) * q[1] + k(6) * q[2] + k(3) * q[3],
-                    k(12) * ((q[0] + q[1]) + (q[2] + q[3]) + q[4])};
+/// The Bernstein coefficients on [0, 1] of L (lb) and 6 Q (qb) along the
+/// edge a -> b, formed from the end points directly: with A and B the
+/// vectors from the rim's centre, (X, Y, Z - C), at the ends,
+/// K0 = R^2 - M^2 and rho^2 = (p0, p1, p2) in Bernstein form
+/// (A_xy . A_xy, A_xy . B_xy, B_xy . B_xy),
+///   L:  (A . A + K0, A . B + K0, B . B + K0),
+/// and Q = L^2 - 4 R^2 rho^2 by the Bernstein product rule (degree 2 times
+/// degree 2: c_k = sum_{i+j=k} C(2,i) C(2,j) / C(4,k) l_i l_j) and the
+/// degree elevation of rho^2 to 4 ((p0, (p0+p1)/2, (p0+4p1+p2)/6, ...)).
+/// The end coefficients are L and Q at the vertices, computed from that
+/// vertex alone: a vertex close to a small torus keeps its tiny values
+/// (the power basis would form them as differences of large coefficients).
+template <class K>
+void edgeBernstein(const TorusInput<K>& t, int a, int b, typename K::Num* lb,
+                   typename K::Num* qb) {
+  using N = typename K::Num;
+  const N za = t.Z[a] - t.C, zb = t.Z[b] - t.C;
+  const N p0 = t.X[a] * t.X[a] + t.Y[a] * t.Y[a];
+  const N p1 = t.X[a] * t.X[b] + t.Y[a] * t.Y[b];
+  const N p2 = t.X[b] * t.X[b] + t.Y[b] * t.Y[b];
+  const N k0 = t.R * t.R - t.M * t.M;
+  lb[0] = p0 + za * za + k0;
+  lb[1] = p1 + za * zb + k0;
+  lb[2] = p2 + zb * zb + k0;
+  const N R2 = t.R * t.R;
+  const N R4 = (R2 + R2) + (R2 + R2);
+  const N R12 = (R4 + R4) + R4;
+  const N six = K::lift(6), two = K::lift(2), four = K::lift(4);
+  qb[0] = six * (lb[0] * lb[0]) - (R12 + R12) * p0;
+  qb[1] = six * (lb[0] * lb[1]) - R12 * (p0 + p1);
+  qb[2] = two * (lb[0] * lb[2]) + four * (lb[1] * lb[1]) -
+          R4 * ((p0 + p2) + four * p1);
+  qb[3] = six * (lb[1] * lb[2]) - R12 * (p1 + p2);
+  qb[4] = six * (lb[2] * lb[2]) - (R12 + R12) * p2;
+}
+
+template <class K>
+Tri edgeFilter(const TorusInput<K>& t, int a, int b) {
+  typename K::Num lb[3], qb[5];
+  edgeBernstein<K>(t, a, b, lb, qb);
   int budget = kBernsteinBudget;
-  const Tri tq = bernsteinAnyNonPos(qb, 4, kBernsteinDepth, &budget);
+  const Tri tq = bernsteinAnyNonPos<K>(qb, 4, kBernsteinDepth, &budget);
   if (tq == Tri::kTrue) return tq;
   budget = kBernsteinBudget;
-  return kOr(tq, bernsteinAnyNonPos(lb, 2, kBernsteinDepth, &budget));
+  return kOr(tq, bernsteinAnyNonPos<K>(lb, 2, kBernsteinDepth, &budget));
 }
 
 // ---- The exact stage: GMP integers, Sturm sequence ------------------------
@@ -326,11 +409,12 @@ bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
 
 /// The edges of one torus in the filter: kTrue if one certainly meets it,
 /// kFalse if none does; `open[e]` flags the edges left open.
-Tri edgesFilter(const TorusInput<Rk>& t, bool* open) {
+template <class K>
+Tri edgesFilter(const TorusInput<K>& t, bool* open) {
   static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
   detail::AnyOf any;
   for (int e = 0; e < 3; ++e) {
-    const Tri r = edgeFilter(t, kEdge[e][0], kEdge[e][1]);
+    const Tri r = edgeFilter<K>(t, kEdge[e][0], kEdge[e][1]);
     open[e] = r == Tri::kUnknown;
     if (any.add(r)) return Tri::kTrue;
   }
@@ -445,6 +529,18 @@ TorusInput<ZKernel> torusExactInput(const Query& q, int sgn) {
   t.R = toInt(sizes[0], unit - 1);
   t.M = toInt(sizes[1], unit - 1);
   t.C = toInt(sizes[2], unit);
+  // The unit above is a common one, not the largest: divide out the power
+  // of two that all twelve share (the torus test is invariant under it),
+  // so that the integers are no longer than the values need.
+  mpz_class* all[12] = {&t.X[0], &t.X[1], &t.X[2], &t.Y[0], &t.Y[1], &t.Y[2],
+                        &t.Z[0], &t.Z[1], &t.Z[2], &t.R,    &t.M,    &t.C};
+  mp_bitcnt_t tz = ~mp_bitcnt_t(0);
+  for (const mpz_class* z : all)
+    if (mpz_sgn(z->get_mpz_t()) != 0)
+      tz = std::min(tz, mpz_scan1(z->get_mpz_t(), 0));
+  if (tz != ~mp_bitcnt_t(0) && tz > 0)
+    for (mpz_class* z : all)
+      mpz_tdiv_q_2exp(z->get_mpz_t(), z->get_mpz_t(), tz);
   return t;
 }
 
@@ -506,42 +602,41 @@ TorusInput<K> torusInput(const detail::TriCylLocal<K>& l, double m, bool top) {
   return t;
 }
 
-/// The tori's inputs for the running-bound filter when the exact scaling of
-/// scaleInputs fails (a length would become subnormal) or the inputs are
-/// outside the range gate: every length scaled by 2^-k (k the exponent of
-/// the largest length), the rotation by 2^-j (j >= 0 the exponent of its
-/// largest entry) and the sizes by 2^-(k + j) as well, so that the local
+/// The tori's inputs for the filter when the exact scaling of scaleInputs
+/// fails (a length would become subnormal) or the inputs are outside the
+/// range gate: every length scaled by 2^-k (k the exponent of the largest
+/// length), the rotation by 2^-j (j >= 0 the exponent of its largest
+/// entry) and the sizes by 2^-(k + j) as well, so that the local
 /// coordinates R^T (p - t) scale by the same 2^-(k + j) as the sizes (the
-/// torus test is invariant under a common scaling). A scaled input that
+/// torus test is invariant under a common scaling), then all of them by a
+/// last power of two that brings the largest to [1, 2). A scaled input that
 /// rounded (it became subnormal) is off by less than the smallest
-/// subnormal, which it carries as its running error bound; the local
-/// coordinates are then formed by the running rules of src/filter.h, so
-/// every bound stays certified. Afterwards every length is below 2, every
-/// rotation entry below 2 and every local coordinate below 24: the torus
-/// tests' magnitudes stay below 2^60, far inside the budget of the absolute
-/// slack (src/filter.h, "Underflow"). Needs q.scan() first and
-/// q.max_len > 0.
-TorusInput<Rk> torusRobustInput(const Query& q, bool top) {
-  constexpr double eta = std::numeric_limits<double>::denorm_min();
+/// subnormal, which it carries as its error bound, and everything is in
+/// UnderflowKernel, whose bounds need no absolute slack: values far below
+/// 2^-600 are certified where their bounds allow it. Every magnitude stays
+/// below 24 for the coordinates and 2^60 in the tests (no overflow). Needs
+/// q.scan() first and q.max_len > 0.
+TorusInput<Uk> torusRobustInput(const Query& q, bool top) {
+  constexpr double eta = kEta;
   const int k = std::ilogb(q.max_len);
   const int j =
       q.max_unitless > 0 ? std::max(0, std::ilogb(q.max_unitless)) : 0;
-  auto sc = [](double v, int e) -> Rd {
+  auto sc = [](double v, int e) -> Ru {
     const double w = std::ldexp(v, -e);
     return {w, std::ldexp(w, e) == v ? 0.0 : eta};
   };
-  const Rd tx = sc(q.pose.t.x, k), ty = sc(q.pose.t.y, k),
+  const Ru tx = sc(q.pose.t.x, k), ty = sc(q.pose.t.y, k),
            tz = sc(q.pose.t.z, k);
-  Rd R[3][3];
+  Ru R[3][3];
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) R[a][b] = sc(q.pose.R[a][b], j);
   const Vec3<double>* v[3] = {&q.tri.a, &q.tri.b, &q.tri.c};
-  const Rd two = Rk::lift(2.0);
-  TorusInput<Rk> t;
+  const Ru two = Uk::lift(2.0);
+  TorusInput<Uk> t;
   for (int i = 0; i < 3; ++i) {
-    const Rd d[3] = {sc(v[i]->x, k) - tx, sc(v[i]->y, k) - ty,
+    const Ru d[3] = {sc(v[i]->x, k) - tx, sc(v[i]->y, k) - ty,
                      sc(v[i]->z, k) - tz};
-    Rd c[3];
+    Ru c[3];
     for (int b = 0; b < 3; ++b)
       c[b] = two * ((R[0][b] * d[0] + R[1][b] * d[1]) + R[2][b] * d[2]);
     t.X[i] = c[0];
@@ -554,22 +649,16 @@ TorusInput<Rk> torusRobustInput(const Query& q, bool top) {
   // The largest length need not be one that the torus test sees (a huge
   // coordinate along an axis that a tiny rotation entry maps, a huge
   // margin on the other torus...): scale up once more so that the largest
-  // of these values is in [1, 2), else the tests' values may fall below
-  // the absolute slack 2^-600 and the filter would decide nothing. Scaling
-  // up by a power of two is exact for the values and their bounds; the
-  // bound computations above may have lost up to 2^-1075 absolutely per
-  // rounding when they underflowed (about 7 operations of at most 4
-  // roundings each per value), which the slack of 32 smallest subnormals
-  // added here covers before it is scaled with the rest.
+  // of these values is in [1, 2). Scaling up by a power of two is exact for
+  // the values and for their bounds (UnderflowKernel's bounds already hold
+  // the absolute losses of underflow).
   double big = std::max({std::fabs(t.R.v), std::fabs(t.M.v), std::fabs(t.C.v)});
   for (int i = 0; i < 3; ++i)
     big = std::max(
         {big, std::fabs(t.X[i].v), std::fabs(t.Y[i].v), std::fabs(t.Z[i].v)});
   if (big > 0 && big < 1) {
     const int up = -std::ilogb(big);
-    auto grow = [up](Rd& x) {
-      x = {std::ldexp(x.v, up), std::ldexp(x.e + 32 * eta, up)};
-    };
+    auto grow = [up](Ru& x) { x = {std::ldexp(x.v, up), std::ldexp(x.e, up)}; };
     for (int i = 0; i < 3; ++i) {
       grow(t.X[i]);
       grow(t.Y[i]);
@@ -595,7 +684,7 @@ Decision faceStage(const Query& q, const ScaledInputs& s, bool top) {
   };
   if (!s.ok) {
     if (q.max_len > 0) {
-      const Tri f = faceFeet<Rk>(torusRobustInput(q, top));
+      const Tri f = faceFeet<Uk>(torusRobustInput(q, top));
       if (f != Tri::kUnknown)
         return {f == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
                 Stage::kFastPath};
