@@ -53,6 +53,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -313,11 +314,17 @@ Tri bernsteinAnyNonPos(const typename K::Num* b, int n, int depth,
   if (--*budget < 0) return Tri::kUnknown;
   const Sign s0 = K::sign(b[0]), sn = K::sign(b[n]);
   if (s0 == Sign::kNeg || sn == Sign::kNeg) return Tri::kTrue;
-  bool all_pos = true;
-  for (int i = 0; i <= n; ++i)
-    if (K::sign(b[i]) != Sign::kPos) all_pos = false;
+  bool all_pos = true, all_unknown = true;
+  for (int i = 0; i <= n; ++i) {
+    const Sign si = K::sign(b[i]);
+    if (si != Sign::kPos) all_pos = false;
+    if (si != Sign::kUnknown) all_unknown = false;
+  }
   if (all_pos) return Tri::kFalse;
-  if (depth == 0) return Tri::kUnknown;
+  // Every coefficient within its bound of 0: so is every coefficient of
+  // every sub-interval (a convex combination of these, whose bound is at
+  // least the same combination of their bounds), so halving cannot decide.
+  if (all_unknown || depth == 0) return Tri::kUnknown;
   N left[5], right[5], w[5];
   for (int i = 0; i <= n; ++i) w[i] = b[i];
   const N half = K::lift(0.5);
@@ -802,9 +809,13 @@ Decision decide(Query& q) {
         return yes(stage);
   }
   static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+  std::optional<TorusInput<ZKernel>> exact_top;  // the bottom one mirrors it
   for (int i = 0; i < 2; ++i) {
     if (!(open[i][0] || open[i][1] || open[i][2])) continue;
-    const TorusInput<ZKernel> t = torusExactInput(q, i == 0 ? 1 : -1);
+    if (!exact_top) exact_top = torusExactInput(q, 1);
+    TorusInput<ZKernel> t = *exact_top;
+    if (i == 1)
+      for (auto& z : t.Z) z = -z;
     stage = Stage::kExactGmp;
     for (int e = 0; e < 3; ++e)
       if (open[i][e] && edgeExact(t, kEdge[e][0], kEdge[e][1]))
