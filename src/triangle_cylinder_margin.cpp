@@ -59,6 +59,7 @@
 #include <vector>
 
 #include "cylinder_queries_impl.h"
+#include "eft.h"
 #include "filter.h"
 #include "margin_sturm.h"
 #include "stages.h"
@@ -69,6 +70,7 @@ namespace tricyl {
 namespace {
 
 using detail::kAnd;
+using detail::kEdge;
 using detail::kOr;
 using detail::Sign;
 using detail::Tri;
@@ -299,6 +301,62 @@ struct UnderflowKernel {
 };
 using Uk = UnderflowKernel;
 
+/// Double-word values with a running bound: the intermediate stage of the
+/// torus edges (Stage::kExtended), between the double filter and GMP, on
+/// the exactly scaled inputs. The near-ties that the double filter cannot
+/// separate (a margin a few ulps from an edge's distance to a rim, where Q's
+/// minimum is about 2^-52 of its coefficients and below the double
+/// filter's resolution) are mostly certified here, at a fraction of the
+/// cost of the Sturm sequence. Rules, with the double-word error bounds of
+/// src/eft.h (|x| read as |hi| + |lo|):
+///   a + b:  e = e_a + e_b + 2^-104 (|a| + |b|) + 2^-1060
+///   a * b:  e = |a| e_b + |b| e_a + e_a e_b + 2^-103 |a| |b| + 2^-1060
+/// (2^-1060 = kDwTiny, each operation's absolute allowance for underflow,
+/// which also covers the underflow of these bound computations: a few
+/// times 2^-1075). e is computed in double rounded to nearest from
+/// non-negative terms, short by at most (1 - u)^8 per operation: covered by
+/// the inflation (1 + 2^-40) at the sign for chains of up to 1000
+/// operations (the deepest Bernstein coefficient is about 130). sign():
+/// hi + lo - E has the bound e, so hi > e + |lo| certifies a positive value
+/// (the sum and the inflation rounded up by a further 2^-50).
+struct Rw {
+  detail::DW v;
+  double e;
+};
+inline double mag(const Rw& a) { return std::fabs(a.v.hi) + std::fabs(a.v.lo); }
+inline Rw operator+(Rw a, Rw b) {
+  return {detail::dwAdd(a.v, b.v),
+          a.e + b.e + detail::kDwAddRel * (mag(a) + mag(b)) + detail::kDwTiny};
+}
+inline Rw operator-(Rw a) { return {detail::dwNeg(a.v), a.e}; }
+inline Rw operator-(Rw a, Rw b) { return a + (-b); }
+inline Rw operator*(Rw a, Rw b) {
+  const double ma = mag(a), mb = mag(b);
+  return {detail::dwMul(a.v, b.v), ma * b.e + mb * a.e + a.e * b.e +
+                                       detail::kDwRel * (ma * mb) +
+                                       detail::kDwTiny};
+}
+struct DoubleWordKernel {
+  using Num = Rw;
+  static constexpr bool kExact = false;
+  static Num lift(double x) { return {{x, 0}, 0}; }
+  /// a - b exactly as a double-word (TwoSum; the inputs are finite and
+  /// scaled to unit size, so nothing overflows).
+  static Num inputDiff(double a, double b) {
+    Num d{{0, 0}, 0};
+    detail::twoSum(a, -b, d.v.hi, d.v.lo);
+    return d;
+  }
+  static Sign sign(const Num& a) {
+    const double t =
+        (a.e * (1 + 0x1p-40) + std::fabs(a.v.lo)) * (1 + 0x1p-50) + kEta;
+    if (a.v.hi > t) return Sign::kPos;
+    if (a.v.hi < -t) return Sign::kNeg;
+    return Sign::kUnknown;
+  }
+};
+using Wk = DoubleWordKernel;
+
 /// Is some value of the polynomial with Bernstein coefficients b[0..n] on
 /// an interval <= 0? kTrue if an end value is certainly < 0, kFalse if every
 /// coefficient is certainly > 0 (convex-hull property), else subdivides at
@@ -418,7 +476,6 @@ bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
 /// kFalse if none does; `open[e]` flags the edges left open.
 template <class K>
 Tri edgesFilter(const TorusInput<K>& t, bool* open) {
-  static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
   detail::AnyOf any;
   for (int e = 0; e < 3; ++e) {
     const Tri r = edgeFilter<K>(t, kEdge[e][0], kEdge[e][1]);
@@ -808,7 +865,24 @@ Decision decide(Query& q) {
       if (edgesFilter(torusRobustInput(q, i == 0), open[i]) == Tri::kTrue)
         return yes(stage);
   }
-  static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+  // The edges the double filter left open: double-word, on the same exactly
+  // scaled inputs (the hostile path has no such stage: its inputs are
+  // rounded, and its ties are rare).
+  if (s.ok && (open[0][0] || open[0][1] || open[0][2] || open[1][0] ||
+               open[1][1] || open[1][2])) {
+    stage = stronger(stage, Stage::kExtended);
+    const auto lw = detail::makeLocal<Wk>(s.cyl, s.pose, s.tri, q.max_unitless);
+    for (int i = 0; i < 2; ++i) {
+      if (!(open[i][0] || open[i][1] || open[i][2])) continue;
+      const TorusInput<Wk> tw = torusInput<Wk>(lw, s.m, i == 0);
+      for (int e = 0; e < 3; ++e) {
+        if (!open[i][e]) continue;
+        const Tri r = edgeFilter<Wk>(tw, kEdge[e][0], kEdge[e][1]);
+        if (r == Tri::kTrue) return yes(stage);
+        open[i][e] = r == Tri::kUnknown;
+      }
+    }
+  }
   std::optional<TorusInput<ZKernel>> exact_top;  // the bottom one mirrors it
   for (int i = 0; i < 2; ++i) {
     if (!(open[i][0] || open[i][1] || open[i][2])) continue;
