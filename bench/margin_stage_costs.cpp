@@ -62,27 +62,11 @@ struct MarginCase {
   double m;
 };
 
-/// compare/distance_families.cpp's distanceCase: three scenes in four
-/// translated by a random vector of length 1e-15 .. 1e3 of the size.
-TriCase distanceScene(Family f, std::uint64_t seed, std::uint64_t i) {
-  namespace in = tricyl::scenes::internal;
-  TriCase k = tricyl::scenes::generate(f, seed ^ 0x64697374616e6365ULL, i);
-  if (i % 4 == 0) return k;
-  tricyl::scenes::Rng g(seed * 0x2545f4914f6cdd1dULL ^
-                        (std::uint64_t(f) << 48) ^ i);
-  const double size = std::max(k.cyl.radius, k.cyl.lz);
-  const in::V T = in::scale(in::randomUnit(g), g.logUniform(1e-15, 1e3) * size);
-  k.tri.a = in::add(k.tri.a, T);
-  k.tri.b = in::add(k.tri.b, T);
-  k.tri.c = in::add(k.tri.c, T);
-  return k;
-}
-
 /// kCases margin queries of family f with the harness's margins.
 std::vector<MarginCase> tieHeavy(Family f) {
   std::vector<MarginCase> v;
   for (std::uint64_t i = 0; v.size() < std::size_t(kCases); ++i) {
-    const TriCase k = distanceScene(f, 20261125u, i);
+    const TriCase k = tricyl::scenes::distanceCase(f, 20261125u, i);
     const double size = std::max(k.cyl.radius, k.cyl.lz);
     tricyl::scenes::Rng g(i * 0x9e3779b97f4a7c15ULL ^ std::uint64_t(f));
     std::vector<double> ms = {0.0, 1e-3 * size, 1e-2 * size,

@@ -23,6 +23,7 @@
 //            axis, edges through the rim; exactly representable poses.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <iterator>
@@ -471,6 +472,24 @@ inline TriCase generate(Family family, std::uint64_t seed,
       return internal::alignedCase(g);
   }
   return {};
+}
+
+/// The case `i` of a distance family (tricyl-compare's distance and margin
+/// families, tricyl-margin-stage-costs): the family's scene, for 3 in 4 of
+/// them moved apart along a random direction by 10^-15 .. 10^3 (log-
+/// uniform) of the cylinder's size max(r, lz).
+inline TriCase distanceCase(Family f, std::uint64_t seed, std::uint64_t i) {
+  TriCase k = generate(f, seed ^ 0x64697374616e6365ULL, i);
+  if (i % 4 == 0) return k;
+  Rng g(seed * 0x2545f4914f6cdd1dULL ^ (std::uint64_t(f) << 48) ^ i);
+  const double size = std::max(k.cyl.radius, k.cyl.lz);
+  const double s = g.logUniform(1e-15, 1e3) * size;
+  const internal::V u = internal::randomUnit(g);
+  const internal::V T = internal::scale(u, s);
+  k.tri.a = internal::add(k.tri.a, T);
+  k.tri.b = internal::add(k.tri.b, T);
+  k.tri.c = internal::add(k.tri.c, T);
+  return k;
 }
 
 }  // namespace tricyl::scenes

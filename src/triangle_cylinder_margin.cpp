@@ -396,8 +396,14 @@ Tri bernsteinAnyNonPos(const typename K::Num* b, int n, int depth,
   return kOr(l, bernsteinAnyNonPos<K>(right, n, depth - 1, budget));
 }
 
+/// Halving depth, and intervals per polynomial: the double filter gives up
+/// sooner, since the double-word stage behind it resolves near-ties with
+/// far fewer intervals (its coefficients are 2^50 times sharper); the
+/// hostile path (UnderflowKernel) has no stage behind it but GMP.
 constexpr int kBernsteinDepth = 24;
-constexpr int kBernsteinBudget = 96;
+template <class K>
+constexpr int kBernsteinBudget =
+    std::is_same_v<K, detail::RunningDoubleKernel> ? 24 : 96;
 
 /// The Bernstein coefficients on [0, 1] of L (lb) and 6 Q (qb) along the
 /// edge a -> b, formed from the end points directly: with A and B the
@@ -439,10 +445,10 @@ template <class K>
 Tri edgeFilter(const TorusInput<K>& t, int a, int b) {
   typename K::Num lb[3], qb[5];
   edgeBernstein<K>(t, a, b, lb, qb);
-  int budget = kBernsteinBudget;
+  int budget = kBernsteinBudget<K>;
   const Tri tq = bernsteinAnyNonPos<K>(qb, 4, kBernsteinDepth, &budget);
   if (tq == Tri::kTrue) return tq;
-  budget = kBernsteinBudget;
+  budget = kBernsteinBudget<K>;
   return kOr(tq, bernsteinAnyNonPos<K>(lb, 2, kBernsteinDepth, &budget));
 }
 
