@@ -811,46 +811,42 @@ Stage stronger(Stage a, Stage b) {
 Decision yes(Stage s) { return {Answer::kIntersect, s}; }
 Decision no(Stage s) { return {Answer::kDisjoint, s}; }
 
-/// A sized part (grow_radius: Cyl(r + m, h), else Cyl(r, h + m)).
-/// `stage` accumulates the strongest stage used.
 /// Inputs on which every call of the exact kernel is slow (its exact
 /// stages on dyadics whose products leave the floating-point expansions'
 /// exponent window, or inputs outside the range gate), read from the bits:
-/// a nonzero length below 2^-400, lengths whose exponents span more than
-/// 500, a length of 2^40 or more, or a rotation entry of 2 or more. For
-/// these a sized part goes straight to its one exact run instead of
-/// bracketing the sum by two kernel calls first (measured by callgrind on
-/// the slowest queries of the hostile set inside the range gate: the two
-/// calls cost up to 1.5 times the run). Only a cost decision: both ways are
-/// exact.
+/// a nonzero size, margin or coordinate below 2^-400, their exponents
+/// spanning more than 500, or one of them 2^40 or more. For
+/// these a sized part goes to its one exact run instead of bracketing the
+/// sum by kernel calls (measured by callgrind on the slowest queries of the
+/// hostile set inside the range gate: the calls cost up to 1.5 times the
+/// run). Only a cost decision: both ways are exact.
 bool wideSpread(const Query& q) {
-  auto expo = [](double v) {
-    std::uint64_t b;
-    std::memcpy(&b, &v, sizeof b);
-    return int((b >> 52) & 0x7ff);  // 0 for zero and subnormals
-  };
-  const Triangle<double>& t = q.tri;
-  int lo = 0x7ff, hi = 0;
-  bool any_zero_exp = false;
-  for (double v :
-       {q.cyl.radius, q.cyl.lz, q.m, q.pose.t.x, q.pose.t.y, q.pose.t.z, t.a.x,
-        t.a.y, t.a.z, t.b.x, t.b.y, t.b.z, t.c.x, t.c.y, t.c.z}) {
-    const int e = expo(v);
-    hi = std::max(hi, e);
-    if (e == 0) {
-      if (v != 0) any_zero_exp = true;  // subnormal
-    } else {
-      lo = std::min(lo, e);
-    }
+  static_assert(sizeof(Triangle<double>) == 9 * sizeof(double),
+                "packed coordinates");
+  // On the absolute values' bit patterns (monotone in the value): the
+  // largest and the smallest nonzero (b - 1 wraps for 0 and drops out of
+  // the minimum) of the sizes, the margin and the vertices' coordinates.
+  // The translation and the rotation are not read (a cheaper test that
+  // finds the hostile inputs of tricyl-margin-stage-costs as well).
+  constexpr std::uint64_t kAbs = ~(std::uint64_t(1) << 63);
+  std::uint64_t w[12];
+  std::memcpy(w, &q.cyl.radius, sizeof(double));
+  std::memcpy(w + 1, &q.cyl.lz, sizeof(double));
+  std::memcpy(w + 2, &q.m, sizeof(double));
+  std::memcpy(w + 3, &q.tri, 9 * sizeof(double));
+  std::uint64_t hi = 0, lo = ~std::uint64_t(0);
+  for (std::uint64_t b : w) {
+    b &= kAbs;
+    hi = b > hi ? b : hi;
+    lo = b - 1 < lo ? b - 1 : lo;
   }
-  if (any_zero_exp) lo = 0;
-  int rot = 0;
-  for (const auto& row : q.pose.R)
-    for (double v : row) rot = std::max(rot, expo(v));
-  return lo < 1023 - 400 || hi - std::min(lo, hi) > 500 || hi >= 1023 + 40 ||
-         rot >= 1024;
+  const int ehi = int(hi >> 52);
+  const int elo = lo == ~std::uint64_t(0) ? ehi : int((lo + 1) >> 52);
+  return elo < 1023 - 400 || ehi - elo > 500 || ehi >= 1023 + 40;
 }
 
+/// A sized part (grow_radius: Cyl(r + m, h), else Cyl(r, h + m)).
+/// `stage` accumulates the strongest stage used; `wide` is wideSpread(q).
 bool cylinderPart(const Query& q, bool grow_radius, bool wide, Stage* stage) {
   const TwoSum s =
       grow_radius ? twoSum(q.cyl.radius, q.m) : twoSum(q.cyl.lz, 2 * q.m);
