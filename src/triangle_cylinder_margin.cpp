@@ -36,13 +36,17 @@
 // Stages of the tori. Edges: a double filter with running error bounds (the
 // rules of RunningDoubleKernel, src/filter.h) on the inputs scaled by a
 // power of two to unit size, in which L and Q are decided by their Bernstein
-// coefficients on [0, 1] with de Casteljau subdivision (all coefficients
-// > 0: no point of the edge is inside; an end value < 0: a point is), to a
-// fixed depth and a fixed number of intervals; the edges it leaves open in
-// GMP integers, the quartic by its ends, its Bernstein coefficients and its
-// Sturm sequence on (0, 1), the quadratic by its ends and vertex. The face:
-// the stage driver of src/stages.h (FilterKernel, then the adaptive kernel)
-// on the scaled inputs. Every stage does a bounded amount of work;
+// coefficients on [0, 1] (formed from the end points) with de Casteljau
+// subdivision (all coefficients > 0: no point of the edge is inside; an end
+// value < 0: a point is), to a fixed depth and a fixed number of intervals;
+// the edges it leaves open the same in double-word (DoubleWordKernel), then
+// in GMP integers, the quartic by its ends, its Bernstein coefficients and
+// its Sturm sequence on (0, 1), the quadratic by its ends and vertex. Where
+// the exact scaling fails or the inputs are outside the range gate, the
+// filter runs on rescaled inputs in UnderflowKernel (no absolute slack)
+// before GMP. The face: the stage driver of src/stages.h (FilterKernel, then
+// the adaptive kernel) on the scaled inputs (UnderflowKernel, then GMP, in
+// the other case). Every stage does a bounded amount of work;
 // docs/margin.md has the derivations and the exactness argument.
 #include "tricyl/triangle_cylinder_margin.h"
 
