@@ -108,29 +108,19 @@ std::vector<Hostile> hostileSet(std::uint64_t seed, int n, int len_hi,
     x ^= x << 17;
     return x;
   };
-  auto wild = [&next](int lo, int hi) {
-    const double f = 1.0 + double(next() >> 12) * 0x1p-52;
-    const int e = lo + int(next() % std::uint64_t(hi - lo + 1));
-    return ((next() & 1) ? -1.0 : 1.0) * std::ldexp(f, e);
-  };
   std::vector<Hostile> v;
   for (int i = 0; i < n; ++i) {
-    Hostile h;
-    auto len = [&] { return wild(-1070, len_hi); };
-    h.cyl = {std::fabs(len()), std::fabs(len())};
-    for (auto& row : h.pose.R)
-      for (double& r : row) r = wild(-1070, rot_hi);
-    h.pose.t = {len(), len(), len()};
-    h.tri = {
-        {len(), len(), len()}, {len(), len(), len()}, {len(), len(), len()}};
+    const TriCase k = tricyl::scenes::randomExponentCase(next, len_hi, rot_hi);
+    Hostile h{k.cyl, k.pose, k.tri, 0};
     if (margin_rel) {
       double big = std::max(h.cyl.radius, h.cyl.lz);
       for (const auto* p : {&h.tri.a, &h.tri.b, &h.tri.c, &h.pose.t})
         big =
             std::max({big, std::fabs(p->x), std::fabs(p->y), std::fabs(p->z)});
-      h.m = std::ldexp(std::fabs(wild(-40, 0)), std::ilogb(big));
+      h.m = std::ldexp(std::fabs(tricyl::scenes::randomExponent(next, -40, 0)),
+                       std::ilogb(big));
     } else {
-      h.m = std::fabs(len());
+      h.m = std::fabs(tricyl::scenes::randomExponent(next, -1070, len_hi));
     }
     v.push_back(h);
   }

@@ -492,4 +492,36 @@ inline TriCase distanceCase(Family f, std::uint64_t seed, std::uint64_t i) {
   return k;
 }
 
+/// Hostile input with random exponents (tricyl-margin-stage-costs and the
+/// margin tests; the Boolean's set of tricyl-stage-costs is drawn the same
+/// way): every length (sizes, translation, vertices) sign * (1 + f) *
+/// 2^e with e uniform in [-1070, len_hi], every rotation entry with e in
+/// [-1070, rot_hi] (not a rotation), from the 64-bit draws of `next`:
+/// mantissa, exponent, sign, in that order. The sizes are made
+/// non-negative.
+template <class Next>
+double randomExponent(Next& next, int lo, int hi) {
+  const double f = 1.0 + double(next() >> 12) * 0x1p-52;
+  const int e = lo + int(next() % std::uint64_t(hi - lo + 1));
+  return ((next() & 1) ? -1.0 : 1.0) * std::ldexp(f, e);
+}
+template <class Next>
+TriCase randomExponentCase(Next& next, int len_hi, int rot_hi) {
+  auto len = [&] { return randomExponent(next, -1070, len_hi); };
+  TriCase k;
+  k.cyl.radius = std::fabs(len());
+  k.cyl.lz = std::fabs(len());
+  for (auto& row : k.pose.R)
+    for (double& r : row) r = randomExponent(next, -1070, rot_hi);
+  k.pose.t.x = len();
+  k.pose.t.y = len();
+  k.pose.t.z = len();
+  for (Vec3<double>* v : {&k.tri.a, &k.tri.b, &k.tri.c}) {
+    v->x = len();
+    v->y = len();
+    v->z = len();
+  }
+  return k;
+}
+
 }  // namespace tricyl::scenes

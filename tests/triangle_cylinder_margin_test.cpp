@@ -373,25 +373,14 @@ TEST(Margin, HostileExponentsAgreeWithOracle) {
   const std::uint64_t seed = test::baseSeed();
   SCOPED_TRACE(test::seedTrace(seed));
   scenes::Rng g(seed ^ 0x486f7374u);
-  auto wild = [&g](int lo, int hi) {
-    const double f = 1.0 + g.uniform();
-    const int e = lo + g.integer(hi - lo + 1);
-    return (g.coin() ? -1.0 : 1.0) * std::ldexp(f < 2 ? f : 1.0, e);
-  };
+  auto next = [&g] { return g.next(); };
   const long n = test::scaled(40);
   for (const int len_hi : {40, 1020}) {
     const int rot_hi = len_hi == 40 ? 0 : 1020;
     long within = 0;
     test::StageCounts stages;
     for (long i = 0; i < n; ++i) {
-      TriCase k;
-      auto len = [&] { return wild(-1070, len_hi); };
-      k.cyl = {std::fabs(len()), std::fabs(len())};
-      for (auto& row : k.pose.R)
-        for (double& r : row) r = wild(-1070, rot_hi);
-      k.pose.t = {len(), len(), len()};
-      k.tri = {
-          {len(), len(), len()}, {len(), len(), len()}, {len(), len(), len()}};
+      const TriCase k = scenes::randomExponentCase(next, len_hi, rot_hi);
       double big = std::max(k.cyl.radius, k.cyl.lz);
       for (const V* p : {&k.tri.a, &k.tri.b, &k.tri.c, &k.pose.t})
         big =
@@ -399,7 +388,8 @@ TEST(Margin, HostileExponentsAgreeWithOracle) {
       // Relative to the largest length, or to the cylinder's size: both
       // answers occur, and the tori are reached.
       const double ref = i % 2 == 0 ? big : std::max(k.cyl.radius, k.cyl.lz);
-      const double m = std::ldexp(std::fabs(wild(-60, 0)), std::ilogb(ref));
+      const double m = std::ldexp(
+          std::fabs(scenes::randomExponent(next, -60, 0)), std::ilogb(ref));
       SCOPED_TRACE("case " + std::to_string(i) + " " + describe(k, m));
       const bool want = oracleWithin(k, m);
       const Decision d = decideWithinDistance(k.cyl, k.pose, k.tri, m);
