@@ -157,24 +157,6 @@ struct MarginRow {
   Sample within_ns, intersect_ns;  // tricyl::withinDistance, intersect
 };
 
-/// The case `i` of a distance family: the family's scene, for 3 in 4 of
-/// them moved apart along a random direction by 10^-15 .. 10^3 (log-
-/// uniform) of the cylinder's size max(r, lz).
-scenes::TriCase distanceCase(scenes::Family f, std::uint64_t seed,
-                             std::uint64_t i) {
-  scenes::TriCase k = scenes::generate(f, seed ^ 0x64697374616e6365ULL, i);
-  if (i % 4 == 0) return k;
-  scenes::Rng g(seed * 0x2545f4914f6cdd1dULL ^ (std::uint64_t(f) << 48) ^ i);
-  const double size = std::max(k.cyl.radius, k.cyl.lz);
-  const double s = g.logUniform(1e-15, 1e3) * size;
-  const scenes::internal::V u = scenes::internal::randomUnit(g);
-  const scenes::internal::V T = scenes::internal::scale(u, s);
-  k.tri.a = scenes::internal::add(k.tri.a, T);
-  k.tri.b = scenes::internal::add(k.tri.b, T);
-  k.tri.c = scenes::internal::add(k.tri.c, T);
-  return k;
-}
-
 std::string fmt(double x) {
   if (std::isnan(x)) return "-";
   char b[32];
@@ -246,7 +228,8 @@ std::string run(const Options& o) {
   for (std::size_t f = 0; f < fams.size(); ++f) {
     // ---- distances ----
     for (long i = 0; i < o.cases; ++i) {
-      const scenes::TriCase k = distanceCase(fams[f], o.seed, std::uint64_t(i));
+      const scenes::TriCase k =
+          scenes::distanceCase(fams[f], o.seed, std::uint64_t(i));
       const oracle::DistanceEnclosure e =
           oracle::distanceEnclosure(k.cyl, k.pose, k.tri);
       const double truth = e.mid_hi;
@@ -284,8 +267,8 @@ std::string run(const Options& o) {
     // ---- margins ----
     MarginRow& mr = mrows[f];
     for (long i = 0; i < o.margin_cases; ++i) {
-      const scenes::TriCase k =
-          distanceCase(fams[f], o.seed ^ 0x6d617267696eULL, std::uint64_t(i));
+      const scenes::TriCase k = scenes::distanceCase(
+          fams[f], o.seed ^ 0x6d617267696eULL, std::uint64_t(i));
       const oracle::DistanceEnclosure e =
           oracle::distanceEnclosure(k.cyl, k.pose, k.tri);
       const double size = std::max(k.cyl.radius, k.cyl.lz);

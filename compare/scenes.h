@@ -23,6 +23,7 @@
 //            axis, edges through the rim; exactly representable poses.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <iterator>
@@ -471,6 +472,56 @@ inline TriCase generate(Family family, std::uint64_t seed,
       return internal::alignedCase(g);
   }
   return {};
+}
+
+/// The case `i` of a distance family (tricyl-compare's distance and margin
+/// families, tricyl-margin-stage-costs): the family's scene, for 3 in 4 of
+/// them moved apart along a random direction by 10^-15 .. 10^3 (log-
+/// uniform) of the cylinder's size max(r, lz).
+inline TriCase distanceCase(Family f, std::uint64_t seed, std::uint64_t i) {
+  TriCase k = generate(f, seed ^ 0x64697374616e6365ULL, i);
+  if (i % 4 == 0) return k;
+  Rng g(seed * 0x2545f4914f6cdd1dULL ^ (std::uint64_t(f) << 48) ^ i);
+  const double size = std::max(k.cyl.radius, k.cyl.lz);
+  const double s = g.logUniform(1e-15, 1e3) * size;
+  const internal::V u = internal::randomUnit(g);
+  const internal::V T = internal::scale(u, s);
+  k.tri.a = internal::add(k.tri.a, T);
+  k.tri.b = internal::add(k.tri.b, T);
+  k.tri.c = internal::add(k.tri.c, T);
+  return k;
+}
+
+/// Hostile input with random exponents (tricyl-margin-stage-costs and the
+/// margin tests; the Boolean's set of tricyl-stage-costs is drawn the same
+/// way): every length (sizes, translation, vertices) sign * (1 + f) *
+/// 2^e with e uniform in [-1070, len_hi], every rotation entry with e in
+/// [-1070, rot_hi] (not a rotation), from the 64-bit draws of `next`:
+/// mantissa, exponent, sign, in that order. The sizes are made
+/// non-negative.
+template <class Next>
+double randomExponent(Next& next, int lo, int hi) {
+  const double f = 1.0 + double(next() >> 12) * 0x1p-52;
+  const int e = lo + int(next() % std::uint64_t(hi - lo + 1));
+  return ((next() & 1) ? -1.0 : 1.0) * std::ldexp(f, e);
+}
+template <class Next>
+TriCase randomExponentCase(Next& next, int len_hi, int rot_hi) {
+  auto len = [&] { return randomExponent(next, -1070, len_hi); };
+  TriCase k;
+  k.cyl.radius = std::fabs(len());
+  k.cyl.lz = std::fabs(len());
+  for (auto& row : k.pose.R)
+    for (double& r : row) r = randomExponent(next, -1070, rot_hi);
+  k.pose.t.x = len();
+  k.pose.t.y = len();
+  k.pose.t.z = len();
+  for (Vec3<double>* v : {&k.tri.a, &k.tri.b, &k.tri.c}) {
+    v->x = len();
+    v->y = len();
+    v->z = len();
+  }
+  return k;
 }
 
 }  // namespace tricyl::scenes

@@ -36,27 +36,34 @@
 // Stages of the tori. Edges: a double filter with running error bounds (the
 // rules of RunningDoubleKernel, src/filter.h) on the inputs scaled by a
 // power of two to unit size, in which L and Q are decided by their Bernstein
-// coefficients on [0, 1] with de Casteljau subdivision (all coefficients
-// > 0: no point of the edge is inside; an end value < 0: a point is), to a
-// fixed depth and a fixed number of intervals; the edges it leaves open in
-// GMP integers, the quartic by its ends, its Bernstein coefficients and its
-// Sturm sequence on (0, 1), the quadratic by its ends and vertex. The face:
-// the stage driver of src/stages.h (FilterKernel, then the adaptive kernel)
-// on the scaled inputs. Every stage does a bounded amount of work;
+// coefficients on [0, 1] (formed from the end points) with de Casteljau
+// subdivision (all coefficients > 0: no point of the edge is inside; an end
+// value < 0: a point is), to a fixed depth and a fixed number of intervals;
+// the edges it leaves open the same in double-word (DoubleWordKernel), then
+// in GMP integers, the quartic by its ends, its Bernstein coefficients and
+// its Sturm sequence on (0, 1), the quadratic by its ends and vertex. Where
+// the exact scaling fails or the inputs are outside the range gate, the
+// filter runs on rescaled inputs in UnderflowKernel (no absolute slack)
+// before GMP. The face: the stage driver of src/stages.h (FilterKernel, then
+// the adaptive kernel) on the scaled inputs (UnderflowKernel, then GMP, in
+// the other case). Every stage does a bounded amount of work;
 // docs/margin.md has the derivations and the exactness argument.
 #include "tricyl/triangle_cylinder_margin.h"
 
 #include <gmpxx.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "cylinder_queries_impl.h"
+#include "eft.h"
 #include "filter.h"
 #include "margin_sturm.h"
 #include "stages.h"
@@ -67,6 +74,7 @@ namespace tricyl {
 namespace {
 
 using detail::kAnd;
+using detail::kEdge;
 using detail::kOr;
 using detail::Sign;
 using detail::Tri;
@@ -246,6 +254,113 @@ void edgePolys(const TorusInput<K>& t, int a, int b, typename K::Num* l,
 
 using Rd = detail::Rd;
 
+/// The running-bound filter of src/filter.h with the underflow of the bound
+/// computations themselves charged to the bounds, so that its signs need no
+/// absolute slack (RunningKernel's kAbs = 2^-600, valid only for inputs
+/// under the range gate) and values far below 2^-600 can be certified: the
+/// torus filter on hostile inputs (torusRobustInput). Rules, with u' and
+/// eta (the smallest subnormal) as in src/filter.h:
+///   a + b:  e = e_a + e_b + u' |v| + eta
+///   a * b:  e = |v_a| e_b + |v_b| e_a + e_a e_b + u' |v| + 4 eta.
+/// The exact bound of a sum is e_a + e_b + |v - (v_a + v_b)|, the rounding
+/// of a sum being within u' |v| (exact in the subnormal range); of a
+/// product |v_a| e_b + |v_b| e_a + e_a e_b + u' |v| + eta / 2 (the last
+/// for an underflowed v). Computing e rounds to nearest: relatively
+/// (non-negative terms; at most 8 roundings per operation, a factor
+/// (1 - u)^8 per operation, covered by the final inflation (1 + 2^-40) for
+/// chains of up to 1000 operations: the deepest here, a Bernstein
+/// coefficient after 24 halvings, is about 130), and absolutely by at most
+/// eta / 2 per rounding that underflows (the product's four products, the
+/// sum's one: covered by the added eta terms). sign() compares v with
+/// fl(e (1 + 2^-40)) + eta, the last covering that product's underflow.
+struct Ru {
+  double v;
+  double e;
+};
+constexpr double kEta = std::numeric_limits<double>::denorm_min();
+inline Ru operator+(Ru a, Ru b) {
+  const double v = a.v + b.v;
+  return {v, a.e + b.e + detail::kU1d * std::fabs(v) + kEta};
+}
+inline Ru operator-(Ru a, Ru b) {
+  const double v = a.v - b.v;
+  return {v, a.e + b.e + detail::kU1d * std::fabs(v) + kEta};
+}
+inline Ru operator-(Ru a) { return {-a.v, a.e}; }
+inline Ru operator*(Ru a, Ru b) {
+  const double v = a.v * b.v;
+  return {v, std::fabs(a.v) * b.e + std::fabs(b.v) * a.e + a.e * b.e +
+                 detail::kU1d * std::fabs(v) + 4 * kEta};
+}
+struct UnderflowKernel {
+  using Num = Ru;
+  static constexpr bool kExact = false;
+  static Num lift(double x) { return {x, 0}; }
+  static Sign sign(const Num& a) {
+    const double bound = a.e * (1 + 0x1p-40) + kEta;
+    if (a.v > bound) return Sign::kPos;
+    if (a.v < -bound) return Sign::kNeg;
+    return Sign::kUnknown;
+  }
+};
+using Uk = UnderflowKernel;
+
+/// Double-word values with a running bound: the intermediate stage of the
+/// torus edges (Stage::kExtended), between the double filter and GMP, on
+/// the exactly scaled inputs. The near-ties that the double filter cannot
+/// separate (a margin a few ulps from an edge's distance to a rim, where Q's
+/// minimum is about 2^-52 of its coefficients and below the double
+/// filter's resolution) are mostly certified here, at a fraction of the
+/// cost of the Sturm sequence. Rules, with the double-word error bounds of
+/// src/eft.h (|x| read as |hi| + |lo|):
+///   a + b:  e = e_a + e_b + 2^-104 (|a| + |b|) + 2^-1060
+///   a * b:  e = |a| e_b + |b| e_a + e_a e_b + 2^-103 |a| |b| + 2^-1060
+/// (2^-1060 = kDwTiny, each operation's absolute allowance for underflow,
+/// which also covers the underflow of these bound computations: a few
+/// times 2^-1075). e is computed in double rounded to nearest from
+/// non-negative terms, short by at most (1 - u)^8 per operation: covered by
+/// the inflation (1 + 2^-40) at the sign for chains of up to 1000
+/// operations (the deepest Bernstein coefficient is about 130). sign():
+/// hi + lo - E has the bound e, so hi > e + |lo| certifies a positive value
+/// (the sum and the inflation rounded up by a further 2^-50).
+struct Rw {
+  detail::DW v;
+  double e;
+};
+inline double mag(const Rw& a) { return std::fabs(a.v.hi) + std::fabs(a.v.lo); }
+inline Rw operator+(Rw a, Rw b) {
+  return {detail::dwAdd(a.v, b.v),
+          a.e + b.e + detail::kDwAddRel * (mag(a) + mag(b)) + detail::kDwTiny};
+}
+inline Rw operator-(Rw a) { return {detail::dwNeg(a.v), a.e}; }
+inline Rw operator-(Rw a, Rw b) { return a + (-b); }
+inline Rw operator*(Rw a, Rw b) {
+  const double ma = mag(a), mb = mag(b);
+  return {detail::dwMul(a.v, b.v), ma * b.e + mb * a.e + a.e * b.e +
+                                       detail::kDwRel * (ma * mb) +
+                                       detail::kDwTiny};
+}
+struct DoubleWordKernel {
+  using Num = Rw;
+  static constexpr bool kExact = false;
+  static Num lift(double x) { return {{x, 0}, 0}; }
+  /// a - b exactly as a double-word (TwoSum; the inputs are finite and
+  /// scaled to unit size, so nothing overflows).
+  static Num inputDiff(double a, double b) {
+    Num d{{0, 0}, 0};
+    detail::twoSum(a, -b, d.v.hi, d.v.lo);
+    return d;
+  }
+  static Sign sign(const Num& a) {
+    const double t =
+        (a.e * (1 + 0x1p-40) + std::fabs(a.v.lo)) * (1 + 0x1p-50) + kEta;
+    if (a.v.hi > t) return Sign::kPos;
+    if (a.v.hi < -t) return Sign::kNeg;
+    return Sign::kUnknown;
+  }
+};
+using Wk = DoubleWordKernel;
+
 /// Is some value of the polynomial with Bernstein coefficients b[0..n] on
 /// an interval <= 0? kTrue if an end value is certainly < 0, kFalse if every
 /// coefficient is certainly > 0 (convex-hull property), else subdivides at
@@ -254,47 +369,91 @@ using Rd = detail::Rd;
 /// `*budget` intervals in all (a near-double root needs a few intervals per
 /// level around it; a polynomial that is 0 within its bound everywhere, e.g.
 /// a point edge on the torus, would need all 2^depth).
-Tri bernsteinAnyNonPos(const Rd* b, int n, int depth, int* budget) {
+template <class K>
+Tri bernsteinAnyNonPos(const typename K::Num* b, int n, int depth,
+                       int* budget) {
+  using N = typename K::Num;
   if (--*budget < 0) return Tri::kUnknown;
-  const Sign s0 = Rk::sign(b[0]), sn = Rk::sign(b[n]);
+  const Sign s0 = K::sign(b[0]), sn = K::sign(b[n]);
   if (s0 == Sign::kNeg || sn == Sign::kNeg) return Tri::kTrue;
-  bool all_pos = true;
-  for (int i = 0; i <= n; ++i)
-    if (Rk::sign(b[i]) != Sign::kPos) all_pos = false;
+  bool all_pos = true, all_unknown = true;
+  for (int i = 0; i <= n; ++i) {
+    const Sign si = K::sign(b[i]);
+    if (si != Sign::kPos) all_pos = false;
+    if (si != Sign::kUnknown) all_unknown = false;
+  }
   if (all_pos) return Tri::kFalse;
-  if (depth == 0) return Tri::kUnknown;
-  Rd left[5], right[5], w[5];
+  // Every coefficient within its bound of 0: so is every coefficient of
+  // every sub-interval (a convex combination of these, whose bound is at
+  // least the same combination of their bounds), so halving cannot decide.
+  if (all_unknown || depth == 0) return Tri::kUnknown;
+  N left[5], right[5], w[5];
   for (int i = 0; i <= n; ++i) w[i] = b[i];
-  const Rd half = Rk::lift(0.5);
+  const N half = K::lift(0.5);
   for (int k = 0; k <= n; ++k) {
     left[k] = w[0];
     right[n - k] = w[n - k];
     for (int i = 0; i < n - k; ++i) w[i] = (w[i] + w[i + 1]) * half;
   }
-  const Tri l = bernsteinAnyNonPos(left, n, depth - 1, budget);
+  const Tri l = bernsteinAnyNonPos<K>(left, n, depth - 1, budget);
   if (l == Tri::kTrue) return l;
-  return kOr(l, bernsteinAnyNonPos(right, n, depth - 1, budget));
+  return kOr(l, bernsteinAnyNonPos<K>(right, n, depth - 1, budget));
 }
 
+/// Halving depth, and intervals per polynomial: the double filter gives up
+/// sooner, since the double-word stage behind it resolves near-ties with
+/// far fewer intervals (its coefficients are 2^50 times sharper); the
+/// hostile path (UnderflowKernel) has no stage behind it but GMP.
 constexpr int kBernsteinDepth = 24;
-constexpr int kBernsteinBudget = 96;
+template <class K>
+constexpr int kBernsteinBudget =
+    std::is_same_v<K, detail::RunningDoubleKernel> ? 24 : 96;
 
-Tri edgeFilter(const TorusInput<Rk>& t, int a, int b) {
-  Rd l[3], q[5];
-  edgePolys<Rk>(t, a, b, l, q);
-  auto k = [](double v) { return Rk::lift(v); };
-  // Bernstein coefficients times 2 (L) and 12 (Q): power -> Bernstein.
-  const Rd lb[3] = {k(2) * l[0], k(2) * l[0] + l[1],
-                    k(2) * (l[0] + l[1] + l[2])};
-  const Rd q0 = k(12) * q[0];
-  const Rd qb[5] = {q0, q0 + k(3) * q[1], q0 + k(6) * q[1] + k(2) * q[2],
-                    q0 + k(9) * q[1] + k(6) * q[2] + k(3) * q[3],
-                    k(12) * ((q[0] + q[1]) + (q[2] + q[3]) + q[4])};
-  int budget = kBernsteinBudget;
-  const Tri tq = bernsteinAnyNonPos(qb, 4, kBernsteinDepth, &budget);
+/// The Bernstein coefficients on [0, 1] of L (lb) and 6 Q (qb) along the
+/// edge a -> b, formed from the end points directly: with A and B the
+/// vectors from the rim's centre, (X, Y, Z - C), at the ends,
+/// K0 = R^2 - M^2 and rho^2 = (p0, p1, p2) in Bernstein form
+/// (A_xy . A_xy, A_xy . B_xy, B_xy . B_xy),
+///   L:  (A . A + K0, A . B + K0, B . B + K0),
+/// and Q = L^2 - 4 R^2 rho^2 by the Bernstein product rule (degree 2 times
+/// degree 2: c_k = sum_{i+j=k} C(2,i) C(2,j) / C(4,k) l_i l_j) and the
+/// degree elevation of rho^2 to 4 ((p0, (p0+p1)/2, (p0+4p1+p2)/6, ...)).
+/// The end coefficients are L and Q at the vertices, computed from that
+/// vertex alone: a vertex close to a small torus keeps its tiny values
+/// (the power basis would form them as differences of large coefficients).
+template <class K>
+void edgeBernstein(const TorusInput<K>& t, int a, int b, typename K::Num* lb,
+                   typename K::Num* qb) {
+  using N = typename K::Num;
+  const N za = t.Z[a] - t.C, zb = t.Z[b] - t.C;
+  const N p0 = t.X[a] * t.X[a] + t.Y[a] * t.Y[a];
+  const N p1 = t.X[a] * t.X[b] + t.Y[a] * t.Y[b];
+  const N p2 = t.X[b] * t.X[b] + t.Y[b] * t.Y[b];
+  const N k0 = t.R * t.R - t.M * t.M;
+  lb[0] = p0 + za * za + k0;
+  lb[1] = p1 + za * zb + k0;
+  lb[2] = p2 + zb * zb + k0;
+  const N R2 = t.R * t.R;
+  const N R4 = (R2 + R2) + (R2 + R2);
+  const N R12 = (R4 + R4) + R4;
+  const N six = K::lift(6), two = K::lift(2), four = K::lift(4);
+  qb[0] = six * (lb[0] * lb[0]) - (R12 + R12) * p0;
+  qb[1] = six * (lb[0] * lb[1]) - R12 * (p0 + p1);
+  qb[2] = two * (lb[0] * lb[2]) + four * (lb[1] * lb[1]) -
+          R4 * ((p0 + p2) + four * p1);
+  qb[3] = six * (lb[1] * lb[2]) - R12 * (p1 + p2);
+  qb[4] = six * (lb[2] * lb[2]) - (R12 + R12) * p2;
+}
+
+template <class K>
+Tri edgeFilter(const TorusInput<K>& t, int a, int b) {
+  typename K::Num lb[3], qb[5];
+  edgeBernstein<K>(t, a, b, lb, qb);
+  int budget = kBernsteinBudget<K>;
+  const Tri tq = bernsteinAnyNonPos<K>(qb, 4, kBernsteinDepth, &budget);
   if (tq == Tri::kTrue) return tq;
-  budget = kBernsteinBudget;
-  return kOr(tq, bernsteinAnyNonPos(lb, 2, kBernsteinDepth, &budget));
+  budget = kBernsteinBudget<K>;
+  return kOr(tq, bernsteinAnyNonPos<K>(lb, 2, kBernsteinDepth, &budget));
 }
 
 // ---- The exact stage: GMP integers, Sturm sequence ------------------------
@@ -325,11 +484,11 @@ bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
 
 /// The edges of one torus in the filter: kTrue if one certainly meets it,
 /// kFalse if none does; `open[e]` flags the edges left open.
-Tri edgesFilter(const TorusInput<Rk>& t, bool* open) {
-  static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+template <class K>
+Tri edgesFilter(const TorusInput<K>& t, bool* open) {
   detail::AnyOf any;
   for (int e = 0; e < 3; ++e) {
-    const Tri r = edgeFilter(t, kEdge[e][0], kEdge[e][1]);
+    const Tri r = edgeFilter<K>(t, kEdge[e][0], kEdge[e][1]);
     open[e] = r == Tri::kUnknown;
     if (any.add(r)) return Tri::kTrue;
   }
@@ -359,44 +518,103 @@ struct Query {
   }
 };
 
+/// A finite double as m 2^e with m an odd integer (|m| < 2^53), or m = 0.
+struct Dyadic {
+  std::int64_t m = 0;
+  int e = 0;
+};
+Dyadic dyadic(double x) {
+  if (x == 0) return {};
+  int e = 0;
+  const double f = std::frexp(x, &e);  // x = f 2^e, 0.5 <= |f| < 1
+  std::int64_t m = std::int64_t(std::ldexp(f, 53));
+  e -= 53;
+  while ((m & 1) == 0) {
+    m /= 2;
+    ++e;
+  }
+  return {m, e};
+}
+
 /// The doubled local coordinates and sizes of the torus at height sgn * h,
 /// exactly, mirrored in z for the bottom one (sgn = -1) so that its rim is
-/// at +lz, all multiplied by one power of two that makes them integers
-/// (every value here is a dyadic rational).
+/// at +lz, all multiplied by one power of two that makes them integers.
+/// Every length input is an integer times 2^eL (eL the least exponent of
+/// the nonzero lengths' odd mantissas) and every rotation entry an integer
+/// times 2^eR, so the local coordinates are integers times 2^(eL + eR):
+/// the unit is 2^(eL + min(eR, 0)), in which the sizes are integers too.
+/// Integer shifts only (no rationals, no gcd).
 TorusInput<ZKernel> torusExactInput(const Query& q, int sgn) {
   const Vec3<double>* v[3] = {&q.tri.a, &q.tri.b, &q.tri.c};
-  mpq_class vals[12];  // X, Y, Z of the three vertices, then R, M, C
+  Dyadic len[14];  // the 9 vertex coordinates, t, then r, m, lz
   for (int i = 0; i < 3; ++i) {
-    const mpq_class d[3] = {mpq_class(v[i]->x) - q.pose.t.x,
-                            mpq_class(v[i]->y) - q.pose.t.y,
-                            mpq_class(v[i]->z) - q.pose.t.z};
-    for (int k = 0; k < 3; ++k)
-      vals[3 * i + k] = 2 * (mpq_class(q.pose.R[0][k]) * d[0] +
-                             mpq_class(q.pose.R[1][k]) * d[1] +
-                             mpq_class(q.pose.R[2][k]) * d[2]);
-    if (sgn < 0) vals[3 * i + 2] = -vals[3 * i + 2];
+    len[3 * i] = dyadic(v[i]->x);
+    len[3 * i + 1] = dyadic(v[i]->y);
+    len[3 * i + 2] = dyadic(v[i]->z);
   }
-  vals[9] = 2 * mpq_class(q.cyl.radius);
-  vals[10] = 2 * mpq_class(q.m);
-  vals[11] = mpq_class(q.cyl.lz);
-  // The largest denominator (a power of two) is a common one.
-  mpz_class den = 1;
-  for (const auto& x : vals)
-    if (x.get_den() > den) den = x.get_den();
-  mpz_class ints[12];
-  for (int i = 0; i < 12; ++i)
-    mpz_divexact(ints[i].get_mpz_t(),
-                 mpz_class(vals[i].get_num() * den).get_mpz_t(),
-                 vals[i].get_den_mpz_t());
+  len[9] = dyadic(q.pose.t.x);
+  len[10] = dyadic(q.pose.t.y);
+  len[11] = dyadic(q.pose.t.z);
+  const Dyadic sizes[3] = {dyadic(q.cyl.radius), dyadic(q.m), dyadic(q.cyl.lz)};
+  Dyadic rot[3][3];
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k < 3; ++k) rot[j][k] = dyadic(q.pose.R[j][k]);
+  int eL = std::numeric_limits<int>::max(), eR = eL;
+  for (const Dyadic& d : len)
+    if (d.m != 0) eL = std::min(eL, d.e);
+  for (const Dyadic& d : sizes)
+    if (d.m != 0) eL = std::min(eL, d.e);
+  for (const auto& row : rot)
+    for (const Dyadic& d : row)
+      if (d.m != 0) eR = std::min(eR, d.e);
+  if (eL == std::numeric_limits<int>::max()) eL = 0;  // every length 0
+  if (eR == std::numeric_limits<int>::max()) eR = 0;  // R = 0
+  // x 2^(e - unit) as an integer (e >= unit).
+  auto toInt = [](const Dyadic& d, int unit) {
+    mpz_class z = static_cast<long>(d.m);
+    if (d.m != 0)
+      mpz_mul_2exp(z.get_mpz_t(), z.get_mpz_t(), mp_bitcnt_t(d.e - unit));
+    return z;
+  };
+  mpz_class diff[3][3];  // v_i - t in units of 2^eL
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k)
+      diff[i][k] = toInt(len[3 * i + k], eL) - toInt(len[9 + k], eL);
+  mpz_class rz[3][3];  // R in units of 2^eR
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k < 3; ++k) rz[j][k] = toInt(rot[j][k], eR);
+  // Local coordinates in units of 2^(eL + eR), moved to the common unit
+  // 2^(eL + min(eR, 0)), doubled (one more bit) for X, Y, Z.
+  const mp_bitcnt_t local_shift = mp_bitcnt_t(std::max(eR, 0) + 1);
+  const int unit = eL + std::min(eR, 0);
   TorusInput<ZKernel> t;
   for (int i = 0; i < 3; ++i) {
-    t.X[i] = ints[3 * i];
-    t.Y[i] = ints[3 * i + 1];
-    t.Z[i] = ints[3 * i + 2];
+    mpz_class c[3];
+    for (int k = 0; k < 3; ++k) {
+      c[k] =
+          rz[0][k] * diff[i][0] + rz[1][k] * diff[i][1] + rz[2][k] * diff[i][2];
+      mpz_mul_2exp(c[k].get_mpz_t(), c[k].get_mpz_t(), local_shift);
+    }
+    t.X[i] = c[0];
+    t.Y[i] = c[1];
+    t.Z[i] = sgn < 0 ? mpz_class(-c[2]) : c[2];
   }
-  t.R = ints[9];
-  t.M = ints[10];
-  t.C = ints[11];
+  // R = 2r, M = 2m, C = lz in the same unit.
+  t.R = toInt(sizes[0], unit - 1);
+  t.M = toInt(sizes[1], unit - 1);
+  t.C = toInt(sizes[2], unit);
+  // The unit above is a common one, not the largest: divide out the power
+  // of two that all twelve share (the torus test is invariant under it),
+  // so that the integers are no longer than the values need.
+  mpz_class* all[12] = {&t.X[0], &t.X[1], &t.X[2], &t.Y[0], &t.Y[1], &t.Y[2],
+                        &t.Z[0], &t.Z[1], &t.Z[2], &t.R,    &t.M,    &t.C};
+  mp_bitcnt_t tz = ~mp_bitcnt_t(0);
+  for (const mpz_class* z : all)
+    if (mpz_sgn(z->get_mpz_t()) != 0)
+      tz = std::min(tz, mpz_scan1(z->get_mpz_t(), 0));
+  if (tz != ~mp_bitcnt_t(0) && tz > 0)
+    for (mpz_class* z : all)
+      mpz_tdiv_q_2exp(z->get_mpz_t(), z->get_mpz_t(), tz);
   return t;
 }
 
@@ -458,6 +676,75 @@ TorusInput<K> torusInput(const detail::TriCylLocal<K>& l, double m, bool top) {
   return t;
 }
 
+/// The tori's inputs for the filter when the exact scaling of scaleInputs
+/// fails (a length would become subnormal) or the inputs are outside the
+/// range gate: every length scaled by 2^-k (k the exponent of the largest
+/// length), the rotation by 2^-j (j >= 0 the exponent of its largest
+/// entry) and the sizes by 2^-(k + j) as well, so that the local
+/// coordinates R^T (p - t) scale by the same 2^-(k + j) as the sizes (the
+/// torus test is invariant under a common scaling), then all of them by a
+/// last power of two that brings the largest to [1, 2). A scaled input that
+/// rounded (it became subnormal) is off by less than the smallest
+/// subnormal, which it carries as its error bound, and everything is in
+/// UnderflowKernel, whose bounds need no absolute slack: values far below
+/// 2^-600 are certified where their bounds allow it. Every magnitude stays
+/// below 24 for the coordinates and 2^60 in the tests (no overflow). Needs
+/// q.scan() first and q.max_len > 0.
+TorusInput<Uk> torusRobustInput(const Query& q, bool top) {
+  constexpr double eta = kEta;
+  const int k = std::ilogb(q.max_len);
+  const int j =
+      q.max_unitless > 0 ? std::max(0, std::ilogb(q.max_unitless)) : 0;
+  auto sc = [](double v, int e) -> Ru {
+    const double w = std::ldexp(v, -e);
+    return {w, std::ldexp(w, e) == v ? 0.0 : eta};
+  };
+  const Ru tx = sc(q.pose.t.x, k), ty = sc(q.pose.t.y, k),
+           tz = sc(q.pose.t.z, k);
+  Ru R[3][3];
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) R[a][b] = sc(q.pose.R[a][b], j);
+  const Vec3<double>* v[3] = {&q.tri.a, &q.tri.b, &q.tri.c};
+  const Ru two = Uk::lift(2.0);
+  TorusInput<Uk> t;
+  for (int i = 0; i < 3; ++i) {
+    const Ru d[3] = {sc(v[i]->x, k) - tx, sc(v[i]->y, k) - ty,
+                     sc(v[i]->z, k) - tz};
+    Ru c[3];
+    for (int b = 0; b < 3; ++b)
+      c[b] = two * ((R[0][b] * d[0] + R[1][b] * d[1]) + R[2][b] * d[2]);
+    t.X[i] = c[0];
+    t.Y[i] = c[1];
+    t.Z[i] = top ? c[2] : -c[2];
+  }
+  t.R = two * sc(q.cyl.radius, k + j);
+  t.M = two * sc(q.m, k + j);
+  t.C = sc(q.cyl.lz, k + j);
+  // The largest length need not be one that the torus test sees (a huge
+  // coordinate along an axis that a tiny rotation entry maps, a huge
+  // margin on the other torus...): scale up once more so that the largest
+  // of these values is in [1, 2). Scaling up by a power of two is exact for
+  // the values and for their bounds (UnderflowKernel's bounds already hold
+  // the absolute losses of underflow).
+  double big = std::max({std::fabs(t.R.v), std::fabs(t.M.v), std::fabs(t.C.v)});
+  for (int i = 0; i < 3; ++i)
+    big = std::max(
+        {big, std::fabs(t.X[i].v), std::fabs(t.Y[i].v), std::fabs(t.Z[i].v)});
+  if (big > 0 && big < 1) {
+    const int up = -std::ilogb(big);
+    auto grow = [up](Ru& x) { x = {std::ldexp(x.v, up), std::ldexp(x.e, up)}; };
+    for (int i = 0; i < 3; ++i) {
+      grow(t.X[i]);
+      grow(t.Y[i]);
+      grow(t.Z[i]);
+    }
+    grow(t.R);
+    grow(t.M);
+    grow(t.C);
+  }
+  return t;
+}
+
 /// The face part of one torus through the stage driver (src/stages.h):
 /// FilterKernel, then the adaptive kernel, on the scaled inputs; GMP
 /// dyadics alone on the original ones where the scaling is not exact.
@@ -469,7 +756,15 @@ Decision faceStage(const Query& q, const ScaledInputs& s, bool top) {
              : detail::makeLocal<K>(q.cyl, q.pose, q.tri, q.max_unitless);
     return faceFeet<K>(torusInput<K>(l, s.ok ? s.m : q.m, top));
   };
-  if (!s.ok) return detail::runAdaptive(pred, false);
+  if (!s.ok) {
+    if (q.max_len > 0) {
+      const Tri f = faceFeet<Uk>(torusRobustInput(q, top));
+      if (f != Tri::kUnknown)
+        return {f == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
+                Stage::kFastPath};
+    }
+    return detail::runAdaptive(pred, false);
+  }
   return detail::runStages(pred, 2.0, q.max_unitless);
 }
 
@@ -520,12 +815,46 @@ Stage stronger(Stage a, Stage b) {
 Decision yes(Stage s) { return {Answer::kIntersect, s}; }
 Decision no(Stage s) { return {Answer::kDisjoint, s}; }
 
+/// Inputs on which every call of the exact kernel is slow (its exact
+/// stages on dyadics whose products leave the floating-point expansions'
+/// exponent window, or inputs outside the range gate), read from the bits:
+/// a nonzero size, margin or coordinate below 2^-400, their exponents
+/// spanning more than 500, or one of them 2^40 or more. For
+/// these a sized part goes to its one exact run instead of bracketing the
+/// sum by kernel calls (measured by callgrind on the slowest queries of the
+/// hostile set inside the range gate: the calls cost up to 1.5 times the
+/// run). Only a cost decision: both ways are exact.
+bool wideSpread(const Query& q) {
+  static_assert(sizeof(Triangle<double>) == 9 * sizeof(double),
+                "packed coordinates");
+  // On the absolute values' bit patterns (monotone in the value): the
+  // largest and the smallest nonzero (b - 1 wraps for 0 and drops out of
+  // the minimum) of the sizes, the margin and the vertices' coordinates.
+  // The translation and the rotation are not read (a cheaper test that
+  // finds the hostile inputs of tricyl-margin-stage-costs as well).
+  constexpr std::uint64_t kAbs = ~(std::uint64_t(1) << 63);
+  std::uint64_t w[12];
+  std::memcpy(w, &q.cyl.radius, sizeof(double));
+  std::memcpy(w + 1, &q.cyl.lz, sizeof(double));
+  std::memcpy(w + 2, &q.m, sizeof(double));
+  std::memcpy(w + 3, &q.tri, 9 * sizeof(double));
+  std::uint64_t hi = 0, lo = ~std::uint64_t(0);
+  for (std::uint64_t b : w) {
+    b &= kAbs;
+    hi = b > hi ? b : hi;
+    lo = b - 1 < lo ? b - 1 : lo;
+  }
+  const int ehi = int(hi >> 52);
+  const int elo = lo == ~std::uint64_t(0) ? ehi : int((lo + 1) >> 52);
+  return elo < 1023 - 400 || ehi - elo > 500 || ehi >= 1023 + 40;
+}
+
 /// A sized part (grow_radius: Cyl(r + m, h), else Cyl(r, h + m)).
-/// `stage` accumulates the strongest stage used.
-bool cylinderPart(const Query& q, bool grow_radius, Stage* stage) {
+/// `stage` accumulates the strongest stage used; `wide` is wideSpread(q).
+bool cylinderPart(const Query& q, bool grow_radius, bool wide, Stage* stage) {
   const TwoSum s =
       grow_radius ? twoSum(q.cyl.radius, q.m) : twoSum(q.cyl.lz, 2 * q.m);
-  if (s.finite && std::isfinite(2 * q.m)) {
+  if (!wide && s.finite && std::isfinite(2 * q.m)) {
     const double r = grow_radius ? s.down() : q.cyl.radius;
     const double lz = grow_radius ? q.cyl.lz : s.down();
     if (intersects(r, lz, q)) return true;  // a subset: exact yes
@@ -562,8 +891,9 @@ Decision decide(Query& q) {
   }
   if (!validated && !q.scan()) return {Answer::kInvalidInput, Stage::kInvalid};
   Stage stage = Stage::kFastPath;
-  if (cylinderPart(q, true, &stage)) return yes(stage);
-  if (cylinderPart(q, false, &stage)) return yes(stage);
+  const bool wide = wideSpread(q);
+  if (cylinderPart(q, true, wide, &stage)) return yes(stage);
+  if (cylinderPart(q, false, wide, &stage)) return yes(stage);
   // The tori. The triangle misses C here, hence the rim circles. Edges
   // first (the face part is complete only when they miss): the filter on
   // both tori, then GMP for the edges it left open, then the faces.
@@ -575,11 +905,36 @@ Decision decide(Query& q) {
     for (int i = 0; i < 2; ++i)
       if (edgesFilter(torusInput<Rk>(l, s.m, i == 0), open[i]) == Tri::kTrue)
         return yes(stage);
+  } else if (q.max_len > 0) {
+    for (int i = 0; i < 2; ++i)
+      if (edgesFilter(torusRobustInput(q, i == 0), open[i]) == Tri::kTrue)
+        return yes(stage);
   }
-  static constexpr int kEdge[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+  // The edges the double filter left open: double-word, on the same exactly
+  // scaled inputs (the hostile path has no such stage: its inputs are
+  // rounded, and its ties are rare).
+  if (s.ok && (open[0][0] || open[0][1] || open[0][2] || open[1][0] ||
+               open[1][1] || open[1][2])) {
+    stage = stronger(stage, Stage::kExtended);
+    const auto lw = detail::makeLocal<Wk>(s.cyl, s.pose, s.tri, q.max_unitless);
+    for (int i = 0; i < 2; ++i) {
+      if (!(open[i][0] || open[i][1] || open[i][2])) continue;
+      const TorusInput<Wk> tw = torusInput<Wk>(lw, s.m, i == 0);
+      for (int e = 0; e < 3; ++e) {
+        if (!open[i][e]) continue;
+        const Tri r = edgeFilter<Wk>(tw, kEdge[e][0], kEdge[e][1]);
+        if (r == Tri::kTrue) return yes(stage);
+        open[i][e] = r == Tri::kUnknown;
+      }
+    }
+  }
+  std::optional<TorusInput<ZKernel>> exact_top;  // the bottom one mirrors it
   for (int i = 0; i < 2; ++i) {
     if (!(open[i][0] || open[i][1] || open[i][2])) continue;
-    const TorusInput<ZKernel> t = torusExactInput(q, i == 0 ? 1 : -1);
+    if (!exact_top) exact_top = torusExactInput(q, 1);
+    TorusInput<ZKernel> t = *exact_top;
+    if (i == 1)
+      for (auto& z : t.Z) z = -z;
     stage = Stage::kExactGmp;
     for (int e = 0; e < 3; ++e)
       if (open[i][e] && edgeExact(t, kEdge[e][0], kEdge[e][1]))
