@@ -42,24 +42,6 @@ namespace tricyl::detail {
 // docs/exactness.md "Underflow"): below 2^-680 in all. The sign test covers
 // both: with b = (e + |v.lo|) (1 + 2^-40) + 2^-600, hi > b gives
 // E >= hi - |lo| - e_true > 0, and symmetrically.
-namespace {
-
-inline DwRun runAdd(const DwRun& a, const DwRun& b) {
-  DwRun r;
-  r.v = dwAdd(a.v, b.v);
-  r.e = a.e + b.e + kDwAddRel * (std::fabs(a.v.hi) + std::fabs(b.v.hi));
-  return r;
-}
-template <bool kFma>
-inline DwRun runMul(const DwRun& a, const DwRun& b) {
-  DwRun r;
-  r.v = dwMulT<kFma>(a.v, b.v);
-  const double ma = std::fabs(a.v.hi) + std::fabs(a.v.lo);
-  const double mb = std::fabs(b.v.hi) + std::fabs(b.v.lo);
-  r.e = ma * b.e + mb * a.e + a.e * b.e + kDwRel * std::fabs(r.v.hi) + kDwTiny;
-  return r;
-}
-}  // namespace
 
 // A local coordinate: dwCoordinate (src/dw_kernel.h) on the point's
 // exact differences; Z = 2 z: the same, doubled.
@@ -115,20 +97,20 @@ TRICYL_EFT_INLINE void Tape::dwNode(std::uint32_t id) {
     case kAdd: {
       const DwRun& a = get(nd.a);
       const DwRun& b = get(nd.b);
-      r = runAdd(a, b);
+      r = dwRunAdd(a, b);
       break;
     }
     case kSub: {
       const DwRun& a = get(nd.a);
       DwRun b = get(nd.b);
       b.v = dwNeg(b.v);
-      r = runAdd(a, b);
+      r = dwRunAdd(a, b);
       break;
     }
     default: {  // kMul
       const DwRun& a = get(nd.a);
       const DwRun& b = get(nd.b);
-      r = runMul<kFma>(a, b);
+      r = dwRunMul<kFma>(a, b);
       break;
     }
   }
@@ -139,7 +121,7 @@ TRICYL_EFT_INLINE void Tape::dwNode(std::uint32_t id) {
 void Tape::dwPlain(std::uint32_t id) { dwNode<TRICYL_HAVE_FMA != 0>(id); }
 
 #if TRICYL_FMA_DISPATCH
-// The same evaluation compiled for FMA (dwNode, dwCoord, runMul and the
+// The same evaluation compiled for FMA (dwNode, dwCoord, dwRunMul and the
 // double-word operations inline into it), for CPUs that have it
 // (fmaAtRunTime, src/eft.h): the same bits.
 __attribute__((target("fma"))) void Tape::dwFma(std::uint32_t id) {

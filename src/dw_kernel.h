@@ -67,6 +67,25 @@ struct DwRun {
   double e;
 };
 
+/// The running rules for inexact values (the header comment), shared by
+/// DwKernel and the tape (src/adaptive.cpp). T: Dwe or DwRun.
+template <class T>
+TRICYL_DW_INLINE T dwRunAdd(const T& a, const T& b) {
+  T r;
+  r.v = dwAdd(a.v, b.v);
+  r.e = a.e + b.e + kDwAddRel * (std::fabs(a.v.hi) + std::fabs(b.v.hi));
+  return r;
+}
+template <bool kFma, class T>
+TRICYL_DW_INLINE T dwRunMul(const T& a, const T& b) {
+  T r;
+  r.v = dwMulT<kFma>(a.v, b.v);
+  const double ma = std::fabs(a.v.hi) + std::fabs(a.v.lo);
+  const double mb = std::fabs(b.v.hi) + std::fabs(b.v.lo);
+  r.e = ma * b.e + mb * a.e + a.e * b.e + kDwRel * std::fabs(r.v.hi) + kDwTiny;
+  return r;
+}
+
 // Exact results of exact doubles: TwoSum and TwoProduct give hi + lo, and
 // lo = 0 keeps the bound 0; lo != 0 gets the bound kNotDouble (any bound
 // is valid for an exact value; this one only says "not a lone double").
@@ -80,9 +99,7 @@ TRICYL_DW_INLINE Dwe<kFma> dweAdd(const Dwe<kFma>& a, const Dwe<kFma>& b) {
     r.e = r.v.lo == 0 ? 0.0 : kNotDouble;
     return r;
   }
-  r.v = dwAdd(a.v, b.v);
-  r.e = a.e + b.e + kDwAddRel * (std::fabs(a.v.hi) + std::fabs(b.v.hi));
-  return r;
+  return dwRunAdd(a, b);
 }
 
 template <bool kFma>
@@ -114,11 +131,7 @@ TRICYL_DW_INLINE Dwe<kFma> operator*(const Dwe<kFma>& a, const Dwe<kFma>& b) {
       return r;
     }
   }
-  r.v = dwMulT<kFma>(a.v, b.v);
-  const double ma = std::fabs(a.v.hi) + std::fabs(a.v.lo);
-  const double mb = std::fabs(b.v.hi) + std::fabs(b.v.lo);
-  r.e = ma * b.e + mb * a.e + a.e * b.e + kDwRel * std::fabs(r.v.hi) + kDwTiny;
-  return r;
+  return dwRunMul<kFma>(a, b);
 }
 
 /// A product of two exact values of RunningExactKernel (src/filter.h).
