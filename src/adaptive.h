@@ -109,7 +109,9 @@ class Tape {
   Tape(const Tape&) = delete;
   Tape& operator=(const Tape&) = delete;
 
-  bool overflowed() const { return overflow_; }
+  /// Whether the driver must decide the query otherwise (with ExactKernel):
+  /// the tape overflowed, or a sign needed GMP (escalate).
+  bool overflowed() const { return overflow_ || abandoned_; }
   int size() const { return n_; }
   /// The strongest arithmetic any sign needed: 0 filter, 1 double-word,
   /// 2 expansions, 3 GMP.
@@ -207,6 +209,7 @@ class Tape {
   Dyadic dyadic(std::uint32_t id) const;
 
   bool overflow_ = false;
+  bool abandoned_ = false;
   // Coordinates to their own precision (dwCoordAccurate): set by the first
   // sign that the plain double-word values could not decide.
   bool accurate_ = false;

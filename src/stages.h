@@ -46,9 +46,11 @@ TRICYL_ADAPTIVE_NOINLINE Decision runAdaptive(const Pred& pred, bool gate) {
   }
   if (!tape.overflowed() && t != Tri::kUnknown)
     return {toAnswer(t), stageOfLevel(tape.level())};
-  // Not reached by any query of tricyl (their tapes stay far below
-  // Tape::kMaxNodes, tests/adaptive_stage_test.cpp); kept so that the
-  // answer is exact even then.
+  // A sign needed GMP (Tape::escalate: the whole query is decided in GMP
+  // once), or the tape overflowed (not reached by any query of tricyl:
+  // their tapes stay far below Tape::kMaxNodes,
+  // tests/adaptive_stage_test.cpp; kept so that the answer is exact even
+  // then).
   return {toAnswer(pred(KernelTag<ExactKernel>{}, &early)), Stage::kExactGmp};
 }
 
