@@ -222,64 +222,6 @@ struct RunningKernel {
   }
 };
 
-/// The running kernel with exact doubles tracked (the triangle's second
-/// stage, src/triangle_cylinder.cpp): a bound e = 0 means v IS the exact
-/// value. Inputs are exact; a sum or product of two exact values is
-/// re-checked with TwoSum / TwoProduct (src/eft.h; the product only when no
-/// underflow can touch its error term: |v| >= kProdExactMin, or a zero
-/// factor) and stays exact when its error term is 0. Inexact values follow
-/// the rules of Running above. sign() of an exact value is its sign, kZero
-/// included: exact poses on exact data (the aligned scenes) are decided
-/// here, ties and all, at the cost of one error-free transformation per
-/// operation of exact operands; values that are not exact pay one compare.
-struct Rx {
-  double v;
-  double e;
-};
-#if defined(__GNUC__) || defined(__clang__)
-#define TRICYL_RX_INLINE inline __attribute__((always_inline))
-#else
-#define TRICYL_RX_INLINE inline
-#endif
-TRICYL_RX_INLINE Rx operator+(Rx a, Rx b) {
-  const double v = a.v + b.v;
-  if (a.e + b.e == 0) {  // e >= 0: both exact
-    const double bb = v - a.v;
-    const double err = (a.v - (v - bb)) + (b.v - bb);  // TwoSum
-    return {v, err == 0 ? 0.0 : kU1d * std::fabs(v)};
-  }
-  return {v, a.e + b.e + kU1d * std::fabs(v)};
-}
-TRICYL_RX_INLINE Rx operator-(Rx a) { return {-a.v, a.e}; }
-TRICYL_RX_INLINE Rx operator-(Rx a, Rx b) { return a + (-b); }
-Rx mulExactOperands(Rx a, Rx b);  // src/eft.h's TwoProduct (below)
-TRICYL_RX_INLINE Rx operator*(Rx a, Rx b) {
-  if (a.e + b.e == 0) return mulExactOperands(a, b);
-  const double v = a.v * b.v;
-  return {v, std::fabs(a.v) * b.e + std::fabs(b.v) * a.e + a.e * b.e +
-                 kU1d * std::fabs(v) +
-                 std::numeric_limits<double>::denorm_min()};
-}
-/// Set when a kernel that tracks exact values certified an exact zero (a
-/// true tie: no error bound can), so that the driver reports the query as
-/// decided exactly (Stage::kExact). Statistics only; per thread.
-inline thread_local bool tls_exact_zero = false;
-
-struct RunningExactKernel {
-  using Num = Rx;
-  static constexpr bool kExact = false;
-  static Num lift(double x) { return {x, 0}; }
-  static Num inputDiff(double a, double b) { return lift(a) - lift(b); }
-  static Sign sign(const Num& a) {
-    const double bound = a.e == 0 ? 0.0 : a.e * (1 + 0x1p-40) + 0x1p-600;
-    if (a.v > bound) return Sign::kPos;
-    if (a.v < -bound) return Sign::kNeg;
-    if (a.e != 0) return Sign::kUnknown;
-    tls_exact_zero = true;
-    return Sign::kZero;
-  }
-};
-
 /// The line interval's first stage (src/line_cylinder_interval.cpp), with
 /// division and square root added there.
 using Rd = Running<double>;
