@@ -351,6 +351,7 @@ TRICYL_NOINLINE Decision decideSlow(const Cylinder<float>& cylinder,
 }
 
 // ---------------------------------------------------------------------------
+
 // The scalar fast path: the double filter (FilterKernel) with validation and
 // range gate fused into the arithmetic, and branch-free early-outs. It
 // computes bit for bit the values and bounds that makeLocal<FilterKernel> and
@@ -1294,6 +1295,188 @@ TRICYL_NOINLINE Tri filterTests(const Local& L, std::uint32_t* undecided) {
   return t;
 }
 
+#if TRICYL_FAST_AVX2
+// filterTests with AVX2 lanes (lanes = vertices, and edges (0,1), (1,2),
+// (2,0); lane 3 repeats vertex 2 and edge (2,0)): the same certified
+// verdicts, reached with fewer instructions. Every value below is a
+// FilterKernel evaluation, a rounded value and its rounded magnitude by the
+// Fd rules (a +- b: magnitude m_a + m_b; a b: m_a m_b; leaves x_i, y_i
+// with m_i, Z_i with 2 m_i, H and r with themselves), of the polynomial the
+// scalar kernel evaluates for that test, so each verdict is one
+// FilterKernel::sign certifies (src/filter.h: any such evaluation of depth
+// <= 56 is within 2^-47 m + 2^-600 of the exact value). A test's verdict
+// is a pair of lane masks, certainly true (t) and certainly false (f);
+// neither is "undecided", and its bit goes to `undecided` as in
+// filterTests. (V), (X) and (E) run in lanes; (A) and (B), one test per
+// triangle or per cap with a shape that depends on the signs, run in the
+// scalar kernel (triangleCylinderTests restricted to them); the
+// certificates of disjointness (plane, direction, bounding square, edge
+// separation) run only for what the fifteen tests leave open.
+struct LaneTri {
+  __m256d t, f;
+};
+// The sign lanes of v with magnitude mv: certainly positive, certainly
+// negative.
+__attribute__((target("avx2"), always_inline)) inline void signLanes(
+    __m256d v, __m256d mv, __m256d* pos, __m256d* neg) {
+  const __m256d b = bound(mv, _mm256_set1_pd(kRel), _mm256_set1_pd(kAbs));
+  *pos = _mm256_cmp_pd(v, b, _CMP_GT_OQ);
+  *neg = _mm256_cmp_pd(v, _mm256_xor_pd(b, _mm256_set1_pd(-0.0)), _CMP_LT_OQ);
+}
+// Bits 0..2 of a lane mask (lane 3 repeats lane 2).
+__attribute__((target("avx2"), always_inline)) inline std::uint32_t bits3(
+    __m256d mask) {
+  return std::uint32_t(_mm256_movemask_pd(mask)) & 7u;
+}
+
+__attribute__((target("avx2"), noinline)) Tri filterTestsAvx2(
+    const Local& L, std::uint32_t* undecided) {
+  using detail::kTestA;
+  using detail::kTestB;
+  using detail::kTestE;
+  using detail::kTestV;
+  using detail::kTestX;
+  constexpr int kNext = 0x09;  // lanes (1, 2, 0, 0): an edge's second end
+  const __m256d x = _mm256_loadu_pd(L.x), y = _mm256_loadu_pd(L.y),
+                Z = _mm256_loadu_pd(L.Z), m = _mm256_loadu_pd(L.m);
+  const __m256d HH = _mm256_set1_pd(L.H), r2 = _mm256_set1_pd(L.r * L.r);
+  const __m256d m2 = _mm256_add_pd(m, m);
+  // Slab signs: a = Z - H (cap 0) and Z + H (cap 1), magnitude 2 m + H.
+  const __m256d ma = _mm256_add_pd(m2, HH);
+  const __m256d a0 = _mm256_sub_pd(Z, HH), a1 = _mm256_add_pd(Z, HH);
+  __m256d pos0, neg0, pos1, neg1;
+  signLanes(a0, ma, &pos0, &neg0);
+  signLanes(a1, ma, &pos1, &neg1);
+
+  // (V): in the slab (Z - H <= 0 <= Z + H) and r^2 - x^2 - y^2 >= 0.
+  __m256d vp, vn;
+  signLanes(_mm256_sub_pd(_mm256_sub_pd(r2, _mm256_mul_pd(x, x)),
+                          _mm256_mul_pd(y, y)),
+            _mm256_add_pd(_mm256_add_pd(r2, _mm256_mul_pd(m, m)),
+                          _mm256_mul_pd(m, m)),
+            &vp, &vn);
+  const LaneTri V = {_mm256_and_pd(_mm256_and_pd(neg0, pos1), vp),
+                     _mm256_or_pd(_mm256_or_pd(pos0, neg1), vn)};
+
+  // (X) on each cap: a_i, a_j certainly of opposite signs, and
+  // r^2 W^2 - X^2 - Y^2 >= 0 with X = x_i a_j - x_j a_i, Y likewise,
+  // W = a_j - a_i.
+  const EdgeLanes e = edgeLanes(x, y, Z, m);
+  const __m256d maj = _mm256_permute4x64_pd(ma, kNext);
+  const __m256d mX =
+      _mm256_add_pd(_mm256_mul_pd(m, maj), _mm256_mul_pd(e.mj, ma));
+  const __m256d mW = _mm256_add_pd(maj, ma);
+  const __m256d mXv =
+      _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(r2, _mm256_mul_pd(mW, mW)),
+                                  _mm256_mul_pd(mX, mX)),
+                    _mm256_mul_pd(mX, mX));
+  LaneTri X[2];
+  for (int s = 0; s < 2; ++s) {
+    const __m256d a = s == 0 ? a0 : a1;
+    const __m256d pi = s == 0 ? pos0 : pos1, ni = s == 0 ? neg0 : neg1;
+    const __m256d aj = _mm256_permute4x64_pd(a, kNext);
+    const __m256d pj = _mm256_permute4x64_pd(pi, kNext),
+                  nj = _mm256_permute4x64_pd(ni, kNext);
+    const __m256d cross_t =
+        _mm256_or_pd(_mm256_and_pd(ni, pj), _mm256_and_pd(pi, nj));
+    const __m256d cross_f =
+        _mm256_and_pd(_mm256_or_pd(pi, nj), _mm256_or_pd(ni, pj));
+    const __m256d Xv =
+        _mm256_sub_pd(_mm256_mul_pd(x, aj), _mm256_mul_pd(e.xj, a));
+    const __m256d Yv =
+        _mm256_sub_pd(_mm256_mul_pd(y, aj), _mm256_mul_pd(e.yj, a));
+    const __m256d W = _mm256_sub_pd(aj, a);
+    __m256d p, n;
+    signLanes(
+        _mm256_sub_pd(_mm256_sub_pd(_mm256_mul_pd(r2, _mm256_mul_pd(W, W)),
+                                    _mm256_mul_pd(Xv, Xv)),
+                      _mm256_mul_pd(Yv, Yv)),
+        mXv, &p, &n);
+    X[s] = {_mm256_and_pd(cross_t, p), _mm256_or_pd(cross_f, n)};
+  }
+
+  // (E): L > 0, r^2 L - c^2 >= 0 (c = x_i y_j - x_j y_i), g >= 0,
+  // L - g >= 0, (H - Z_i) L - g (Z_j - Z_i) >= 0 and
+  // (H + Z_i) L + g (Z_j - Z_i) >= 0, g = -(x_i ex + y_i ey): the kernel's
+  // grouping.
+  __m256d Et, Ef;
+  {
+    __m256d p, n;
+    signLanes(e.L, e.mL, &p, &n);
+    Et = p;
+    Ef = n;
+    signLanes(_mm256_sub_pd(_mm256_mul_pd(r2, e.L), _mm256_mul_pd(e.o, e.o)),
+              _mm256_add_pd(_mm256_mul_pd(r2, e.mL), _mm256_mul_pd(e.mo, e.mo)),
+              &p, &n);
+    Et = _mm256_and_pd(Et, p);
+    Ef = _mm256_or_pd(Ef, n);
+    const __m256d g = _mm256_xor_pd(
+        _mm256_add_pd(_mm256_mul_pd(x, e.ex), _mm256_mul_pd(y, e.ey)),
+        _mm256_set1_pd(-0.0));
+    const __m256d mg =
+        _mm256_add_pd(_mm256_mul_pd(m, e.mE), _mm256_mul_pd(m, e.mE));
+    signLanes(g, mg, &p, &n);
+    Et = _mm256_and_pd(Et, p);
+    Ef = _mm256_or_pd(Ef, n);
+    signLanes(_mm256_sub_pd(e.L, g), _mm256_add_pd(e.mL, mg), &p, &n);
+    Et = _mm256_and_pd(Et, p);
+    Ef = _mm256_or_pd(Ef, n);
+    const __m256d gz = _mm256_mul_pd(g, _mm256_sub_pd(e.Zj, Z));
+    const __m256d mgz =
+        _mm256_mul_pd(mg, _mm256_add_pd(_mm256_add_pd(e.mj, e.mj), m2));
+    const __m256d mside =
+        _mm256_add_pd(_mm256_mul_pd(_mm256_add_pd(HH, m2), e.mL), mgz);
+    signLanes(_mm256_sub_pd(_mm256_mul_pd(_mm256_sub_pd(HH, Z), e.L), gz),
+              mside, &p, &n);
+    Et = _mm256_and_pd(Et, p);
+    Ef = _mm256_or_pd(Ef, n);
+    signLanes(_mm256_add_pd(_mm256_mul_pd(_mm256_add_pd(HH, Z), e.L), gz),
+              mside, &p, &n);
+    Et = _mm256_and_pd(Et, p);
+    Ef = _mm256_or_pd(Ef, n);
+  }
+  const __m256d any_t =
+      _mm256_or_pd(_mm256_or_pd(V.t, Et), _mm256_or_pd(X[0].t, X[1].t));
+  if (bits3(any_t) != 0) return Tri::kTrue;
+  std::uint32_t open =
+      (7u & ~bits3(V.f)) << kTestV | (7u & ~bits3(X[0].f)) << kTestX |
+      (7u & ~bits3(X[1].f)) << (kTestX + 3) | (7u & ~bits3(Ef)) << kTestE;
+
+  // (A) and (B) in the scalar kernel, with the lanes' slab signs.
+  auto sgn = [](std::uint32_t p, std::uint32_t n, int i) {
+    return (p >> i & 1)   ? Sign::kPos
+           : (n >> i & 1) ? Sign::kNeg
+                          : Sign::kUnknown;
+  };
+  const std::uint32_t p0 = bits3(pos0), n0 = bits3(neg0), p1 = bits3(pos1),
+                      n1 = bits3(neg1);
+  Sign top[3], bot[3];
+  detail::TriCylLocal<FilterKernel> q;
+  for (int i = 0; i < 3; ++i) {
+    top[i] = sgn(p0, n0, i);
+    bot[i] = sgn(p1, n1, i);
+    q.x[i] = {L.x[i], L.m[i]};
+    q.y[i] = {L.y[i], L.m[i]};
+    q.Z[i] = {L.Z[i], L.m[i] + L.m[i]};
+  }
+  q.H = FilterKernel::lift(L.H);
+  q.r = FilterKernel::lift(L.r);
+  detail::TestMask mask;
+  mask.run = 1u << kTestA | 3u << kTestB;
+  if (detail::triangleCylinderTests<FilterKernel>(q, top, bot, &mask) ==
+      Tri::kTrue)
+    return Tri::kTrue;
+  open |= mask.unknown;
+  if (open == 0) return Tri::kFalse;
+  // Certificates of disjointness for what the tests leave open.
+  if (detail::certainlyBeyond<FilterKernel>(q, top, bot) || edgeSeparates(q) ||
+      planeSeparates(q) || directionSeparates(q))
+    return Tri::kFalse;
+  *undecided = open;
+  return Tri::kUnknown;
+}
+#endif
+
 // The scalar fast path: the double filter (FilterKernel) with validation and
 // range gate fused into the arithmetic, and branch-free early-outs. It
 // computes bit for bit the values and bounds that makeLocal<FilterKernel> and
@@ -1322,7 +1505,12 @@ TRICYL_ALWAYS_INLINE Fast decideFast(const Cylinder<S>& cyl,
     return Fast::kDecided;
   }
   if (f == Pre::kGateMiss) return Fast::kGateMiss;
+#if TRICYL_FAST_AVX2
+  const Tri t =
+      kAvx2 ? filterTestsAvx2(L, undecided) : filterTests(L, undecided);
+#else
   const Tri t = filterTests(L, undecided);
+#endif
   if (t == Tri::kUnknown) return Fast::kUnknown;
   *out = {detail::toAnswer(t), Stage::kFastPath};
   return Fast::kDecided;
