@@ -160,49 +160,108 @@ Segment<double> collinearHull(const Triangle<double>& t) {
   return {t.a, t.a};
 }
 
-// The running-bound frame from the fast path's values: the bound of each
-// coordinate from the vertex magnitude (detail::coordinateBound).
+// The running-bound frame of an exact-looking pose (RunningExactKernel)
+// from the fast path's values: the bound of each coordinate from the vertex
+// magnitude (detail::coordinateBound), 0 for the coordinates checked exact.
 struct Local;
-template <class K>
-detail::TriCylLocal<K> runningLocal(const Inputs& in, const Local& L);
+detail::TriCylLocal<detail::RunningExactKernel> runningExactLocal(
+    const Inputs& in, const Local& L);
 bool shortRotation(const Pose<double>& pose);
 
-// The double-word stage (src/dw_kernel.h): the tests in `tests` alone, in
-// straight-line double-word arithmetic; `left`: those it left undecided.
-// Flattened (every call inlined), so that the copy compiled for FMA
-// (TRICYL_FMA_DISPATCH) runs FMA throughout; both copies give the same bits.
+// The local coordinates in double word, x, y and Z of each vertex, with
+// their bounds (DwKernel::toLocal: the a-priori bound of dwCoordinate),
+// computed once per query and read by the running stage (rounded) and by
+// the double-word stage.
+struct DwFrame {
+  detail::DwRun c[3][3];  // [vertex][x, y, Z]
+};
 template <bool kFma>
-TRICYL_ALWAYS_INLINE Tri dwTests(const Inputs& in, std::uint32_t tests,
-                                 std::uint32_t* left,
+TRICYL_ALWAYS_INLINE void dwFrame(const Inputs& in, DwFrame* f) {
+  using K = detail::DwKernel<kFma>;
+  const Vec3<double>* P[3] = {&in.tri.a, &in.tri.b, &in.tri.c};
+  for (int i = 0; i < 3; ++i) {
+    typename K::Num c[3];
+    K::toLocal(in.pose, *P[i], c[0], c[1], c[2]);
+    for (int j = 0; j < 3; ++j) f->c[i][j] = {c[j].v, c[j].e};
+  }
+}
+
+// The double-word stage (src/dw_kernel.h): the tests in `tests` alone, in
+// straight-line double-word arithmetic, on the frame `f`; `left`: those it
+// left undecided. Flattened (every call inlined), so that the copy compiled
+// for FMA (TRICYL_FMA_DISPATCH) runs FMA throughout; both copies give the
+// same bits.
+template <bool kFma>
+TRICYL_ALWAYS_INLINE Tri dwTests(const Inputs& in, const DwFrame& f,
+                                 std::uint32_t tests, std::uint32_t* left,
                                  detail::EarlyOuts* early) {
   using K = detail::DwKernel<kFma>;
   detail::TriCylLocal<K> q;
-  const Vec3<double>* P[3] = {&in.tri.a, &in.tri.b, &in.tri.c};
-  for (int i = 0; i < 3; ++i)
-    K::toLocal(in.pose, *P[i], q.x[i], q.y[i], q.Z[i]);
+  for (int i = 0; i < 3; ++i) {
+    q.x[i] = {f.c[i][0].v, f.c[i][0].e};
+    q.y[i] = {f.c[i][1].v, f.c[i][1].e};
+    q.Z[i] = {f.c[i][2].v, f.c[i][2].e};
+  }
   q.H = K::lift(in.cyl.lz);
   q.r = K::lift(in.cyl.radius);
   return detail::triangleCylinderUndecided<K>(q, tests, left, early);
 }
 #if TRICYL_FMA_DISPATCH
+__attribute__((target("fma"), flatten, noinline)) void dwFrameFma(
+    const Inputs& in, DwFrame* f) {
+  dwFrame<true>(in, f);
+}
 __attribute__((target("fma"), flatten, noinline)) Tri dwTestsFma(
-    const Inputs& in, std::uint32_t tests, std::uint32_t* left,
-    detail::EarlyOuts* early) {
-  return dwTests<true>(in, tests, left, early);
+    const Inputs& in, const DwFrame& f, std::uint32_t tests,
+    std::uint32_t* left, detail::EarlyOuts* early) {
+  return dwTests<true>(in, f, tests, left, early);
 }
 #endif
+TRICYL_FLATTEN TRICYL_NOINLINE void dwFramePlain(const Inputs& in, DwFrame* f) {
+  dwFrame<TRICYL_HAVE_FMA != 0>(in, f);
+}
 TRICYL_FLATTEN TRICYL_NOINLINE Tri dwTestsPlain(const Inputs& in,
+                                                const DwFrame& f,
                                                 std::uint32_t tests,
                                                 std::uint32_t* left,
                                                 detail::EarlyOuts* early) {
-  return dwTests<TRICYL_HAVE_FMA != 0>(in, tests, left, early);
+  return dwTests<TRICYL_HAVE_FMA != 0>(in, f, tests, left, early);
 }
-Tri dwStage(const Inputs& in, std::uint32_t tests, std::uint32_t* left,
-            detail::EarlyOuts* early) {
-#if TRICYL_FMA_DISPATCH
-  if (detail::fmaAtRunTime()) return dwTestsFma(in, tests, left, early);
+#if TRICYL_FAST_AVX2
+extern const bool kHasAvx2;
+void dwFrameAvx2Fma(const Inputs& in, DwFrame* f);
 #endif
-  return dwTestsPlain(in, tests, left, early);
+void dwFrameStage(const Inputs& in, DwFrame* f) {
+#if TRICYL_FAST_AVX2
+  if (kHasAvx2 && detail::fmaAtRunTime()) return dwFrameAvx2Fma(in, f);
+#endif
+#if TRICYL_FMA_DISPATCH
+  if (detail::fmaAtRunTime()) return dwFrameFma(in, f);
+#endif
+  dwFramePlain(in, f);
+}
+Tri dwStage(const Inputs& in, const DwFrame& f, std::uint32_t tests,
+            std::uint32_t* left, detail::EarlyOuts* early) {
+#if TRICYL_FMA_DISPATCH
+  if (detail::fmaAtRunTime()) return dwTestsFma(in, f, tests, left, early);
+#endif
+  return dwTestsPlain(in, f, tests, left, early);
+}
+
+// The running frame from the double-word frame: each coordinate rounded to
+// its high part, with the bound e + |lo| (|E - hi| <= |E - (hi + lo)| +
+// |lo|), rounded up by the factor 1 + 2^-50 (one addition rounded by at
+// most 1 + 2^-53). An exact coordinate (e = 0, lo = 0) stays exact.
+template <class Q>
+void accurateRunning(const DwFrame& f, Q* q) {
+  auto leaf = [](const detail::DwRun& c) {
+    return detail::Rd{c.v.hi, (c.e + std::fabs(c.v.lo)) * (1 + 0x1p-50)};
+  };
+  for (int i = 0; i < 3; ++i) {
+    q->x[i] = leaf(f.c[i][0]);
+    q->y[i] = leaf(f.c[i][1]);
+    q->Z[i] = leaf(f.c[i][2]);
+  }
 }
 
 // The whole sequence for validated inputs (src/stages.h): the double filter
@@ -265,13 +324,16 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
     // most signs that cancellation left open), then in double word.
     // An exact pose (shortRotation) on exact data may make exact ties,
     // which only a kernel that tracks exact values can decide: there
-    // RunningExactKernel, elsewhere the cheaper RunningDoubleKernel.
+    // RunningExactKernel on the fast path's coordinates, elsewhere the
+    // cheaper RunningDoubleKernel on the double-word frame's.
     using detail::RunningDoubleKernel;
     using detail::RunningExactKernel;
     using detail::triangleCylinderUndecided;
     std::uint32_t left = 0;
     Tri t;
     detail::EarlyOuts early;  // settled here: the double-word stage skips them
+    DwFrame frame;
+    bool have_frame = false;
     detail::tls_exact_zero = false;
     if (fast == nullptr)
       t = triangleCylinderUndecided<RunningExactKernel>(
@@ -280,17 +342,28 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
           undecided, &left, &early);
     else if (shortRotation(in.pose))
       t = triangleCylinderUndecided<RunningExactKernel>(
-          runningLocal<RunningExactKernel>(in, *fast), undecided, &left,
-          &early);
-    else
-      t = triangleCylinderUndecided<RunningDoubleKernel>(
-          runningLocal<RunningDoubleKernel>(in, *fast), undecided, &left,
-          &early);
+          runningExactLocal(in, *fast), undecided, &left, &early);
+    else {
+      // The double-word frame first, its values rounded for the running
+      // stage: coordinates accurate to their own size, where the fast
+      // path's are accurate to the vertex's world terms (a needle's local
+      // x and y, far below them, are decided here instead of in double
+      // word); the double-word stage then reuses the frame.
+      dwFrameStage(in, &frame);
+      have_frame = true;
+      detail::TriCylLocal<RunningDoubleKernel> q;
+      accurateRunning(frame, &q);
+      q.H = RunningDoubleKernel::lift(in.cyl.lz);
+      q.r = RunningDoubleKernel::lift(in.cyl.radius);
+      t = triangleCylinderUndecided<RunningDoubleKernel>(q, undecided, &left,
+                                                         &early);
+    }
     if (t != Tri::kUnknown)
       return {detail::toAnswer(t),
               detail::tls_exact_zero ? Stage::kExact : Stage::kFastPath};
     undecided = left;
-    t = dwStage(in, undecided, &left, &early);
+    if (!have_frame) dwFrameStage(in, &frame);
+    t = dwStage(in, frame, undecided, &left, &early);
     if (t != Tri::kUnknown)
       return {detail::toAnswer(t),
               detail::tls_exact_zero ? Stage::kExact : Stage::kExtended};
@@ -472,35 +545,24 @@ bool signedPermutation(const Pose<double>& pose, int perm[3]) {
   return true;
 }
 
-template <class K>
-detail::TriCylLocal<K> runningLocal(const Inputs& in, const Local& L) {
+detail::TriCylLocal<detail::RunningExactKernel> runningExactLocal(
+    const Inputs& in, const Local& L) {
+  using K = detail::RunningExactKernel;
   detail::TriCylLocal<K> q;
   const Vec3<double>* P[3] = {&in.tri.a, &in.tri.b, &in.tri.c};
   int perm_storage[3] = {0, 0, 0};
-  const int* perm = nullptr;
-  if constexpr (std::is_same_v<K, detail::RunningExactKernel>)
-    if (signedPermutation(in.pose, perm_storage)) perm = perm_storage;
-  // Exact coordinates: only RunningExactKernel can use them.
-  constexpr bool check = std::is_same_v<K, detail::RunningExactKernel>;
+  const int* perm =
+      signedPermutation(in.pose, perm_storage) ? perm_storage : nullptr;
   for (int i = 0; i < 3; ++i) {
     const double M = L.m[i];
     const double z = L.Z[i] * 0.5;
     q.x[i] = {L.x[i], detail::coordinateBound(M, L.x[i])};
     q.y[i] = {L.y[i], detail::coordinateBound(M, L.y[i])};
     q.Z[i] = {L.Z[i], 2 * detail::coordinateBound(M, z)};
-    if constexpr (check) {
-      const unsigned exact = exactCoordinates(in.pose, *P[i], perm);
-      if (exact & 1) q.x[i].e = 0;
-      if (exact & 2) q.y[i].e = 0;
-      if (exact & 4) q.Z[i].e = 0;
-    } else {
-      if (L.x[i] == 0 && detail::exactZeroCoordinate(in.pose, *P[i], 0))
-        q.x[i].e = 0;
-      if (L.y[i] == 0 && detail::exactZeroCoordinate(in.pose, *P[i], 1))
-        q.y[i].e = 0;
-      if (z == 0 && detail::exactZeroCoordinate(in.pose, *P[i], 2))
-        q.Z[i].e = 0;
-    }
+    const unsigned exact = exactCoordinates(in.pose, *P[i], perm);
+    if (exact & 1) q.x[i].e = 0;
+    if (exact & 2) q.y[i].e = 0;
+    if (exact & 4) q.Z[i].e = 0;
   }
   q.H = K::lift(in.cyl.lz);
   q.r = K::lift(in.cyl.radius);
@@ -1167,6 +1229,85 @@ __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
     return prologueAvx2Body(pd, td, r, H, L);
   }
 }
+// dwFrame in lanes (lanes = vertices a, b, c, c), for CPUs with AVX2 and
+// FMA: every lane runs dwCoordinate's operations in its order, the
+// TwoProduct by FMA (exact, as Dekker's: the same bits), so the frame is
+// the scalar one bit for bit.
+__attribute__((target("avx2,fma"), always_inline)) inline void twoSum4(
+    __m256d a, __m256d b, __m256d* s, __m256d* e) {
+  *s = _mm256_add_pd(a, b);
+  const __m256d bb = _mm256_sub_pd(*s, a);
+  *e = _mm256_add_pd(_mm256_sub_pd(a, _mm256_sub_pd(*s, bb)),
+                     _mm256_sub_pd(b, bb));
+}
+__attribute__((target("avx2,fma"), noinline)) void dwFrameAvx2Fma(
+    const Inputs& in, DwFrame* f) {
+  const Triangle<double>& T = in.tri;
+  const Pose<double>& P = in.pose;
+  const __m256d abs =
+      _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffLL));
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d pk[3] = {lanes(T.a.x, T.b.x, T.c.x), lanes(T.a.y, T.b.y, T.c.y),
+                         lanes(T.a.z, T.b.z, T.c.z)};
+  const double tk[3] = {P.t.x, P.t.y, P.t.z};
+  __m256d D[3], l[3], aD[3], Dz[3];
+  for (int k = 0; k < 3; ++k) {
+    twoSum4(pk[k], _mm256_set1_pd(-tk[k]), &D[k], &l[k]);
+    aD[k] = _mm256_and_pd(D[k], abs);
+    Dz[k] = _mm256_cmp_pd(D[k], zero, _CMP_EQ_OQ);
+  }
+  const __m256d exact_min = _mm256_set1_pd(detail::kProdExactMin);
+  for (int j = 0; j < 3; ++j) {
+    __m256d Pk[3], e[3], q[3], ok[3];
+    __m256d m = zero;
+    for (int k = 0; k < 3; ++k) {
+      const double Rkj = P.R[k][j];
+      const __m256d R = _mm256_set1_pd(Rkj);
+      Pk[k] = _mm256_mul_pd(R, D[k]);
+      e[k] = _mm256_fmsub_pd(R, D[k], Pk[k]);
+      q[k] = _mm256_mul_pd(R, l[k]);
+      m = _mm256_add_pd(m,
+                        _mm256_mul_pd(_mm256_set1_pd(std::fabs(Rkj)), aD[k]));
+      // Term k exact: a zero factor, or no low part, no product error and
+      // no underflow.
+      const __m256d exact_term = _mm256_and_pd(
+          _mm256_and_pd(_mm256_cmp_pd(l[k], zero, _CMP_EQ_OQ),
+                        _mm256_cmp_pd(e[k], zero, _CMP_EQ_OQ)),
+          _mm256_cmp_pd(_mm256_and_pd(Pk[k], abs), exact_min, _CMP_GE_OQ));
+      ok[k] = Rkj == 0 ? _mm256_castsi256_pd(_mm256_set1_epi64x(-1))
+                       : _mm256_or_pd(Dz[k], exact_term);
+    }
+    __m256d s1, f1, s, f2;
+    twoSum4(Pk[0], Pk[1], &s1, &f1);
+    twoSum4(s1, Pk[2], &s, &f2);
+    const __m256d low = _mm256_add_pd(
+        _mm256_add_pd(_mm256_add_pd(_mm256_add_pd(_mm256_add_pd(f1, f2),
+                                                  _mm256_add_pd(e[0], e[1])),
+                                    e[2]),
+                      _mm256_add_pd(q[0], q[1])),
+        q[2]);
+    __m256d hi, lo;
+    twoSum4(s, low, &hi, &lo);
+    __m256d err = _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(0x1p-100), m),
+                                _mm256_set1_pd(detail::kDwTiny));
+    const __m256d exact = _mm256_and_pd(
+        _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(low, zero, _CMP_EQ_OQ),
+                                    _mm256_cmp_pd(f1, zero, _CMP_EQ_OQ)),
+                      _mm256_cmp_pd(f2, zero, _CMP_EQ_OQ)),
+        _mm256_and_pd(_mm256_and_pd(ok[0], ok[1]), ok[2]));
+    err = _mm256_andnot_pd(exact, err);
+    if (j == 2) {  // Z = 2 z: exact scaling
+      hi = _mm256_add_pd(hi, hi);
+      lo = _mm256_add_pd(lo, lo);
+      err = _mm256_add_pd(err, err);
+    }
+    alignas(32) double H[4], Lo[4], E[4];
+    _mm256_store_pd(H, hi);
+    _mm256_store_pd(Lo, lo);
+    _mm256_store_pd(E, err);
+    for (int i = 0; i < 3; ++i) f->c[i][j] = {{H[i], Lo[i]}, E[i]};
+  }
+}
 #undef TRICYL_AVX2_FN
 #endif
 
@@ -1633,6 +1774,31 @@ int fastPathGate(const Cylinder<S>& cylinder, const Pose<S>& pose,
   (void)cylinder, (void)pose, (void)triangle;
   return -1;
 }
+int dwFramePathsAgree(const Pose<double>& pose,
+                      const Triangle<double>& triangle) noexcept {
+#if TRICYL_FAST_AVX2
+  if (!kHasAvx2 || !detail::fmaAtRunTime()) return -1;
+  const Cylinder<double> cyl{1, 1};  // not read by the frame
+  const Inputs in{cyl, pose, triangle};
+  DwFrame lanes, scalar;
+  dwFrameAvx2Fma(in, &lanes);
+#if TRICYL_FMA_DISPATCH
+  dwFrameFma(in, &scalar);
+#else
+  dwFramePlain(in, &scalar);
+#endif
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const detail::DwRun &a = lanes.c[i][j], &b = scalar.c[i][j];
+      if (!(a.v.hi == b.v.hi && a.v.lo == b.v.lo && a.e == b.e)) return 0;
+    }
+  return 1;
+#else
+  (void)pose, (void)triangle;
+  return -1;
+#endif
+}
+
 template int fastPathGate(const Cylinder<float>&, const Pose<float>&,
                           const Triangle<float>&) noexcept;
 template int fastPathGate(const Cylinder<double>&, const Pose<double>&,
