@@ -160,12 +160,7 @@ Segment<double> collinearHull(const Triangle<double>& t) {
   return {t.a, t.a};
 }
 
-// The running-bound frame of an exact-looking pose (RunningExactKernel)
-// from the fast path's values: the bound of each coordinate from the vertex
-// magnitude (detail::coordinateBound), 0 for the coordinates checked exact.
 struct Local;
-detail::TriCylLocal<detail::RunningExactKernel> runningExactLocal(
-    const Inputs& in, const Local& L);
 bool shortRotation(const Pose<double>& pose);
 
 // The local coordinates in double word, x, y and Z of each vertex, with
@@ -251,17 +246,22 @@ Tri dwStage(const Inputs& in, const DwFrame& f, std::uint32_t tests,
 // The running frame from the double-word frame: each coordinate rounded to
 // its high part, with the bound e + |lo| (|E - hi| <= |E - (hi + lo)| +
 // |lo|), rounded up by the factor 1 + 2^-50 (one addition rounded by at
-// most 1 + 2^-53). An exact coordinate (e = 0, lo = 0) stays exact.
-template <class Q>
-void accurateRunning(const DwFrame& f, Q* q) {
+// most 1 + 2^-53). An exact coordinate (e = 0, then lo = 0) keeps the
+// bound 0: RunningExactKernel reads it as exact.
+template <class K>
+detail::TriCylLocal<K> runningFrame(const Inputs& in, const DwFrame& f) {
+  detail::TriCylLocal<K> q;
   auto leaf = [](const detail::DwRun& c) {
-    return detail::Rd{c.v.hi, (c.e + std::fabs(c.v.lo)) * (1 + 0x1p-50)};
+    return typename K::Num{c.v.hi, (c.e + std::fabs(c.v.lo)) * (1 + 0x1p-50)};
   };
   for (int i = 0; i < 3; ++i) {
-    q->x[i] = leaf(f.c[i][0]);
-    q->y[i] = leaf(f.c[i][1]);
-    q->Z[i] = leaf(f.c[i][2]);
+    q.x[i] = leaf(f.c[i][0]);
+    q.y[i] = leaf(f.c[i][1]);
+    q.Z[i] = leaf(f.c[i][2]);
   }
+  q.H = K::lift(in.cyl.lz);
+  q.r = K::lift(in.cyl.radius);
+  return q;
 }
 
 // The whole sequence for validated inputs (src/stages.h): the double filter
@@ -322,10 +322,14 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
     // The undecided tests with a running bound in double (it follows the
     // values, where the filter's follows the magnitudes: it certifies
     // most signs that cancellation left open), then in double word.
-    // An exact pose (shortRotation) on exact data may make exact ties,
-    // which only a kernel that tracks exact values can decide: there
-    // RunningExactKernel on the fast path's coordinates, elsewhere the
-    // cheaper RunningDoubleKernel on the double-word frame's.
+    // Both read the double-word frame, computed once: its coordinates,
+    // rounded, are accurate to their own size, where the fast path's are
+    // accurate to the vertex's world terms (a needle's local x and y, far
+    // below them, are decided here instead of in double word), and it
+    // knows which coordinates are exact doubles. An exact pose
+    // (shortRotation) on exact data may make exact ties, which only a
+    // kernel that tracks exact values can decide: there RunningExactKernel,
+    // elsewhere the cheaper RunningDoubleKernel.
     using detail::RunningDoubleKernel;
     using detail::RunningExactKernel;
     using detail::triangleCylinderUndecided;
@@ -333,36 +337,20 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
     Tri t;
     detail::EarlyOuts early;  // settled here: the double-word stage skips them
     DwFrame frame;
-    bool have_frame = false;
+    dwFrameStage(in, &frame);
     detail::tls_exact_zero = false;
-    if (fast == nullptr)
+    if (shortRotation(in.pose))
       t = triangleCylinderUndecided<RunningExactKernel>(
-          detail::makeLocal<RunningExactKernel>(in.cyl, in.pose, in.tri,
-                                                max_unitless),
-          undecided, &left, &early);
-    else if (shortRotation(in.pose))
-      t = triangleCylinderUndecided<RunningExactKernel>(
-          runningExactLocal(in, *fast), undecided, &left, &early);
-    else {
-      // The double-word frame first, its values rounded for the running
-      // stage: coordinates accurate to their own size, where the fast
-      // path's are accurate to the vertex's world terms (a needle's local
-      // x and y, far below them, are decided here instead of in double
-      // word); the double-word stage then reuses the frame.
-      dwFrameStage(in, &frame);
-      have_frame = true;
-      detail::TriCylLocal<RunningDoubleKernel> q;
-      accurateRunning(frame, &q);
-      q.H = RunningDoubleKernel::lift(in.cyl.lz);
-      q.r = RunningDoubleKernel::lift(in.cyl.radius);
-      t = triangleCylinderUndecided<RunningDoubleKernel>(q, undecided, &left,
-                                                         &early);
-    }
+          runningFrame<RunningExactKernel>(in, frame), undecided, &left,
+          &early);
+    else
+      t = triangleCylinderUndecided<RunningDoubleKernel>(
+          runningFrame<RunningDoubleKernel>(in, frame), undecided, &left,
+          &early);
     if (t != Tri::kUnknown)
       return {detail::toAnswer(t),
               detail::tls_exact_zero ? Stage::kExact : Stage::kFastPath};
     undecided = left;
-    if (!have_frame) dwFrameStage(in, &frame);
     t = dwStage(in, frame, undecided, &left, &early);
     if (t != Tri::kUnknown)
       return {detail::toAnswer(t),
@@ -457,62 +445,6 @@ struct Local {
   double r, H;
 };
 
-// Which of the fast path's coordinates of p (computed as toLocal does:
-// ((R_0j d_0 + R_1j d_1) + R_2j d_2), d_k = p_k - t_k) are exact, as bits
-// 0 (x), 1 (y), 2 (Z), for a rotation whose entries have at most 27
-// significant bits (shortRotation): every operation re-checked as an
-// error-free transformation with a zero error. A product R d is exact when
-// d has at most 26 significant bits (27 + 26 <= 53) and no underflow
-// touches it (a zero factor, or |R d| >= kProdExactMin); other d take
-// TwoProduct.
-// For a signed permutation (every column one entry +-1, the others 0:
-// `perm[j]` that entry's row), coordinate j is +-d_perm[j] (+-0 terms added
-// exactly), exact iff that difference is: one TwoSum per axis.
-unsigned exactCoordinates(const Pose<double>& pose, const Vec3<double>& p,
-                          const int* perm) {
-  const double pk[3] = {p.x, p.y, p.z}, tk[3] = {pose.t.x, pose.t.y, pose.t.z};
-  if (perm != nullptr) {
-    unsigned exact = 0;
-    for (int j = 0; j < 3; ++j) {
-      double d, err;
-      detail::twoSum(pk[perm[j]], -tk[perm[j]], d, err);
-      exact |= unsigned(err == 0) << j;
-    }
-    return exact;
-  }
-  double d[3];
-  bool shortd[3];
-  for (int k = 0; k < 3; ++k) {
-    double err;
-    detail::twoSum(pk[k], -tk[k], d[k], err);
-    if (err != 0) return 0;
-    std::uint64_t b;
-    std::memcpy(&b, &d[k], sizeof b);
-    shortd[k] = (b & ((std::uint64_t(1) << 27) - 1)) == 0;
-  }
-  unsigned exact = 0;
-  for (int j = 0; j < 3; ++j) {
-    double P[3];
-    bool ok = true;
-    for (int k = 0; k < 3; ++k) {
-      const double R = pose.R[k][j];
-      P[k] = R * d[k];
-      if (R == 0 || d[k] == 0) continue;
-      if (std::fabs(P[k]) < detail::kProdExactMin) ok = false;
-      if (!shortd[k]) {
-        double pp, err;
-        detail::twoProd(R, d[k], pp, err);
-        ok = ok && err == 0;
-      }
-    }
-    double s1, v, e1, e2;
-    detail::twoSum(P[0], P[1], s1, e1);
-    detail::twoSum(s1, P[2], v, e2);
-    if (ok && e1 == 0 && e2 == 0) exact |= 1u << j;
-  }
-  return exact;
-}
-
 // Whether every rotation entry has at most 27 significant bits (the low 26
 // bits of its significand zero): exact poses (signed permutations, short
 // dyadics) do, rounded rotations almost never; only then is it worth
@@ -526,47 +458,6 @@ bool shortRotation(const Pose<double>& pose) {
       low |= b;
     }
   return (low & ((std::uint64_t(1) << 26) - 1)) == 0;
-}
-
-// Whether R is a signed permutation; then perm[j] is the row of column j's
-// non-zero entry.
-bool signedPermutation(const Pose<double>& pose, int perm[3]) {
-  for (int j = 0; j < 3; ++j) {
-    int nonzero = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double r = pose.R[k][j];
-      if (r == 0) continue;
-      if (std::fabs(r) != 1) return false;
-      perm[j] = k;
-      ++nonzero;
-    }
-    if (nonzero != 1) return false;
-  }
-  return true;
-}
-
-detail::TriCylLocal<detail::RunningExactKernel> runningExactLocal(
-    const Inputs& in, const Local& L) {
-  using K = detail::RunningExactKernel;
-  detail::TriCylLocal<K> q;
-  const Vec3<double>* P[3] = {&in.tri.a, &in.tri.b, &in.tri.c};
-  int perm_storage[3] = {0, 0, 0};
-  const int* perm =
-      signedPermutation(in.pose, perm_storage) ? perm_storage : nullptr;
-  for (int i = 0; i < 3; ++i) {
-    const double M = L.m[i];
-    const double z = L.Z[i] * 0.5;
-    q.x[i] = {L.x[i], detail::coordinateBound(M, L.x[i])};
-    q.y[i] = {L.y[i], detail::coordinateBound(M, L.y[i])};
-    q.Z[i] = {L.Z[i], 2 * detail::coordinateBound(M, z)};
-    const unsigned exact = exactCoordinates(in.pose, *P[i], perm);
-    if (exact & 1) q.x[i].e = 0;
-    if (exact & 2) q.y[i].e = 0;
-    if (exact & 4) q.Z[i].e = 0;
-  }
-  q.H = K::lift(in.cyl.lz);
-  q.r = K::lift(in.cyl.radius);
-  return q;
 }
 
 // The adaptive run's local frame from the fast path's (double inputs).
