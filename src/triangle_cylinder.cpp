@@ -1493,16 +1493,36 @@ __attribute__((target("avx2"), noinline)) Tri filterTestsAvx2(
   }
   q.H = FilterKernel::lift(L.H);
   q.r = FilterKernel::lift(L.r);
-  detail::TestMask mask;
-  mask.run = 1u << kTestA | 3u << kTestB;
-  if (detail::triangleCylinderTests<FilterKernel>(q, top, bot, &mask) ==
-      Tri::kTrue)
-    return Tri::kTrue;
-  open |= mask.unknown;
-  if (open == 0) return Tri::kFalse;
-  // Certificates of disjointness for what the tests leave open.
-  if (detail::certainlyBeyond<FilterKernel>(q, top, bot) || edgeSeparates(q) ||
-      planeSeparates(q) || directionSeparates(q))
+  if (open == 0) {
+    detail::TestMask mask;
+    mask.run = 1u << kTestA | 3u << kTestB;
+    if (detail::triangleCylinderTests<FilterKernel>(q, top, bot, &mask) ==
+        Tri::kTrue)
+      return Tri::kTrue;
+    open |= mask.unknown;
+    if (open == 0) return Tri::kFalse;
+  } else {
+    open |= 1u << kTestA | 3u << kTestB;
+  }
+  // Certificates of disjointness for what the tests leave open: the
+  // early-outs of certainlyBeyond (the slab; x - r, -x - r, y - r and
+  // -y - r with magnitude m + r), edge separation, direction separation.
+  // (planeSeparates, which the scalar filter also tries, decides too few
+  // of these queries to pay for itself here.)
+  const __m256d rr = _mm256_set1_pd(L.r), mr = _mm256_add_pd(m, rr);
+  const __m256d nx = _mm256_xor_pd(x, _mm256_set1_pd(-0.0)),
+                ny = _mm256_xor_pd(y, _mm256_set1_pd(-0.0));
+  __m256d bp, bn;
+  std::uint32_t beyond = (p0 == 7) | (n1 == 7);
+  signLanes(_mm256_sub_pd(x, rr), mr, &bp, &bn);
+  beyond |= bits3(bp) == 7;
+  signLanes(_mm256_sub_pd(nx, rr), mr, &bp, &bn);
+  beyond |= bits3(bp) == 7;
+  signLanes(_mm256_sub_pd(y, rr), mr, &bp, &bn);
+  beyond |= bits3(bp) == 7;
+  signLanes(_mm256_sub_pd(ny, rr), mr, &bp, &bn);
+  beyond |= bits3(bp) == 7;
+  if (beyond || edgeSeparatesAvx2(e, r2) || directionSeparates(q))
     return Tri::kFalse;
   *undecided = open;
   return Tri::kUnknown;
