@@ -164,8 +164,9 @@ void hostileReport(const char* title, const std::vector<Hostile>& v, int dump) {
               *std::max_element(ti.begin(), ti.end()) / 1e3);
   std::printf("\nwithinDistance by deciding stage:");
   for (tricyl::Stage s : {tricyl::Stage::kEarlyOut, tricyl::Stage::kFastPath,
-                          tricyl::Stage::kExtended, tricyl::Stage::kExact,
-                          tricyl::Stage::kExactGmp, tricyl::Stage::kInvalid})
+                          tricyl::Stage::kRunning, tricyl::Stage::kExtended,
+                          tricyl::Stage::kExact, tricyl::Stage::kExactGmp,
+                          tricyl::Stage::kInvalid})
     if (by[int(s)] > 0)
       std::printf(" %s %ld (max %.1f us);", tricyl::bench::stageName(s),
                   by[int(s)], max_by[int(s)] / 1e3);

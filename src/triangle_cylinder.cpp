@@ -349,7 +349,7 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
           &early);
     if (t != Tri::kUnknown)
       return {detail::toAnswer(t),
-              detail::tls_exact_zero ? Stage::kExact : Stage::kFastPath};
+              detail::tls_exact_zero ? Stage::kExact : Stage::kRunning};
     undecided = left;
     t = dwStage(in, frame, undecided, &left, &early);
     if (t != Tri::kUnknown)

@@ -799,14 +799,16 @@ Stage stronger(Stage a, Stage b) {
         return 0;
       case Stage::kFastPath:
         return 1;
-      case Stage::kExtended:
+      case Stage::kRunning:
         return 2;
-      case Stage::kExact:
+      case Stage::kExtended:
         return 3;
-      case Stage::kExactGmp:
+      case Stage::kExact:
         return 4;
-      default:
+      case Stage::kExactGmp:
         return 5;
+      default:
+        return 6;
     }
   };
   return rank(a) >= rank(b) ? a : b;
