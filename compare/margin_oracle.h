@@ -237,6 +237,18 @@ inline bool cylinder(const Q3* v, const Q& r, const Q& h) {
   return oracle::hullMeetsDisk(pts, r * r);
 }
 
+/// Exact: does the pulled-back triangle meet one of the two sized parts of
+/// the neighbourhood, Cyl(r + m, h) or Cyl(r, h + m)? (Tests use it to tell
+/// the margins decided by a rim torus.)
+inline bool sizedCylinders(const Cylinder<double>& cyl,
+                           const Pose<double>& pose,
+                           const Triangle<double>& tri, double margin) {
+  const Q3 v[3] = {oracle::toLocal(pose, tri.a), oracle::toLocal(pose, tri.b),
+                   oracle::toLocal(pose, tri.c)};
+  const Q r(cyl.radius), h = Q(cyl.lz) / 2, m(margin);
+  return cylinder(v, r + m, h) || cylinder(v, r, h + m);
+}
+
 /// Exact: is the closed triangle within distance m (>= 0) of the closed
 /// posed cylinder (the triangle pulled back exactly, as in intersect)?
 /// Inputs must be finite with radius, lz, m >= 0.

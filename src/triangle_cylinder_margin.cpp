@@ -130,6 +130,10 @@ using Rk = detail::RunningDoubleKernel;
 /// invariant under a common scaling).
 struct ZKernel {
   using Num = mpz_class;
+  static Sign sign(const Num& a) {
+    const int s = sgn(a);
+    return s < 0 ? Sign::kNeg : (s > 0 ? Sign::kPos : Sign::kZero);
+  }
 };
 
 /// One torus in doubled local coordinates (X = 2x, Y = 2y, Z = 2z: the
@@ -153,6 +157,42 @@ Sign signWithRoot(const typename K::Num& a, const typename K::Num& b,
   const Sign s2 = K::sign(a * a - b * b * D);  // |a| vs |b| sqrt(D)
   if (s2 == Sign::kUnknown || s2 == Sign::kZero) return s2;
   return s2 == Sign::kPos ? sa : sb;
+}
+
+/// |a| vs |b| sqrt(D) for integers a, b != 0 and D > 0, i.e. the sign of
+/// a^2 - b^2 D, first from the leading 53 bits of each: mpz_get_d_2exp
+/// gives |x| = d 2^k (1 + eps) with 0.5 <= d < 1 and 0 <= eps < 2^-52
+/// (it truncates), so a^2 / (b^2 D) = (da^2 / (db^2 dd)) 2^e times a factor
+/// within (1 - 2^-50, 1 + 2^-50), e = 2 ka - 2 kb - kd, and
+/// da^2 / (db^2 dd) is in (1/4, 8): e >= 4 decides >, e <= -4 decides <,
+/// and otherwise the three products (rounded, 2^-53 each) with the slack
+/// 2^-45 decide unless the two sides agree to about 2^-45. Only then the
+/// products of the full integers (of about 40,000 bits for inputs that
+/// span 2000 binary orders: the cost of the face part on such inputs).
+int compareAbsWithRoot(const mpz_class& a, const mpz_class& b,
+                       const mpz_class& D) {
+  long ka = 0, kb = 0, kd = 0;
+  const double da = std::fabs(mpz_get_d_2exp(&ka, a.get_mpz_t()));
+  const double db = std::fabs(mpz_get_d_2exp(&kb, b.get_mpz_t()));
+  const double dd = mpz_get_d_2exp(&kd, D.get_mpz_t());
+  const long e = 2 * ka - 2 * kb - kd;
+  if (e >= 4) return 1;
+  if (e <= -4) return -1;
+  const double lhs = std::ldexp(da * da, int(e));  // exact: e > -4
+  const double rhs = db * db * dd;
+  if (lhs > rhs * (1 + 0x1p-45)) return 1;
+  if (lhs * (1 + 0x1p-45) < rhs) return -1;
+  return sgn(a * a - b * b * D);
+}
+template <>
+Sign signWithRoot<ZKernel>(const mpz_class& a, const mpz_class& b,
+                           const mpz_class& D) {
+  const Sign sa = ZKernel::sign(a), sb = ZKernel::sign(b);
+  if (sb == Sign::kZero) return sa;
+  if (sa == Sign::kZero || sa == sb) return sb;
+  const int c = compareAbsWithRoot(a, b, D);
+  if (c == 0) return Sign::kZero;
+  return c > 0 ? sa : sb;
 }
 
 /// The face part (see the file comment): does the foot on the triangle's
@@ -251,37 +291,63 @@ using Rd = detail::Rd;
 /// eta / 2 per rounding that underflows (the product's four products, the
 /// sum's one: covered by the added eta terms). sign() compares v with
 /// fl(e (1 + 2^-40)) + eta, the last covering that product's underflow.
-struct Ru {
-  double v;
-  double e;
+///
+/// The same rules hold for any binary floating type F with gradual
+/// underflow and u' = u (1 + 2u) (u = epsilon / 2 <= 2^-53, eta F's
+/// smallest subnormal): UnderflowKernelT<double> is the filter on the
+/// rescaled inputs, UnderflowKernelT<long double> (the x87 format on
+/// x86-64: 64-bit significand, exponents down to 2^-16445; IEEE quadruple
+/// on AArch64; double itself where long double is double, the stage then
+/// only deciding less) the one on the exact local coordinates rounded once
+/// (torusWideInput), whose exponent range holds the products of inputs
+/// that span 2000 binary orders.
+template <class F>
+struct RuT {
+  F v;
+  F e;
 };
-constexpr double kEta = std::numeric_limits<double>::denorm_min();
-inline Ru operator+(Ru a, Ru b) {
-  const double v = a.v + b.v;
-  return {v, a.e + b.e + detail::kU1d * std::fabs(v) + kEta};
+template <class F>
+constexpr F kEtaT = std::numeric_limits<F>::denorm_min();
+template <class F>
+constexpr F kU1T = std::numeric_limits<F>::epsilon() / 2 *
+                   (1 + std::numeric_limits<F>::epsilon());
+template <class F>
+inline RuT<F> operator+(RuT<F> a, RuT<F> b) {
+  const F v = a.v + b.v;
+  return {v, a.e + b.e + kU1T<F> * std::fabs(v) + kEtaT<F>};
 }
-inline Ru operator-(Ru a, Ru b) {
-  const double v = a.v - b.v;
-  return {v, a.e + b.e + detail::kU1d * std::fabs(v) + kEta};
+template <class F>
+inline RuT<F> operator-(RuT<F> a, RuT<F> b) {
+  const F v = a.v - b.v;
+  return {v, a.e + b.e + kU1T<F> * std::fabs(v) + kEtaT<F>};
 }
-inline Ru operator-(Ru a) { return {-a.v, a.e}; }
-inline Ru operator*(Ru a, Ru b) {
-  const double v = a.v * b.v;
+template <class F>
+inline RuT<F> operator-(RuT<F> a) {
+  return {-a.v, a.e};
+}
+template <class F>
+inline RuT<F> operator*(RuT<F> a, RuT<F> b) {
+  const F v = a.v * b.v;
   return {v, std::fabs(a.v) * b.e + std::fabs(b.v) * a.e + a.e * b.e +
-                 detail::kU1d * std::fabs(v) + 4 * kEta};
+                 kU1T<F> * std::fabs(v) + 4 * kEtaT<F>};
 }
-struct UnderflowKernel {
-  using Num = Ru;
+template <class F>
+struct UnderflowKernelT {
+  using Num = RuT<F>;
   static constexpr bool kExact = false;
-  static Num lift(double x) { return {x, 0}; }
+  static Num lift(double x) { return {F(x), 0}; }
   static Sign sign(const Num& a) {
-    const double bound = a.e * (1 + 0x1p-40) + kEta;
+    const F bound = a.e * (1 + F(0x1p-40)) + kEtaT<F>;
     if (a.v > bound) return Sign::kPos;
     if (a.v < -bound) return Sign::kNeg;
     return Sign::kUnknown;
   }
 };
-using Uk = UnderflowKernel;
+using Ru = RuT<double>;
+using Uk = UnderflowKernelT<double>;
+using Ul = UnderflowKernelT<long double>;
+static_assert(kU1T<double> == detail::kU1d, "u' of src/filter.h");
+constexpr double kEta = kEtaT<double>;
 
 /// Double-word values with a running bound: the intermediate stage of the
 /// torus edges (Stage::kExtended), between the double filter and GMP, on
@@ -770,26 +836,75 @@ TorusInput<Uk> torusRobustInput(const Query& q, bool top) {
   return t;
 }
 
+/// The exact torus input (torusExactInput) rounded once to long double for
+/// UnderflowKernelT<long double>: each integer z as d 2^k with d its leading
+/// 53 bits (mpz_get_d_2exp truncates: |z - d 2^k| < 2^-52 |d 2^k|, the
+/// bound carried), all scaled by one power of two that brings the largest
+/// below 1 (an underflowed scaled value is off by at most eta / 2, and eta
+/// is added to every bound). The exact local coordinates rounded once are
+/// what the rescaled double inputs (torusRobustInput) cannot be when the
+/// inputs span more binary orders than double's exponents: there a torus
+/// 2^-1200 the size of the triangle leaves every double filter sign open,
+/// and the GMP stages behind it cost hundreds of microseconds.
+TorusInput<Ul> torusWideInput(const TorusInput<ZKernel>& t) {
+  using L = long double;
+  const mpz_class* in[12] = {&t.X[0], &t.X[1], &t.X[2], &t.Y[0],
+                             &t.Y[1], &t.Y[2], &t.Z[0], &t.Z[1],
+                             &t.Z[2], &t.R,    &t.M,    &t.C};
+  double d[12];
+  long k[12];
+  long top = std::numeric_limits<long>::min();
+  for (int i = 0; i < 12; ++i) {
+    d[i] = mpz_get_d_2exp(&k[i], in[i]->get_mpz_t());
+    if (d[i] != 0) top = std::max(top, k[i]);
+  }
+  TorusInput<Ul> w;
+  RuT<L>* out[12] = {&w.X[0], &w.X[1], &w.X[2], &w.Y[0], &w.Y[1], &w.Y[2],
+                     &w.Z[0], &w.Z[1], &w.Z[2], &w.R,    &w.M,    &w.C};
+  for (int i = 0; i < 12; ++i) {
+    if (d[i] == 0) {
+      *out[i] = {0, 0};  // an exact 0 (mpz_get_d_2exp of 0)
+      continue;
+    }
+    // k[i] - top > -4,400 here (the integers have at most about 4,300
+    // bits: lengths and rotation entries from 2^-1074 to 2^1024), inside long
+    // double's exponents on x86-64 and AArch64; where long double is double,
+    // ldexp underflows and eta covers the loss.
+    const int e = int(std::max(k[i] - top, -20000L));
+    const L v = std::ldexp(L(d[i]), e);
+    *out[i] = {v, std::ldexp(std::fabs(L(d[i])) * L(0x1p-52), e) + kEtaT<L>};
+  }
+  return w;
+}
+
 /// The face part of one torus through the stage driver (src/stages.h):
-/// FilterKernel, then the adaptive kernel, on the scaled inputs; GMP
-/// dyadics alone on the original ones where the scaling is not exact.
-Decision faceStage(const Query& q, const ScaledInputs& s, bool top) {
+/// FilterKernel, then the adaptive kernel, on the scaled inputs. Where the
+/// scaling is not exact: UnderflowKernel on the rescaled inputs, then on
+/// the exact local coordinates rounded once to long double (`wide()`, the
+/// torus's torusWideInput), then in GMP integers on the exact coordinates
+/// (`exact()`, its torusExactInput).
+template <class Wide, class Exact>
+Decision faceStage(const Query& q, const ScaledInputs& s, bool top, Wide&& wide,
+                   Exact&& exact) {
+  if (!s.ok) {
+    Tri f = Tri::kUnknown;
+    Stage st = Stage::kFastPath;
+    if (q.max_len > 0) f = faceFeet<Uk>(torusRobustInput(q, top));
+    if (f == Tri::kUnknown) {
+      f = faceFeet<Ul>(wide());
+      st = Stage::kExtended;
+    }
+    if (f == Tri::kUnknown) {
+      f = faceFeet<ZKernel>(exact());
+      st = Stage::kExactGmp;
+    }
+    return {f == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint, st};
+  }
   auto pred = [&](auto tag, bool*) {
     using K = typename decltype(tag)::type;
-    const auto l =
-        s.ok ? detail::makeLocal<K>(s.cyl, s.pose, s.tri, q.max_unitless)
-             : detail::makeLocal<K>(q.cyl, q.pose, q.tri, q.max_unitless);
-    return faceFeet<K>(torusInput<K>(l, s.ok ? s.m : q.m, top));
+    const auto l = detail::makeLocal<K>(s.cyl, s.pose, s.tri, q.max_unitless);
+    return faceFeet<K>(torusInput<K>(l, s.m, top));
   };
-  if (!s.ok) {
-    if (q.max_len > 0) {
-      const Tri f = faceFeet<Uk>(torusRobustInput(q, top));
-      if (f != Tri::kUnknown)
-        return {f == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
-                Stage::kFastPath};
-    }
-    return detail::runAdaptive(pred, false);
-  }
   return detail::runStages(pred, 2.0, q.max_unitless);
 }
 
@@ -953,20 +1068,46 @@ Decision decide(Query& q) {
       }
     }
   }
+  // The exact torus inputs (GMP integers) and, where the scaling is not
+  // exact, their long double rounding, made once when first needed.
   std::optional<TorusInput<ZKernel>> exact_top;  // the bottom one mirrors it
-  for (int i = 0; i < 2; ++i) {
-    if (!(open[i][0] || open[i][1] || open[i][2])) continue;
+  auto exactTorus = [&](int i) {
     if (!exact_top) exact_top = torusExactInput(q, 1);
     TorusInput<ZKernel> t = *exact_top;
     if (i == 1)
       for (auto& z : t.Z) z = -z;
+    return t;
+  };
+  std::optional<TorusInput<Ul>> wide_in[2];
+  auto wideTorus = [&](int i) -> const TorusInput<Ul>& {
+    if (!wide_in[i]) wide_in[i] = torusWideInput(exactTorus(i));
+    return *wide_in[i];
+  };
+  // The edges the rescaled double filter left open: the same filter in
+  // long double on the exact coordinates (torusWideInput).
+  if (!s.ok)
+    for (int i = 0; i < 2; ++i) {
+      if (!(open[i][0] || open[i][1] || open[i][2])) continue;
+      stage = stronger(stage, Stage::kExtended);
+      for (int e = 0; e < 3; ++e) {
+        if (!open[i][e]) continue;
+        const Tri r = edgeFilter<Ul>(wideTorus(i), kEdge[e][0], kEdge[e][1]);
+        if (r == Tri::kTrue) return yes(stage);
+        open[i][e] = r == Tri::kUnknown;
+      }
+    }
+  for (int i = 0; i < 2; ++i) {
+    if (!(open[i][0] || open[i][1] || open[i][2])) continue;
+    const TorusInput<ZKernel> t = exactTorus(i);
     stage = Stage::kExactGmp;
     for (int e = 0; e < 3; ++e)
       if (open[i][e] && edgeExact(t, kEdge[e][0], kEdge[e][1]))
         return yes(stage);
   }
   for (int i = 0; i < 2; ++i) {
-    const Decision d = faceStage(q, s, i == 0);
+    const Decision d = faceStage(
+        q, s, i == 0, [&]() -> const TorusInput<Ul>& { return wideTorus(i); },
+        [&]() { return exactTorus(i); });
     stage = stronger(stage, d.stage);
     if (d.answer == Answer::kIntersect) return yes(stage);
   }
