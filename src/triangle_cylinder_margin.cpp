@@ -525,16 +525,17 @@ bool quadraticPositiveOnUnit(const mpz_class& a0, const mpz_class& a1,
 ///    of Tor is p = g + w with g on the rim circle (radius R about
 ///    o = (0, 0, C) in the plane z = C) and |w| <= M, so Tor lies in the
 ///    slab |z - C| <= M, in the solid cylinder rho <= R + M
-///    (|p_xy| <= |g_xy| + |w|), in the ball |p - o| <= R + M, and, when
-///    M < R, outside the hole rho < R - M. Along the edge z - C is linear
-///    (a miss iff both ends are beyond the same face of the slab), rho^2
-///    and |p - o|^2 are quadratics (a miss iff the quadratic minus the
-///    squared bound is positive on [0, 1]), and rho^2 is convex, so its
-///    largest value is at an end (a miss iff both ends are in the hole).
-///    Products of the inputs' size only. On the wide-exponent inputs
-///    outside the range gate (lengths spanning 2000 binary orders) this is
-///    what decides the edges that miss: their quartic Q has coefficients of
-///    about 15,000 bits, and its Sturm sequence cost milliseconds.
+///    (|p_xy| <= |g_xy| + |w|) and in the ball |p - o| <= R + M. Along the
+///    edge z - C is linear (a miss iff both ends are beyond the same face
+///    of the slab), rho^2 and |p - o|^2 are quadratics (a miss iff the
+///    quadratic minus the squared bound is positive on [0, 1]). The hole
+///    rho < R - M needs no test: an edge inside it that reaches this stage
+///    misses Cyl(r, h + m), so it lies wholly above or below that cylinder,
+///    beyond one face of the slab. Products of the inputs' size only. On
+///    the wide-exponent inputs outside the range gate (lengths spanning
+///    2000 binary orders) this is what decides the edges that miss: their
+///    quartic Q has coefficients of about 15,000 bits, and its Sturm
+///    sequence cost milliseconds.
 /// 3. Q = L^2 - 4 R^2 rho^2 <= 0 at an end: a hit; its Bernstein
 ///    coefficients on [0, 1] all > 0: a miss; else the Sturm sequence
 ///    counts its roots in (0, 1) (both ends > 0: a root is a point where
@@ -554,10 +555,6 @@ bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
   const mpz_class rm2 = (t.R + t.M) * (t.R + t.M);
   if (quadraticPositiveOnUnit(p0 - rm2, p1, p2)) return false;
   if (quadraticPositiveOnUnit(p0 + za * za - rm2, l[1], l[2])) return false;
-  if (t.M < t.R) {
-    const mpz_class hole2 = (t.R - t.M) * (t.R - t.M);
-    if (p0 < hole2 && p0 + p1 + p2 < hole2) return false;
-  }
   // 3. Q's coefficients in the power basis.
   const mpz_class R4 = 4 * R2;
   const mpz_class q[5] = {l[0] * l[0] - R4 * p0, 2 * l[0] * l[1] - R4 * p1,
