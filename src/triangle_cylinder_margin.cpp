@@ -130,10 +130,6 @@ using Rk = detail::RunningDoubleKernel;
 /// invariant under a common scaling).
 struct ZKernel {
   using Num = mpz_class;
-  static Sign sign(const Num& a) {
-    const int s = sgn(a);
-    return s < 0 ? Sign::kNeg : (s > 0 ? Sign::kPos : Sign::kZero);
-  }
 };
 
 /// One torus in doubled local coordinates (X = 2x, Y = 2y, Z = 2z: the
@@ -159,38 +155,46 @@ Sign signWithRoot(const typename K::Num& a, const typename K::Num& b,
   return s2 == Sign::kPos ? sa : sb;
 }
 
-/// |a| vs |b| sqrt(D) for integers a, b != 0 and D > 0, i.e. the sign of
-/// a^2 - b^2 D, first from the leading 53 bits of each: mpz_get_d_2exp
-/// gives |x| = d 2^k (1 + eps) with 0.5 <= d < 1 and 0 <= eps < 2^-52
-/// (it truncates), so a^2 / (b^2 D) = (da^2 / (db^2 dd)) 2^e times a factor
-/// within (1 - 2^-50, 1 + 2^-50), e = 2 ka - 2 kb - kd, and
-/// da^2 / (db^2 dd) is in (1/4, 8): e >= 4 decides >, e <= -4 decides <,
-/// and otherwise the three products (rounded, 2^-53 each) with the slack
+/// |a| vs |b| sqrt(D) for a = ma 2^ea, b = mb 2^eb != 0 and D = md 2^ed > 0
+/// (GMP integers m, exponents e), i.e. the sign of a^2 - b^2 D, first from
+/// the leading 53 bits of each mantissa: mpz_get_d_2exp gives
+/// |m| = f 2^k (1 + eps) with 0.5 <= f < 1 and 0 <= eps < 2^-52 (it
+/// truncates), so a^2 / (b^2 D) = (fa^2 / (fb^2 fd)) 2^x times a factor
+/// within (1 - 2^-50, 1 + 2^-50), x = 2 (ka + ea) - 2 (kb + eb) - (kd + ed),
+/// and fa^2 / (fb^2 fd) is in (1/4, 8): x >= 4 decides >, x <= -4 decides
+/// <, and otherwise the three rounded products (2^-53 each) with the slack
 /// 2^-45 decide unless the two sides agree to about 2^-45. Only then the
-/// products of the full integers (of about 40,000 bits for inputs that
-/// span 2000 binary orders: the cost of the face part on such inputs).
-int compareAbsWithRoot(const mpz_class& a, const mpz_class& b,
-                       const mpz_class& D) {
+/// exact squares (of about 40,000 bits for inputs that span 2000 binary
+/// orders, where they were the bulk of the face part's cost). `exact`
+/// returns the sign of a^2 - b^2 D.
+template <class Exact>
+int compareAbsWithRoot(const mpz_class& ma, long ea, const mpz_class& mb,
+                       long eb, const mpz_class& md, long ed, Exact&& exact) {
   long ka = 0, kb = 0, kd = 0;
-  const double da = std::fabs(mpz_get_d_2exp(&ka, a.get_mpz_t()));
-  const double db = std::fabs(mpz_get_d_2exp(&kb, b.get_mpz_t()));
-  const double dd = mpz_get_d_2exp(&kd, D.get_mpz_t());
-  const long e = 2 * ka - 2 * kb - kd;
-  if (e >= 4) return 1;
-  if (e <= -4) return -1;
-  const double lhs = std::ldexp(da * da, int(e));  // exact: e > -4
-  const double rhs = db * db * dd;
+  const double fa = std::fabs(mpz_get_d_2exp(&ka, ma.get_mpz_t()));
+  const double fb = std::fabs(mpz_get_d_2exp(&kb, mb.get_mpz_t()));
+  const double fd = mpz_get_d_2exp(&kd, md.get_mpz_t());
+  const long x = 2 * (ka + ea) - 2 * (kb + eb) - (kd + ed);
+  if (x >= 4) return 1;
+  if (x <= -4) return -1;
+  const double lhs = std::ldexp(fa * fa, int(x));  // exact: x > -4
+  const double rhs = fb * fb * fd;
   if (lhs > rhs * (1 + 0x1p-45)) return 1;
   if (lhs * (1 + 0x1p-45) < rhs) return -1;
-  return sgn(a * a - b * b * D);
+  return exact();
 }
+/// signWithRoot in GMP dyadics (the face part's exact stage), with the
+/// comparison of |a| and |b| sqrt(D) filtered on leading bits.
 template <>
-Sign signWithRoot<ZKernel>(const mpz_class& a, const mpz_class& b,
-                           const mpz_class& D) {
-  const Sign sa = ZKernel::sign(a), sb = ZKernel::sign(b);
+Sign signWithRoot<detail::ExactKernel>(const detail::Dyadic& a,
+                                       const detail::Dyadic& b,
+                                       const detail::Dyadic& D) {
+  using K = detail::ExactKernel;
+  const Sign sa = K::sign(a), sb = K::sign(b);
   if (sb == Sign::kZero) return sa;
   if (sa == Sign::kZero || sa == sb) return sb;
-  const int c = compareAbsWithRoot(a, b, D);
+  const int c = compareAbsWithRoot(a.m, a.e, b.m, b.e, D.m, D.e,
+                                   [&] { return sgn((a * a - b * b * D).m); });
   if (c == 0) return Sign::kZero;
   return c > 0 ? sa : sb;
 }
@@ -878,30 +882,30 @@ TorusInput<Ul> torusWideInput(const TorusInput<ZKernel>& t) {
 /// FilterKernel, then the adaptive kernel, on the scaled inputs. Where the
 /// scaling is not exact: UnderflowKernel on the rescaled inputs, then on
 /// the exact local coordinates rounded once to long double (`wide()`, the
-/// torus's torusWideInput), then in GMP integers on the exact coordinates
-/// (`exact()`, its torusExactInput).
-template <class Wide, class Exact>
-Decision faceStage(const Query& q, const ScaledInputs& s, bool top, Wide&& wide,
-                   Exact&& exact) {
-  if (!s.ok) {
-    Tri f = Tri::kUnknown;
-    Stage st = Stage::kFastPath;
-    if (q.max_len > 0) f = faceFeet<Uk>(torusRobustInput(q, top));
-    if (f == Tri::kUnknown) {
-      f = faceFeet<Ul>(wide());
-      st = Stage::kExtended;
-    }
-    if (f == Tri::kUnknown) {
-      f = faceFeet<ZKernel>(exact());
-      st = Stage::kExactGmp;
-    }
-    return {f == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint, st};
-  }
+/// torus's torusWideInput), then GMP dyadics on the original inputs.
+template <class Wide>
+Decision faceStage(const Query& q, const ScaledInputs& s, bool top,
+                   Wide&& wide) {
   auto pred = [&](auto tag, bool*) {
     using K = typename decltype(tag)::type;
-    const auto l = detail::makeLocal<K>(s.cyl, s.pose, s.tri, q.max_unitless);
-    return faceFeet<K>(torusInput<K>(l, s.m, top));
+    const auto l =
+        s.ok ? detail::makeLocal<K>(s.cyl, s.pose, s.tri, q.max_unitless)
+             : detail::makeLocal<K>(q.cyl, q.pose, q.tri, q.max_unitless);
+    return faceFeet<K>(torusInput<K>(l, s.ok ? s.m : q.m, top));
   };
+  if (!s.ok) {
+    if (q.max_len > 0) {
+      const Tri f = faceFeet<Uk>(torusRobustInput(q, top));
+      if (f != Tri::kUnknown)
+        return {f == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
+                Stage::kFastPath};
+    }
+    const Tri f = faceFeet<Ul>(wide());
+    if (f != Tri::kUnknown)
+      return {f == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
+              Stage::kExtended};
+    return detail::runAdaptive(pred, false);
+  }
   return detail::runStages(pred, 2.0, q.max_unitless);
 }
 
@@ -1103,8 +1107,7 @@ Decision decide(Query& q) {
   }
   for (int i = 0; i < 2; ++i) {
     const Decision d = faceStage(
-        q, s, i == 0, [&]() -> const TorusInput<Ul>& { return wideTorus(i); },
-        [&]() { return exactTorus(i); });
+        q, s, i == 0, [&]() -> const TorusInput<Ul>& { return wideTorus(i); });
     stage = stronger(stage, d.stage);
     if (d.answer == Answer::kIntersect) return yes(stage);
   }
