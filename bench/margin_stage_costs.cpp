@@ -22,12 +22,21 @@
 //    within 2^-40 .. 1 of the largest length so that the tori are reached).
 //    Each query timed three times, the least kept (a preemption of the
 //    shared machine is not the query's cost); median, p99, max.
+// 3. Hostile thresholds: the queries of the set outside the range gate
+//    with their margin at the threshold where the answer flips (the two
+//    adjacent doubles lo < hi with withinDistance false at lo and true at
+//    hi, found by bisection on the bit patterns; both answers are exact, so
+//    the bracket is the true one): at lo every part of the neighbourhood
+//    is decided and misses, one of them by a hair, the slowest queries
+//    there are. Timed as in 2, at lo and at hi.
 //
 // Usage: tricyl-margin-stage-costs [passes] [--dump N] [--only SECTION]
 //   --dump N: also print the N slowest hostile queries as hex floats
 //   (cylinder r lz, R row-major, t, the three vertices, margin);
-//   --only ties|outside|inside: run one section (for a profiler);
-//   --count N: N hostile queries per set (default 20,000).
+//   --only ties|outside|inside|thresholds: run one section (for a
+//   profiler);
+//   --count N: N hostile queries per set (default 20,000; the thresholds
+//   take the first N / 50 queries of the set outside the gate).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -189,6 +198,39 @@ void hostileReport(const char* title, const std::vector<Hostile>& v, int dump) {
   }
 }
 
+/// Section 3: the first n queries of `v` with a threshold (disjoint at
+/// margin 0, within at the largest double), the margin set to lo and hi.
+void thresholdReport(const std::vector<Hostile>& v, std::size_t n, int dump) {
+  auto at = [](std::int64_t b) {
+    double x;
+    std::memcpy(&x, &b, sizeof x);
+    return x;
+  };
+  std::vector<Hostile> lo_set, hi_set;
+  for (const Hostile& h0 : v) {
+    if (lo_set.size() >= n) break;
+    auto within = [&](double m) {
+      return tricyl::tryWithinDistance(h0.cyl, h0.pose, h0.tri, m) ==
+             Answer::kIntersect;
+    };
+    std::int64_t lo = 0, hi = 0x7fefffffffffffff;
+    if (within(0) || !within(at(hi))) continue;
+    while (hi - lo > 1) {
+      const std::int64_t mid = lo + (hi - lo) / 2;
+      (within(at(mid)) ? hi : lo) = mid;
+    }
+    Hostile h = h0;
+    h.m = at(lo);
+    lo_set.push_back(h);
+    h.m = at(hi);
+    hi_set.push_back(h);
+  }
+  hostileReport("Thresholds outside the range gate, margin lo (false)", lo_set,
+                dump);
+  hostileReport("Thresholds outside the range gate, margin hi (true)", hi_set,
+                dump);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -248,6 +290,9 @@ int main(int argc, char** argv) {
     hostileReport(
         "Random exponents, outside the range gate (2^-1070 .. 2^1020)",
         hostileSet(0x9e3779b97f4a7c15ULL, count, 1020, 1020, false), dump);
+  if (runs("thresholds"))
+    thresholdReport(hostileSet(0x9e3779b97f4a7c15ULL, count, 1020, 1020, false),
+                    std::size_t(std::max(1, count / 50)), dump);
   if (runs("inside"))
     hostileReport(
         "Random exponents inside the range gate (lengths 2^-1070 .. 2^40, "

@@ -7,6 +7,7 @@
 
 #include <gmpxx.h>
 
+#include <algorithm>
 #include <utility>
 #include <vector>
 
@@ -85,6 +86,82 @@ inline int rootsInUnit(Poly p) {
     return v;
   };
   return variations(false) - variations(true);
+}
+
+/// Divides a, b (and c, if given) by the largest power of two they share
+/// (a positive factor: Sturm's sequence keeps its signs).
+inline void dropCommonTwos(mpz_class& a, mpz_class& b, mpz_class* c = nullptr) {
+  mpz_class* x[3] = {&a, &b, c};
+  mp_bitcnt_t tz = ~mp_bitcnt_t(0);
+  for (mpz_class* v : x)
+    if (v != nullptr && sgn(*v) != 0)
+      tz = std::min(tz, mpz_scan1(v->get_mpz_t(), 0));
+  if (tz == ~mp_bitcnt_t(0) || tz == 0) return;
+  for (mpz_class* v : x)
+    if (v != nullptr) mpz_tdiv_q_2exp(v->get_mpz_t(), v->get_mpz_t(), tz);
+}
+
+/// rootsInUnit for the quartic of a torus edge, Q = L^2 - 4 R^2 P with
+/// L = l0 + l1 s + l2 s^2 and l2 > 0, so that q4 = l2^2 and q3 = 2 l1 l2
+/// (q = Q's coefficients, lowest first; Q(0), Q(1) != 0), without a gcd.
+/// The Sturm sequence P0 = Q, P1 = Q' = d3 s^3 + d2 s^2 + d1 s + d0, then
+/// positive multiples of the negated remainders, in closed form:
+///  - Q = (s/4 + l1/(8 l2)) Q' + rem(Q, Q') (the quotient from q4 = l2^2
+///    and q3 = 2 l1 l2), so P2 = (2 l2 s + l1) Q' - 8 l2 Q = -8 l2 rem, an
+///    integer quadratic a s^2 + b s + c (its s^4 and s^3 terms cancel
+///    identically). The generic pseudo-remainder is 2 l2^3 times it and
+///    left the gcd to find that (of about 20,000 bits on inputs that span
+///    2000 binary orders, the bulk of the sequence's cost).
+///  - With s^2 = -(b s + c)/a and s^3 = ((b^2 - a c) s + b c)/a^2 modulo
+///    P2, a^2 rem(Q', P2) = (d3 (b^2 - a c) - a b d2 + a^2 d1) s +
+///    (d3 b c - a c d2 + a^2 d0), and P3 = u s + w is its negation.
+///    Measured on those inputs, l2^2 R^2 divides u and w: it is divided
+///    out when it does (a positive factor; checked, not assumed).
+///  - u^2 rem(P2, P3) = u^2 P2(-w/u) = a w^2 - b u w + c u^2, a constant,
+///    and P4 is its negation.
+/// Common powers of two are dropped at each step. Where a degree drops
+/// (a = 0 or u = 0: exact degeneracies) the generic rootsInUnit decides.
+/// The sequence's values at 0 and 1 are its constant terms and its
+/// coefficient sums.
+inline int rootsInUnitTorus(const mpz_class* q, const mpz_class& l1,
+                            const mpz_class& l2, const mpz_class& R) {
+  if (sgn(l2) <= 0) return rootsInUnit(Poly(q, q + 5));
+  const mpz_class d0 = q[1], d1 = 2 * q[2], d2 = 3 * q[3], d3 = 4 * q[4];
+  const mpz_class l2x2 = 2 * l2, l2x8 = 8 * l2;
+  mpz_class a = l1 * d2 + l2x2 * d1 - l2x8 * q[2];
+  mpz_class b = l1 * d1 + l2x2 * d0 - l2x8 * q[1];
+  mpz_class c = l1 * d0 - l2x8 * q[0];
+  if (sgn(a) == 0) return rootsInUnit(Poly(q, q + 5));
+  dropCommonTwos(a, b, &c);
+  const mpz_class aa = a * a;
+  mpz_class u = a * b * d2 - d3 * (b * b - a * c) - aa * d1;
+  mpz_class w = a * c * d2 - d3 * b * c - aa * d0;
+  if (sgn(u) == 0) return rootsInUnit(Poly(q, q + 5));
+  dropCommonTwos(u, w);
+  if (sgn(R) != 0) {
+    const mpz_class f = l2 * l2 * R * R;
+    if (mpz_divisible_p(u.get_mpz_t(), f.get_mpz_t()) &&
+        mpz_divisible_p(w.get_mpz_t(), f.get_mpz_t())) {
+      mpz_divexact(u.get_mpz_t(), u.get_mpz_t(), f.get_mpz_t());
+      mpz_divexact(w.get_mpz_t(), w.get_mpz_t(), f.get_mpz_t());
+    }
+  }
+  const mpz_class p4 = -(a * w * w - b * u * w + c * u * u);
+  const mpz_class q_one = q[0] + q[1] + q[2] + q[3] + q[4];
+  const mpz_class d_one = d0 + d1 + d2 + d3;
+  const int at0[5] = {sgn(q[0]), sgn(d0), sgn(c), sgn(w), sgn(p4)};
+  const int at1[5] = {sgn(q_one), sgn(d_one), sgn(a + b + c), sgn(u + w),
+                      sgn(p4)};
+  auto variations = [](const int* v) {
+    int n = 0, last = 0;
+    for (int i = 0; i < 5; ++i) {
+      if (v[i] == 0) continue;
+      if (last != 0 && v[i] != last) ++n;
+      last = v[i];
+    }
+    return n;
+  };
+  return variations(at0) - variations(at1);
 }
 
 }  // namespace tricyl::detail::sturm

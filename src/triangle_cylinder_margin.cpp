@@ -506,9 +506,6 @@ Tri edgeFilter(const TorusInput<K>& t, int a, int b) {
 
 // ---- The exact stage: GMP integers, Sturm sequence ------------------------
 
-using detail::sturm::Poly;
-using detail::sturm::rootsInUnit;
-
 /// Is a0 + a1 s + a2 s^2 > 0 for every s in [0, 1]? At the ends, and at
 /// the interior vertex -a1 / (2 a2) of a convex parabola, where the value is
 /// (4 a0 a2 - a1^2) / (4 a2).
@@ -543,7 +540,10 @@ bool quadraticPositiveOnUnit(const mpz_class& a0, const mpz_class& a1,
 /// 3. Q = L^2 - 4 R^2 rho^2 <= 0 at an end: a hit; its Bernstein
 ///    coefficients on [0, 1] all > 0: a miss; else the Sturm sequence
 ///    counts its roots in (0, 1) (both ends > 0: a root is a point where
-///    Q <= 0), which decides every tie.
+///    Q <= 0), which decides every tie (rootsInUnitTorus: its remainders
+///    in closed form, no gcd; exact subdivision of the Bernstein form was
+///    tried before it and dropped: on the wide inputs whose edges reach
+///    this point it needed thousands of pieces).
 bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
   const mpz_class ex = t.X[b] - t.X[a], ey = t.Y[b] - t.Y[a],
                   ez = t.Z[b] - t.Z[a];
@@ -571,7 +571,7 @@ bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
   if (sgn(q0 + 3 * q[1]) > 0 && sgn(q0 + 6 * q[1] + 2 * q[2]) > 0 &&
       sgn(q0 + 9 * q[1] + 6 * q[2] + 3 * q[3]) > 0)
     return false;
-  return rootsInUnit(Poly(q, q + 5)) > 0;
+  return detail::sturm::rootsInUnitTorus(q, l[1], l[2], t.R) > 0;
 }
 
 /// The edges of one torus in the filter: kTrue if one certainly meets it,
