@@ -571,7 +571,7 @@ bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
   if (sgn(q0 + 3 * q[1]) > 0 && sgn(q0 + 6 * q[1] + 2 * q[2]) > 0 &&
       sgn(q0 + 9 * q[1] + 6 * q[2] + 3 * q[3]) > 0)
     return false;
-  return detail::sturm::rootsInUnitTorus(q, l[1], l[2], t.R) > 0;
+  return detail::sturm::rootsInUnitTorus(q, l[1], l[2]) > 0;
 }
 
 /// The edges of one torus in the filter: kTrue if one certainly meets it,
