@@ -13,3 +13,11 @@ if(TRICYL_HAVE_FCL)
   target_link_libraries(bench_queries PRIVATE fcl)
   target_compile_definitions(bench_queries PRIVATE TRICYL_BENCH_WITH_FCL=1)
 endif()
+
+# tricyl-query-counts: the sphere, segment and line queries of one family in
+# bench_queries' order, for callgrind and perf (instruction counts).
+add_executable(tricyl-query-counts ${CMAKE_CURRENT_LIST_DIR}/query_counts.cpp)
+target_link_libraries(tricyl-query-counts PRIVATE tricyl::tricyl)
+target_include_directories(tricyl-query-counts PRIVATE ${PROJECT_SOURCE_DIR}/compare)
+tricyl_set_warnings(tricyl-query-counts)
+tricyl_set_fp_flags(tricyl-query-counts)

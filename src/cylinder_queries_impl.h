@@ -370,11 +370,15 @@ Tri sphereCylinder(C& c, bool* early) {
                     c.value(t_p), c.value(q_p)};
     const Verdicts d = C::verdicts(v);
     const Fp &va = v[kA], &ve = v[kE], &vg = v[kG], &vt = v[kT], &vq = v[kQ];
-    const KBool in_slab = d.all(bit(kG), bit(kE));
-    // E >= 0 and (T <= 0 or Q >= 0).
-    const KBool cap = {bool(d.isPos(kE) & (d.isNeg(kT) | d.isPos(kQ))),
-                       bool(d.isNeg(kE) | (d.isPos(kT) & d.isNeg(kQ)))};
-    const KBool r = kbAnd(d.all(bit(kA), 0), kbOr(in_slab, cap));
+    // 2 rho - E >= 0 and (in the slab: E <= 0 and s <= (r + rho)^2, or
+    // beyond a cap: E >= 0 and (T <= 0 or Q >= 0)), as three conjunctions.
+    static constexpr Dnf kHit = makeDnf<3>({{bit(kA) | bit(kG), bit(kE)},
+                                            {bit(kA) | bit(kE), bit(kT)},
+                                            {bit(kA) | bit(kE) | bit(kQ), 0}});
+    const DnfVerdicts terms = evalDnf(d, kHit);
+    const KBool r = terms.any();
+    const KBool in_slab = {false, terms.allFalse(1)};
+    const KBool cap = {false, terms.allFalse(6)};
     if (r.t | r.f) {
       *early = d.isNeg(kA);
       return toTri(r.t);
@@ -642,22 +646,25 @@ Tri segmentCylinder(C& c, bool* early) {
              &vg0 = v[kG0], &vg1 = v[kG1], &vxt = v[kXT], &vxb = v[kXB],
              &vl = v[kL], &vs = v[kS], &vf = v[kF], &vr = v[kR], &vht = v[kHT],
              &vhb = v[kHB];
-    // Strictly on opposite sides of a cap plane.
-    auto apartBits = [&d](int k0, int k1) {
-      return KBool{
-          bool((d.isNeg(k0) & d.isPos(k1)) | (d.isPos(k0) & d.isNeg(k1))),
-          bool((d.isPos(k0) | d.isNeg(k1)) & (d.isNeg(k0) | d.isPos(k1)))};
-    };
-    const KBool v0 = d.all(bit(kB0) | bit(kG0), bit(kT0));
-    const KBool v1 = d.all(bit(kB1) | bit(kG1), bit(kT1));
-    const KBool x_top = kbAnd(apartBits(kT0, kT1), d.all(bit(kXT), 0));
-    const KBool x_bot = kbAnd(apartBits(kB0, kB1), d.all(bit(kXB), 0));
-    const KBool e =
-        d.all(bit(kL) | bit(kS) | bit(kF) | bit(kR) | bit(kHT) | bit(kHB), 0);
+    // (V) for p, (V) for q, (X) for each cap plane as two conjunctions (the
+    // endpoints strictly on opposite sides of it, one way or the other: a
+    // certified sign is never zero), (E).
+    static constexpr Dnf kHit = makeDnf<7>(
+        {{bit(kB0) | bit(kG0), bit(kT0)},
+         {bit(kB1) | bit(kG1), bit(kT1)},
+         {bit(kT1) | bit(kXT), bit(kT0)},
+         {bit(kT0) | bit(kXT), bit(kT1)},
+         {bit(kB1) | bit(kXB), bit(kB0)},
+         {bit(kB0) | bit(kXB), bit(kB1)},
+         {bit(kL) | bit(kS) | bit(kF) | bit(kR) | bit(kHT) | bit(kHB), 0}});
+    const DnfVerdicts terms = evalDnf(d, kHit);
+    const bool v0_false = terms.allFalse(1), v1_false = terms.allFalse(2),
+               x_top_false = terms.allFalse(12),
+               x_bot_false = terms.allFalse(48), e_false = terms.allFalse(64);
     // Both endpoints strictly beyond the same cap plane.
-    const bool beyond_cap =
-        (d.isPos(kT0) & d.isPos(kT1)) | (d.isNeg(kB0) & d.isNeg(kB1));
-    KBool r = kbOr(kbOr(kbOr(v0, v1), kbOr(x_top, x_bot)), e);
+    const unsigned t01 = bit(kT0) | bit(kT1), b01 = bit(kB0) | bit(kB1);
+    const bool beyond_cap = ((d.pos & t01) == t01) | ((d.neg & b01) == b01);
+    KBool r = terms.any();
     r.f = r.f | beyond_cap;
     if (r.t | r.f) {
       *early = beyond_cap;
@@ -696,17 +703,17 @@ Tri segmentCylinder(C& c, bool* early) {
       const Sign s1 = slab(k1);
       return s1 != Sign::kZero && s1 != s0;
     };
-    if (!v0.f && slab(0) != Sign::kPos && slab(2) != Sign::kNeg &&
+    if (!v0_false && slab(0) != Sign::kPos && slab(2) != Sign::kNeg &&
         nonNegR(gap0, vg0))
       return Tri::kTrue;
-    if (!v1.f && slab(1) != Sign::kPos && slab(3) != Sign::kNeg &&
+    if (!v1_false && slab(1) != Sign::kPos && slab(3) != Sign::kNeg &&
         nonNegR(gap1, vg1))
       return Tri::kTrue;
-    if (!x_top.f && apart(0, 1) && nonNegR(cap_top, vxt)) return Tri::kTrue;
-    if (!x_bot.f && apart(2, 3) && nonNegR(cap_bot, vxb)) return Tri::kTrue;
+    if (!x_top_false && apart(0, 1) && nonNegR(cap_top, vxt)) return Tri::kTrue;
+    if (!x_bot_false && apart(2, 3) && nonNegR(cap_bot, vxb)) return Tri::kTrue;
     // (E): the low-degree conditions first (any of them may be the one
     // that fails).
-    if (!e.f && nonNegR(foot_p, vf) && nonNegR(rest_p, vr) &&
+    if (!e_false && nonNegR(foot_p, vf) && nonNegR(rest_p, vr) &&
         c.resolve(len_p, vl) == Sign::kPos && nonNegR(foot_top, vht) &&
         nonNegR(foot_bot, vhb) && nonNegR(sep_p, vs))
       return Tri::kTrue;
@@ -809,12 +816,20 @@ Tri lineCylinder(C& c, bool* early) {
     const Verdicts d = C::verdicts(v);
     // Early-out: the projected line stays farther than r from the axis.
     const bool apart = d.isNeg(kS);
-    const KBool approach = d.all(bit(kS) | bit(kL) | bit(kHT) | bit(kHB), 0);
-    const KBool cross = {
-        bool((d.isPos(kEZ) | d.isNeg(kEZ)) & (d.isPos(kXT) | d.isPos(kXB))),
-        bool(d.isNeg(kXT) & d.isNeg(kXB))};
-    const KBool inside = d.all(bit(kB) | bit(kG), bit(kT));
-    KBool r = kbOr(approach, kbOr(cross, inside));
+    // (E); (X) as four conjunctions (e_Z certainly > 0 or < 0, the crossing
+    // of either cap plane in its disk); (V).
+    static constexpr Dnf kHit =
+        makeDnf<6>({{bit(kS) | bit(kL) | bit(kHT) | bit(kHB), 0},
+                    {bit(kEZ) | bit(kXT), 0},
+                    {bit(kXT), bit(kEZ)},
+                    {bit(kEZ) | bit(kXB), 0},
+                    {bit(kXB), bit(kEZ)},
+                    {bit(kB) | bit(kG), bit(kT)}});
+    const DnfVerdicts terms = evalDnf(d, kHit);
+    const KBool approach = {false, terms.allFalse(1)};
+    const KBool cross = {false, terms.allFalse(30)};
+    const KBool inside = {false, terms.allFalse(32)};
+    KBool r = terms.any();
     r.f = r.f | apart;
     if (r.t | r.f) {
       *early = apart;

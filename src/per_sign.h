@@ -438,6 +438,82 @@ struct Verdicts {
 /// The bit of value k.
 constexpr unsigned bit(int k) { return 1u << k; }
 
+/// One conjunction of filter verdicts: every value in `nonneg` >= 0 and
+/// every value in `nonpos` <= 0 (bit masks of the values' indices, as in
+/// Verdicts::all).
+struct Conj {
+  unsigned nonneg, nonpos;
+};
+/// A formula in disjunctive normal form over a query's filter values: up to
+/// 8 conjunctions of values 0..14, as 16-bit lanes (lane i: conjunction i;
+/// the unused lanes require bit 15, which no value has, and are masked out
+/// of the "false" test). Built at compile time (makeDnf).
+struct Dnf {
+  alignas(16) unsigned short nonneg[8];
+  alignas(16) unsigned short nonpos[8];
+  unsigned used;  ///< bit i: lane i is a conjunction
+};
+template <std::size_t n>
+constexpr Dnf makeDnf(const Conj (&c)[n]) {
+  static_assert(n >= 1 && n <= 8, "one 16-bit lane per conjunction");
+  Dnf f{{}, {}, (1u << n) - 1};
+  for (std::size_t i = 0; i < 8; ++i) {
+    const bool in = i < n;
+    // Values 0..14 only (bit 15 marks the unused lanes); a constant
+    // expression fails to compile here otherwise.
+    if (in && ((c[i].nonneg | c[i].nonpos) >> 15) != 0) throw "value > 14";
+    f.nonneg[i] = static_cast<unsigned short>(in ? c[i].nonneg : 0x8000u);
+    f.nonpos[i] = static_cast<unsigned short>(in ? c[i].nonpos : 0x8000u);
+  }
+  return f;
+}
+/// Each conjunction of a Dnf under the filter's verdicts: bit i of t, it is
+/// certainly true (every value in it certified on its side); bit i of f,
+/// certainly false (a value in it certified on the wrong side).
+struct DnfVerdicts {
+  unsigned t, f, used;
+  /// Kleene's OR of the conjunctions: certainly true if one is, certainly
+  /// false if all are (the same as kbOr over Verdicts::all of each).
+  KBool any() const { return {t != 0, (f & used) == used}; }
+  /// Kleene's OR of the conjunctions in `mask` is certainly false.
+  bool allFalse(unsigned mask) const { return (f & mask) == mask; }
+};
+/// All conjunctions at once, without a branch: a handful of SSE2
+/// operations on the eight lanes (scalar loop in portable builds; the same
+/// bits either way).
+inline DnfVerdicts evalDnf(const Verdicts& d, const Dnf& form) {
+#if defined(__SSE2__) && !defined(TRICYL_PORTABLE_PROLOGUE)
+  const __m128i nn =
+      _mm_load_si128(reinterpret_cast<const __m128i*>(form.nonneg));
+  const __m128i np =
+      _mm_load_si128(reinterpret_cast<const __m128i*>(form.nonpos));
+  const __m128i pos = _mm_set1_epi16(static_cast<short>(d.pos));
+  const __m128i neg = _mm_set1_epi16(static_cast<short>(d.neg));
+  const __m128i zero = _mm_setzero_si128();
+  // Certainly true: no required value lacks its certificate.
+  const __m128i miss =
+      _mm_or_si128(_mm_andnot_si128(pos, nn), _mm_andnot_si128(neg, np));
+  // Certainly false: some value certified on the wrong side.
+  const __m128i hit =
+      _mm_or_si128(_mm_and_si128(neg, nn), _mm_and_si128(pos, np));
+  const __m128i t_words = _mm_cmpeq_epi16(miss, zero);
+  const __m128i open_words = _mm_cmpeq_epi16(hit, zero);
+  const unsigned t =
+      unsigned(_mm_movemask_epi8(_mm_packs_epi16(t_words, zero)));
+  const unsigned open =
+      unsigned(_mm_movemask_epi8(_mm_packs_epi16(open_words, zero)));
+  return {t, ~open & 0xffu, form.used};
+#else
+  unsigned t = 0, f = 0;
+  for (unsigned i = 0; i < 8; ++i) {
+    const unsigned nn = form.nonneg[i], np = form.nonpos[i];
+    t |= unsigned(((~d.pos & nn) | (~d.neg & np)) == 0) << i;
+    f |= unsigned(((d.neg & nn) | (d.pos & np)) != 0) << i;
+  }
+  return {t, f, form.used};
+#endif
+}
+
 /// One kernel K for every sign (runStages' stages; outside the range gate,
 /// K = ExactKernel).
 template <class K, class Q>
@@ -521,6 +597,17 @@ class PerSign {
       out.neg |= unsigned(_mm_movemask_pd(
                      _mm_cmplt_pd(vals, _mm_xor_pd(b, _mm_set1_pd(-0.0)))))
                  << i;
+    }
+    if constexpr (n % 2 == 1) {  // the last value paired with itself
+      const __m128d vals = _mm_unpacklo_pd(v[i].x, v[i].x);
+      const __m128d mags = _mm_unpackhi_pd(v[i].x, v[i].x);
+      const __m128d b = _mm_add_pd(_mm_mul_pd(mags, k), a);
+      out.pos |= unsigned(_mm_movemask_pd(_mm_cmpgt_pd(vals, b)) & 1) << i;
+      out.neg |= unsigned(_mm_movemask_pd(_mm_cmplt_pd(
+                              vals, _mm_xor_pd(b, _mm_set1_pd(-0.0)))) &
+                          1)
+                 << i;
+      ++i;
     }
 #endif
     for (; i < n; ++i) {
