@@ -42,6 +42,7 @@
 #include <cstring>
 #include <initializer_list>
 #include <type_traits>
+#include <utility>
 
 #if defined(__SSE2__) && !defined(TRICYL_PORTABLE_PROLOGUE)
 #include <emmintrin.h>
@@ -512,6 +513,20 @@ inline Tri axisApproach(C& c, bool interior, Sign sep) {
   return t;
 }
 
+/// Whether arithmetic A has localFrom (a frame point with its own origin).
+template <class A>
+constexpr auto hasLocalFrom(int)
+    -> decltype(A::localFrom(std::declval<const Pose<double>&>(),
+                             std::declval<const Vec3<double>&>(),
+                             std::declval<const Vec3<double>&>(), 0.0),
+                true) {
+  return true;
+}
+template <class A>
+constexpr bool hasLocalFrom(long) {
+  return false;
+}
+
 /// The local data of a segment or line query: a = the image of p, b = the
 /// image of q (the segment only), e = R^T (q - p), H = lz, r.
 template <bool kSegment>
@@ -519,20 +534,25 @@ struct LinearQuery {
   LinearQuery(const Cylinder<double>& cyl_, const Pose<double>& pose_,
               const Vec3<double>& p_, const Vec3<double>& q_,
               double max_unitless_)
-      : cyl(cyl_),
-        pose(pose_),
-        p(p_),
-        q(q_),
-        max_unitless(max_unitless_),
-        at_p(pose_) {
-    at_p.t = p_;
-  }
+      : cyl(cyl_), pose(pose_), p(p_), q(q_), max_unitless(max_unitless_) {}
   const Cylinder<double>& cyl;
   const Pose<double>& pose;
   const Vec3<double>& p;
   const Vec3<double>& q;
   double max_unitless;
-  Pose<double> at_p;  // the pose moved to p: toLocal(at_p, q) = R^T (q - p)
+
+  /// The direction e = R^T (q - p) in arithmetic A: A::localFrom with the
+  /// origin p where A has it; otherwise A::local on the pose moved to p.
+  template <class A>
+  Pt<typename A::Num> direction() const {
+    if constexpr (hasLocalFrom<A>(0)) {
+      return A::localFrom(pose, p, q, max_unitless);
+    } else {
+      Pose<double> at_p = pose;
+      at_p.t = p;
+      return A::local(at_p, q, max_unitless);
+    }
+  }
 
   /// The double filter's frame: every point at once (every query reads
   /// them all). In PerSign's filter (PairFilterArith) the segment's second
@@ -551,7 +571,7 @@ struct LinearQuery {
         : H(A::lift(q.cyl.lz)),
           r(A::lift(q.cyl.radius)),
           a_(A::local(q.pose, q.p, q.max_unitless)),
-          e_(A::local(q.at_p, q.q, q.max_unitless)) {
+          e_(q.template direction<A>()) {
       if constexpr (kSegment && std::is_same_v<A, PairFilterArith>)
         b_ = {a_.x + e_.x, a_.y + e_.y, a_.Z + e_.Z};
       else if constexpr (kSegment)
@@ -592,7 +612,7 @@ struct LinearQuery {
         if constexpr (A::kExact) {  // the same value, three subtractions
           e_ = {b().x - a().x, b().y - a().y, b().Z - a().Z};
         } else {
-          e_ = A::local(q_.at_p, q_.q, q_.max_unitless);
+          e_ = q_.template direction<A>();
         }
         have_ |= 4;
       }

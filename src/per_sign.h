@@ -151,11 +151,13 @@ inline Sign dwSign(const DwEt<kFma>& d) {
 /// The double-word local coordinates of DwArith (and DwPrioriArith, which
 /// takes the values only: kBound false, no bookkeeping), Z doubled: v[j]
 /// and, with kBound, its bound e[j] (derivation at DwArith::local).
+/// `origin` stands for pose.t (the segment's and line's direction
+/// R^T (q - p) takes p).
 template <bool kFma, bool kBound>
-inline void dwLocal(const Pose<double>& pose, const Vec3<double>& p, DW v[3],
-                    double e_out[3]) {
+inline void dwLocal(const Pose<double>& pose, const Vec3<double>& origin,
+                    const Vec3<double>& p, DW v[3], double e_out[3]) {
   const double pp[3] = {p.x, p.y, p.z};
-  const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
+  const double tt[3] = {origin.x, origin.y, origin.z};
   double D[3], l[3];
   for (int k = 0; k < 3; ++k) twoSum(pp[k], -tt[k], D[k], l[k]);
   for (int j = 0; j < 3; ++j) {
@@ -194,10 +196,15 @@ struct DwArith {
   /// term with a zero factor) has e = 0. The same sequence and bound as
   /// the adaptive kernel's (src/adaptive.cpp, Tape::dwCoord, derives it).
   static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
-                       double /*rho*/) {
+                       double rho) {
+    return localFrom(pose, pose.t, p, rho);
+  }
+  /// The same with `origin` for pose.t: R^T (p - origin).
+  static Pt<Num> localFrom(const Pose<double>& pose, const Vec3<double>& origin,
+                           const Vec3<double>& p, double /*rho*/) {
     DW v[3];
     double e[3];
-    dwLocal<kFma, true>(pose, p, v, e);
+    dwLocal<kFma, true>(pose, origin, p, v, e);
     return {{v[0], e[0]}, {v[1], e[1]}, {v[2], e[2]}};
   }
 };
@@ -273,9 +280,13 @@ struct DwPrioriArith {
   static Num lift(double x) { return {{x, 0.0}}; }
   /// DwArith's values (its bound is the eta above; not computed here).
   static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
-                       double /*rho*/) {
+                       double rho) {
+    return localFrom(pose, pose.t, p, rho);
+  }
+  static Pt<Num> localFrom(const Pose<double>& pose, const Vec3<double>& origin,
+                           const Vec3<double>& p, double /*rho*/) {
     DW v[3];
-    dwLocal<kFma, false>(pose, p, v, nullptr);
+    dwLocal<kFma, false>(pose, origin, p, v, nullptr);
     return {{v[0]}, {v[1]}, {v[2]}};
   }
 };
@@ -313,10 +324,14 @@ struct ExactDoubleArith {
   static constexpr bool kExact = false;
   static Num lift(double x) { return {x, true}; }
   static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
-                       double /*rho*/) {
-    const Xd d[3] = {Xd{p.x, true} - Xd{pose.t.x, true},
-                     Xd{p.y, true} - Xd{pose.t.y, true},
-                     Xd{p.z, true} - Xd{pose.t.z, true}};
+                       double rho) {
+    return localFrom(pose, pose.t, p, rho);
+  }
+  static Pt<Num> localFrom(const Pose<double>& pose, const Vec3<double>& origin,
+                           const Vec3<double>& p, double /*rho*/) {
+    const Xd d[3] = {Xd{p.x, true} - Xd{origin.x, true},
+                     Xd{p.y, true} - Xd{origin.y, true},
+                     Xd{p.z, true} - Xd{origin.z, true}};
     Xd out[3];
     for (int j = 0; j < 3; ++j)
       out[j] = (Xd{pose.R[0][j], true} * d[0] + Xd{pose.R[1][j], true} * d[1]) +
@@ -403,8 +418,34 @@ struct PairFilterArith {
   static Num lift(double x) { return toFp(FilterKernel::lift(x)); }
   static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
                        double rho) {
-    const Pt<Fd> q = KernelArith<FilterKernel>::local(pose, p, rho);
-    return {toFp(q.x), toFp(q.y), toFp(q.Z)};
+    return localFrom(pose, pose.t, p, rho);
+  }
+  /// FilterKernel's frame (toLocal<FilterKernel>, src/triangle_cylinder_impl.h:
+  /// the same IEEE operations in the same order, so the same values and
+  /// magnitudes) with `origin` for pose.t: x and y in the two lanes of one
+  /// SSE2 register (R's rows hold (R_k0, R_k1) side by side).
+  static Pt<Num> localFrom(const Pose<double>& pose, const Vec3<double>& origin,
+                           const Vec3<double>& p, double rho) {
+    const double d0 = p.x - origin.x;
+    const double d1 = p.y - origin.y;
+    const double d2 = p.z - origin.z;
+    const auto& R = pose.R;
+    const double m = rho * (std::fabs(d0) + std::fabs(d1) + std::fabs(d2));
+    const double z = R[0][2] * d0 + R[1][2] * d1 + R[2][2] * d2;
+#if defined(__SSE2__) && !defined(TRICYL_PORTABLE_PROLOGUE)
+    const __m128d xy = _mm_add_pd(
+        _mm_add_pd(_mm_mul_pd(_mm_loadu_pd(&R[0][0]), _mm_set1_pd(d0)),
+                   _mm_mul_pd(_mm_loadu_pd(&R[1][0]), _mm_set1_pd(d1))),
+        _mm_mul_pd(_mm_loadu_pd(&R[2][0]), _mm_set1_pd(d2)));
+    const __m128d mm = _mm_set1_pd(m);
+    return {{_mm_unpacklo_pd(xy, mm)},
+            {_mm_unpackhi_pd(xy, mm)},
+            {_mm_set_pd(m + m, z + z)}};
+#else
+    return {{R[0][0] * d0 + R[1][0] * d1 + R[2][0] * d2, m},
+            {R[0][1] * d0 + R[1][1] * d1 + R[2][1] * d2, m},
+            {z + z, m + m}};
+#endif
   }
 };
 
