@@ -41,6 +41,7 @@
 #include <cstdint>
 #include <cstring>
 #include <initializer_list>
+#include <optional>
 #include <type_traits>
 #include <utility>
 
@@ -542,17 +543,22 @@ struct LinearQuery {
   double max_unitless;
 
   /// The direction e = R^T (q - p) in arithmetic A: A::localFrom with the
-  /// origin p where A has it; otherwise A::local on the pose moved to p.
+  /// origin p where A has it; otherwise A::local on the pose moved to p,
+  /// made once and kept here (a kernel's values may refer to their inputs:
+  /// the adaptive kernel's tape does).
   template <class A>
   Pt<typename A::Num> direction() const {
     if constexpr (hasLocalFrom<A>(0)) {
       return A::localFrom(pose, p, q, max_unitless);
     } else {
-      Pose<double> at_p = pose;
-      at_p.t = p;
-      return A::local(at_p, q, max_unitless);
+      if (!at_p) {
+        at_p.emplace(pose);
+        at_p->t = p;
+      }
+      return A::local(*at_p, q, max_unitless);
     }
   }
+  mutable std::optional<Pose<double>> at_p;  ///< see direction
 
   /// The double filter's frame: every point at once (every query reads
   /// them all). In PerSign's filter (PairFilterArith) the segment's second
