@@ -347,7 +347,7 @@ Tri sphereCylinderBySign(C& c, bool* early, const P1& near_cap_p,
 }
 
 template <class C>
-Tri sphereCylinder(C& c, bool* early) {
+TRICYL_PER_SIGN_INLINE Tri sphereCylinder(C& c, bool* early) {
   *early = false;
   auto near_cap_p = [](const auto& f) {
     return (f.rho + f.rho) - sphereHeight(f);
@@ -641,7 +641,7 @@ using SegmentQuery = LinearQuery<true>;
 using LineQuery = LinearQuery<false>;
 
 template <class C>
-Tri segmentCylinder(C& c, bool* early) {
+TRICYL_PER_SIGN_INLINE Tri segmentCylinder(C& c, bool* early) {
   *early = false;
   auto top0 = [](const auto& f) { return f.a().Z - f.H; };
   auto top1 = [](const auto& f) { return f.b().Z - f.H; };
@@ -818,7 +818,7 @@ Tri segmentCylinder(C& c, bool* early) {
 // local coordinate).
 
 template <class C>
-Tri lineCylinder(C& c, bool* early) {
+TRICYL_PER_SIGN_INLINE Tri lineCylinder(C& c, bool* early) {
   *early = false;
   auto sep_p = [](const auto& f) { return axisDistanceGap(f); };
   if constexpr (C::kEagerFilter) {

@@ -75,8 +75,10 @@
 // third of the queries take them.
 #if defined(__GNUC__) || defined(__clang__)
 #define TRICYL_PER_SIGN_NOINLINE __attribute__((noinline))
+#define TRICYL_PER_SIGN_INLINE inline __attribute__((always_inline))
 #else
 #define TRICYL_PER_SIGN_NOINLINE
+#define TRICYL_PER_SIGN_INLINE inline
 #endif
 
 namespace tricyl::detail {
@@ -778,13 +780,19 @@ class PerSign {
 /// The driver's per-sign policy (runStages' counterpart, src/stages.h):
 /// inside the range gate one run of `query(ctx, &early)` with PerSign,
 /// which always decides; outside it one run on GMP dyadics.
+/// Outside the range gate: one run on GMP dyadics (out of line, so that
+/// the common path below stays small enough to inline).
 template <class Q, class Query>
-Decision runPerSign(const Q& q, bool gate, const Query& query) {
+TRICYL_PER_SIGN_NOINLINE Decision runGmp(const Q& q, const Query& query) {
   bool early = false;
-  if (!gate) {
-    KernelCtx<ExactKernel, Q> ctx(q);
-    return {toAnswer(query(ctx, &early)), Stage::kExactGmp};
-  }
+  KernelCtx<ExactKernel, Q> ctx(q);
+  return {toAnswer(query(ctx, &early)), Stage::kExactGmp};
+}
+template <class Q, class Query>
+TRICYL_PER_SIGN_INLINE Decision runPerSign(const Q& q, bool gate,
+                                           const Query& query) {
+  if (!gate) return runGmp(q, query);
+  bool early = false;
   PerSign<Q> ctx(q);
   const Tri t = query(ctx, &early);
   // Never kUnknown: every sign of PerSign is decided.
