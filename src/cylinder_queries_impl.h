@@ -834,29 +834,30 @@ TRICYL_PER_SIGN_INLINE Tri lineCylinder(C& c, bool* early) {
     auto top_p = [](const auto& f) { return f.a().Z - f.H; };
     auto bot_p = [](const auto& f) { return f.a().Z + f.H; };
     auto gap_p = [](const auto& f) { return diskGap(f.a(), f.r); };
-    enum { kS, kL, kHT, kHB, kEZ, kXT, kXB, kT, kB, kG };
+    enum { kS, kL, kHT, kHB, kEZ, kXT, kXB };
     const Fp v[] = {c.value(sep_p),    c.value(len_p), c.value(foot_top),
                     c.value(foot_bot), c.value(ez_p),  c.value(cap_top),
-                    c.value(cap_bot),  c.value(top_p), c.value(bot_p),
-                    c.value(gap_p)};
+                    c.value(cap_bot)};
     const Verdicts d = C::verdicts(v);
     // Early-out: the projected line stays farther than r from the axis.
     const bool apart = d.isNeg(kS);
     // (E); (X) as four conjunctions (e_Z certainly > 0 or < 0, the crossing
-    // of either cap plane in its disk); (V).
+    // of either cap plane in its disk).
     static constexpr Dnf kHit =
-        makeDnf<6>({{bit(kS) | bit(kL) | bit(kHT) | bit(kHB), 0},
+        makeDnf<5>({{bit(kS) | bit(kL) | bit(kHT) | bit(kHB), 0},
                     {bit(kEZ) | bit(kXT), 0},
                     {bit(kXT), bit(kEZ)},
                     {bit(kEZ) | bit(kXB), 0},
-                    {bit(kXB), bit(kEZ)},
-                    {bit(kB) | bit(kG), bit(kT)}});
+                    {bit(kXB), bit(kEZ)}});
     const DnfVerdicts terms = evalDnf(d, kHit);
     const KBool approach = {false, terms.allFalse(1)};
     const KBool cross = {false, terms.allFalse(30)};
-    const KBool inside = {false, terms.allFalse(32)};
+    // e != 0 certified (L > 0 or e_Z != 0): the line is not a point, and
+    // (V) adds nothing to (E) or (X) (see above), so its signs are left out
+    // of the double test and read only for a line that may be a point.
+    const bool moving = bool(d.isPos(kL) | d.isPos(kEZ) | d.isNeg(kEZ));
     KBool r = terms.any();
-    r.f = r.f | apart;
+    r.f = (r.f & moving) | apart;
     if (r.t | r.f) {
       *early = apart;
       return toTri(r.t);
@@ -875,8 +876,8 @@ TRICYL_PER_SIGN_INLINE Tri lineCylinder(C& c, bool* early) {
     if (!cross.f && ((!d.isNeg(kXT) && nonNegR(cap_top, v[kXT])) ||
                      (!d.isNeg(kXB) && nonNegR(cap_bot, v[kXB]))))
       if (c.resolve(ez_p, v[kEZ]) != Sign::kZero) return Tri::kTrue;
-    if (!inside.f && c.resolve(top_p, v[kT]) != Sign::kPos &&
-        nonNegR(bot_p, v[kB]) && nonNegR(gap_p, v[kG]))
+    if (!moving && c.resolve(top_p, c.value(top_p)) != Sign::kPos &&
+        nonNegR(bot_p, c.value(bot_p)) && nonNegR(gap_p, c.value(gap_p)))
       return Tri::kTrue;
     return Tri::kFalse;
   }
