@@ -668,6 +668,17 @@ class PerSign {
     if (s != Sign::kUnknown) return s;
     return escalate(pred, v);
   }
+  /// resolve for a sign whose a-priori double word is known to fail (a
+  /// square of a term that cancels far below its magnitude: the a-priori
+  /// bound is relative to the magnitude squared): the same stages without
+  /// that one. Only the order of stages changes, never a sign.
+  template <class P>
+  Sign resolveRunning(const P& pred, const Fp& value) {
+    const Fd v = toFd(value);
+    const Sign s = shallowSign(v);
+    if (s != Sign::kUnknown) return s;
+    return escalate<false>(pred, v);
+  }
   /// The strongest arithmetic any sign needed: 0 double, 1 double-word,
   /// 2 expansions, 3 GMP.
   int level() const { return level_; }
@@ -676,7 +687,7 @@ class PerSign {
   template <class A>
   using Frame = typename Q::template Frame<A>;
 
-  template <class P>
+  template <bool kPriori = true, class P>
   TRICYL_PER_SIGN_NOINLINE Sign escalate(const P& pred, const Fd& v) {
     Sign s = Sign::kUnknown;
     if (v.v == 0) {
@@ -695,13 +706,15 @@ class PerSign {
     // of the magnitude against the filter's 2^-49), then with the running
     // bound.
     if (level_ < 1) level_ = 1;
+    if constexpr (kPriori) {
 #if TRICYL_FMA_DISPATCH
-    s = fmaAtRunTime() ? dwPrioriSignFma(pred, v.m)
-                       : dwPrioriSignWith<false>(pred, v.m, dwp_);
+      s = fmaAtRunTime() ? dwPrioriSignFma(pred, v.m)
+                         : dwPrioriSignWith<false>(pred, v.m, dwp_);
 #else
-    s = dwPrioriSignWith<TRICYL_HAVE_FMA != 0>(pred, v.m, dwp_);
+      s = dwPrioriSignWith<TRICYL_HAVE_FMA != 0>(pred, v.m, dwp_);
 #endif
-    if (s != Sign::kUnknown) return s;
+      if (s != Sign::kUnknown) return s;
+    }
 #if TRICYL_FMA_DISPATCH
     s = fmaAtRunTime() ? dwSignFma(pred) : dwSignWith<false>(pred, dw_);
 #else
