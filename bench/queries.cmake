@@ -21,3 +21,6 @@ target_link_libraries(tricyl-query-counts PRIVATE tricyl::tricyl)
 target_include_directories(tricyl-query-counts PRIVATE ${PROJECT_SOURCE_DIR}/compare)
 tricyl_set_warnings(tricyl-query-counts)
 tricyl_set_fp_flags(tricyl-query-counts)
+if(TRICYL_BUILD_TESTS)  # a smoke run (it measures nothing): the tool cannot rot
+  add_test(NAME tricyl_query_counts_smoke COMMAND tricyl-query-counts line near 1)
+endif()
