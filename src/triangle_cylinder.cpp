@@ -910,6 +910,33 @@ __attribute__((target("avx2"), always_inline)) inline bool edgeSeparatesAvx2(
   return _mm256_movemask_pd(_mm256_and_pd(outside, distant)) != 0;
 }
 
+// Test (X)'s value r^2 W^2 - X^2 - Y^2 for the cap plane with a_k = Z_k -+ H
+// (lanes = edges: X = x_i a_j - x_j a_i, Y likewise, W = a_j - a_i), and
+// its magnitude, the same for both planes: with ma_k = 2 m_k + H,
+// X and Y have m_i ma_j + m_j ma_i and W has ma_j + ma_i.
+__attribute__((target("avx2"), always_inline)) inline __m256d capValue(
+    const EdgeLanes& e, __m256d x, __m256d y, __m256d a, __m256d r2) {
+  constexpr int kNext = 0x09;  // lanes (1, 2, 0, 0): the edge's second end
+  const __m256d aj = _mm256_permute4x64_pd(a, kNext);
+  const __m256d X = _mm256_sub_pd(_mm256_mul_pd(x, aj), _mm256_mul_pd(e.xj, a));
+  const __m256d Y = _mm256_sub_pd(_mm256_mul_pd(y, aj), _mm256_mul_pd(e.yj, a));
+  const __m256d W = _mm256_sub_pd(aj, a);
+  return _mm256_sub_pd(_mm256_sub_pd(_mm256_mul_pd(r2, _mm256_mul_pd(W, W)),
+                                     _mm256_mul_pd(X, X)),
+                       _mm256_mul_pd(Y, Y));
+}
+__attribute__((target("avx2"), always_inline)) inline __m256d capMagnitude(
+    const EdgeLanes& e, __m256d m, __m256d ma, __m256d r2) {
+  constexpr int kNext = 0x09;
+  const __m256d maj = _mm256_permute4x64_pd(ma, kNext);
+  const __m256d mX =
+      _mm256_add_pd(_mm256_mul_pd(m, maj), _mm256_mul_pd(e.mj, ma));
+  const __m256d mW = _mm256_add_pd(maj, ma);
+  return _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(r2, _mm256_mul_pd(mW, mW)),
+                                     _mm256_mul_pd(mX, mX)),
+                       _mm256_mul_pd(mX, mX));
+}
+
 // Test (X) of the kernel for the six edge/cap-plane crossings, branch-free,
 // lanes = edges: the same Fd expressions as triangleCylinderTests, value and
 // magnitude in separate registers, in the same order, so each "true" is a
@@ -928,18 +955,9 @@ __attribute__((target("avx2"), always_inline)) inline bool capCrossingHit(
   const __m256d kr = _mm256_set1_pd(kRel), ka = _mm256_set1_pd(kAbs);
   const __m256d neg = _mm256_set1_pd(-0.0);
   const __m256d ma = _mm256_add_pd(_mm256_add_pd(m, m), HH);
-  const __m256d maj = _mm256_permute4x64_pd(ma, kNext);
   const __m256d baj = _mm256_permute4x64_pd(ba, kNext);
   const __m256d nba = _mm256_xor_pd(ba, neg), nbaj = _mm256_xor_pd(baj, neg);
-  // Magnitudes shared by both planes: X and Y (m_i ma_j + m_j ma_i), W.
-  const __m256d mX =
-      _mm256_add_pd(_mm256_mul_pd(m, maj), _mm256_mul_pd(e.mj, ma));
-  const __m256d mW = _mm256_add_pd(maj, ma);
-  const __m256d me =
-      _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(r2, _mm256_mul_pd(mW, mW)),
-                                  _mm256_mul_pd(mX, mX)),
-                    _mm256_mul_pd(mX, mX));
-  const __m256d be = bound(me, kr, ka);
+  const __m256d be = bound(capMagnitude(e, m, ma, r2), kr, ka);
   __m256d hit = _mm256_setzero_pd();
   for (int s = 0; s < 2; ++s) {
     const __m256d a = s == 0 ? a_top : _mm256_add_pd(Z, HH);  // Z - H, Z + H
@@ -949,15 +967,7 @@ __attribute__((target("avx2"), always_inline)) inline bool capCrossingHit(
                                    _mm256_cmp_pd(aj, baj, _CMP_GT_OQ)),
                      _mm256_and_pd(_mm256_cmp_pd(a, ba, _CMP_GT_OQ),
                                    _mm256_cmp_pd(aj, nbaj, _CMP_LT_OQ)));
-    const __m256d X =
-        _mm256_sub_pd(_mm256_mul_pd(x, aj), _mm256_mul_pd(e.xj, a));
-    const __m256d Y =
-        _mm256_sub_pd(_mm256_mul_pd(y, aj), _mm256_mul_pd(e.yj, a));
-    const __m256d W = _mm256_sub_pd(aj, a);
-    const __m256d v =
-        _mm256_sub_pd(_mm256_sub_pd(_mm256_mul_pd(r2, _mm256_mul_pd(W, W)),
-                                    _mm256_mul_pd(X, X)),
-                      _mm256_mul_pd(Y, Y));
+    const __m256d v = capValue(e, x, y, a, r2);
     hit = _mm256_or_pd(hit,
                        _mm256_and_pd(cross, _mm256_cmp_pd(v, be, _CMP_GT_OQ)));
   }
@@ -1394,36 +1404,19 @@ __attribute__((target("avx2"), noinline)) Tri filterTestsAvx2(
   // r^2 W^2 - X^2 - Y^2 >= 0 with X = x_i a_j - x_j a_i, Y likewise,
   // W = a_j - a_i.
   const EdgeLanes e = edgeLanes(x, y, Z, m);
-  const __m256d maj = _mm256_permute4x64_pd(ma, kNext);
-  const __m256d mX =
-      _mm256_add_pd(_mm256_mul_pd(m, maj), _mm256_mul_pd(e.mj, ma));
-  const __m256d mW = _mm256_add_pd(maj, ma);
-  const __m256d mXv =
-      _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(r2, _mm256_mul_pd(mW, mW)),
-                                  _mm256_mul_pd(mX, mX)),
-                    _mm256_mul_pd(mX, mX));
+  const __m256d mXv = capMagnitude(e, m, ma, r2);
   LaneTri X[2];
   for (int s = 0; s < 2; ++s) {
     const __m256d a = s == 0 ? a0 : a1;
     const __m256d pi = s == 0 ? pos0 : pos1, ni = s == 0 ? neg0 : neg1;
-    const __m256d aj = _mm256_permute4x64_pd(a, kNext);
     const __m256d pj = _mm256_permute4x64_pd(pi, kNext),
                   nj = _mm256_permute4x64_pd(ni, kNext);
     const __m256d cross_t =
         _mm256_or_pd(_mm256_and_pd(ni, pj), _mm256_and_pd(pi, nj));
     const __m256d cross_f =
         _mm256_and_pd(_mm256_or_pd(pi, nj), _mm256_or_pd(ni, pj));
-    const __m256d Xv =
-        _mm256_sub_pd(_mm256_mul_pd(x, aj), _mm256_mul_pd(e.xj, a));
-    const __m256d Yv =
-        _mm256_sub_pd(_mm256_mul_pd(y, aj), _mm256_mul_pd(e.yj, a));
-    const __m256d W = _mm256_sub_pd(aj, a);
     __m256d p, n;
-    signLanes(
-        _mm256_sub_pd(_mm256_sub_pd(_mm256_mul_pd(r2, _mm256_mul_pd(W, W)),
-                                    _mm256_mul_pd(Xv, Xv)),
-                      _mm256_mul_pd(Yv, Yv)),
-        mXv, &p, &n);
+    signLanes(capValue(e, x, y, a, r2), mXv, &p, &n);
     X[s] = {_mm256_and_pd(cross_t, p), _mm256_or_pd(cross_f, n)};
   }
 
