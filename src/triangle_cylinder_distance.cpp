@@ -370,36 +370,76 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
   const P3<DDx>& a = vertex(i);
   P3<DDx> d{};
   if (vb < 0) d = vertex(j) - a;
-  // An edge point is a + d (s + sc): s the double pass's parameter, sc a
-  // Newton correction (second attempt) from phi'(s) = w . d (w = p - P(p)
-  // to a few ulps, the product in double-word) and the double phi''(s).
-  double sc = 0;
-  for (int attempt = 0; attempt < 2; ++attempt) {
+  // An edge point is a + d s. First (attempt 0), where the double pass's
+  // point lies in the slab |z| <= h: the barrel's closed form, s* with
+  // p_xy . d_xy = 0, in double-word (s* = s_hi + s_lo). Where the edge's
+  // minimum is in the barrel's region, phi' = (1 - r/rho) p_xy . d_xy
+  // vanishes exactly there; near a tangency (rho - r tiny) phi' is below
+  // the double pass's resolution over an interval of width about
+  // sqrt(u M / |d|^2 / rho), and f grows by (s - s*)^2 |d|^2 / (2 rho)
+  // across it, so the double parameter does not certify 8 ulps of a small
+  // distance (and Newton's steps only shrink s - s* by 2/3 each in that
+  // cubic regime). Then (attempt 1) the double pass's parameter s, and
+  // (attempt 2) s + sc, sc a Newton correction from phi'(s) = w . d (w =
+  // p - P(p) to a few ulps, the product in double-word) and the double
+  // phi''(s). Each attempt is certified on its own (U: a point of T; L: a
+  // separating plane), whichever parameter it used.
+  double sc = 0, s_hi = cb.s, s_lo = 0;
+  int first = 1;
+  if (vb < 0 && absd(cb.p.z) <= P.h) {
+    const DDx dxy2 = d.x * d.x + d.y * d.y;
+    if (dxy2.hi > detail::dist::kTinyDen) {
+      const DDx sb = (a.x * d.x + a.y * d.y) / dxy2;  // -s*
+      const double sh = sb.hi, sl = sb.lo;
+      if (sh < 0 && sh > -1) {
+        s_hi = -sh;
+        s_lo = -sl;
+        first = 0;
+      }
+    }
+  }
+  for (int attempt = first; attempt < 3; ++attempt) {
     P3<DDx> p = a;
     if (vb < 0) {
-      p = {a.x + detail::mulD(d.x, cb.s), a.y + detail::mulD(d.y, cb.s),
-           a.z + detail::mulD(d.z, cb.s)};
-      if (sc != 0)
+      const double s = attempt == 0 ? s_hi : cb.s;
+      p = {a.x + detail::mulD(d.x, s), a.y + detail::mulD(d.y, s),
+           a.z + detail::mulD(d.z, s)};
+      if (attempt == 0 && s_lo != 0)
+        p = {p.x + DDx(d.x.hi * s_lo), p.y + DDx(d.y.hi * s_lo),
+             p.z + DDx(d.z.hi * s_lo)};
+      if (attempt == 2)
         p = {p.x + detail::mulD(d.x, sc), p.y + detail::mulD(d.y, sc),
              p.z + detail::mulD(d.z, sc)};
     }
     const LeanPoint lp = leanPoint(p, P.r, P.h);
-    if (!(lp.U > 0)) return false;
+    if (!(lp.U > 0)) {
+      if (attempt == 0) continue;
+      return false;
+    }
     P3<DDx> W{DDx(lp.w.x), DDx(lp.w.y), DDx(lp.w.z)};
     DDx m;
     if (vb >= 0) {
       m = detail::mulD(a.x, lp.w.x) + detail::mulD(a.y, lp.w.y) +
           detail::mulD(a.z, lp.w.z);
     } else {
+      // In the slab (w_z = 0) W stays horizontal: W_xy = w_xy - d_xy c.
+      // Made orthogonal to the whole d, W would tilt by the rounding of
+      // w . d (about u |w| |d|), and the cap's term h |W_z| of the
+      // support function would cost L an absolute u h, not a relative one.
+      const bool slab = lp.w.z == 0;
       const DDx wd = detail::mulD(d.x, lp.w.x) + detail::mulD(d.y, lp.w.y) +
-                     detail::mulD(d.z, lp.w.z);
-      const double dx = double(d.x), dy = double(d.y), dz = double(d.z);
+                     (slab ? DDx(0) : detail::mulD(d.z, lp.w.z));
+      const double dx = double(d.x), dy = double(d.y),
+                   dz = slab ? 0.0 : double(d.z);
       const double dd = dx * dx + dy * dy + dz * dz;
-      if (!(dd > detail::dist::kTinyDen)) return false;
+      if (!(dd > detail::dist::kTinyDen)) {
+        if (attempt == 0) continue;
+        return false;
+      }
       const double c = double(wd) / dd;
       W = {DDx(lp.w.x) - detail::mulD(d.x, c),
            DDx(lp.w.y) - detail::mulD(d.y, c),
-           DDx(lp.w.z) - detail::mulD(d.z, c)};
+           slab ? DDx(0) : DDx(lp.w.z) - detail::mulD(d.z, c)};
       const DDx ma = detail::dist::dot(W, a),
                 mb = detail::dist::dot(W, vertex(j));
       m = ma < mb ? ma : mb;
@@ -416,15 +456,24 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
       }
     }
     const double ww = wd.x * wd.x + wd.y * wd.y + wd.z * wd.z;
-    if (!(ww > detail::dist::kTinyDen)) return false;
+    if (!(ww > detail::dist::kTinyDen)) {
+      if (attempt == 0) continue;
+      return false;
+    }
     const DDx hc = detail::mulD(sqrt(W.x * W.x + W.y * W.y), P.r) +
                    detail::mulD(abs(W.z), P.h);
     const double L = double(m - hc) / std::sqrt(ww);
     const double U = lp.U;
-    if (!(L > 0)) return false;
+    if (!(L > 0)) {
+      if (attempt == 0) continue;
+      return false;
+    }
     const double u_hi = U * (1 + kLeanU) + slack_dd;
     const double l_lo = L * (1 - kLeanL) - slack_dd;
-    if (!(l_lo <= u_hi)) return false;  // inconsistent: not accepted
+    if (!(l_lo <= u_hi)) {
+      if (attempt == 0) continue;
+      return false;
+    }  // inconsistent: not accepted
     const double dist = 0.5 * (U + L);
     const double err = maxd(u_hi - dist, dist - l_lo) + kU * dist;
     // As in refineFast: accepted within kAcceptRel, or when U and L met (to
@@ -433,7 +482,8 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
     if (!(err <= kAcceptRel * dist ||
           (slack_dd > kTightGap * dist &&
            U - L <= (kLeanU + kLeanL + kTightGap) * dist))) {
-      if (vb >= 0 || attempt > 0) return false;
+      if (vb >= 0 || attempt == 2) return false;
+      if (attempt == 0) continue;
       const int ki = detail::dist::kEdgeA[cb.kind];
       const P3<double> dd = P.v[detail::dist::kEdgeB[cb.kind]] - P.v[ki];
       const double g2 = detail::dist::edgeDphi(P.v[ki], dd, cb.s, P.r, P.h).g2;
@@ -701,8 +751,9 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   }
   DDVertices<DDx, decltype(ddVertex)> vertex{ddVertex};
   // Accepted: L_lo > 0 proves the pair disjoint, no Boolean needed.
-  if (leanRefine<DDx>(pass, P, vertex, eps_y_d, M, slack_dd, wm, out))
+  if (leanRefine<DDx>(pass, P, vertex, eps_y_d, M, slack_dd, wm, out)) {
     return Answer::kDisjoint;
+  }
   if (pass.face_pending) addFace(P, &pass);
 
   double U = std::numeric_limits<double>::infinity(), L = 0;
@@ -741,8 +792,9 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   }
 
   const double tie = 2 * err_d;
-  if (refineFast<DDx>(pass, P, vertex, U, tie, eps_y_d, M, slack_dd, wm, out))
+  if (refineFast<DDx>(pass, P, vertex, U, tie, eps_y_d, M, slack_dd, wm, out)) {
     return Answer::kDisjoint;
+  }
 
   // The general refinement: every candidate within the double pass's
   // error of the best, each edge re-solved in a bracket.
@@ -809,8 +861,9 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   // by the double pass's certificate alone).
   Answer boolean = Answer::kInvalidInput;
   auto booleanOf = [&]() {
-    if (boolean == Answer::kInvalidInput)
+    if (boolean == Answer::kInvalidInput) {
       boolean = tryIntersect(cyl, pose, tri);
+    }
     return boolean;
   };
   // Power-of-two scaling keeps the products of up to six local lengths
