@@ -47,6 +47,12 @@
 #define TRICYL_DIST_NOINLINE
 #endif
 
+// Which step answered a query, for a profiling driver that defines it
+// (docs/distance.md, section 8): empty otherwise.
+#ifndef TRICYL_DIST_PATH
+#define TRICYL_DIST_PATH(k)
+#endif
+
 namespace tricyl {
 namespace {
 
@@ -170,11 +176,8 @@ VertexPass vertexPass(const Problem<double>& P) {
 // and f >= f_b - (1 - s) f'(1), f' = phi' / f); where the two lines meet is a
 // lower bound of the edge's minimum (the edge is skipped when it cannot
 // beat the best so far) and the start of the Newton iteration.
-// `witness`: the pair intersects, only a common point is wanted (the pass
-// stops at the first candidate at distance 0).
 TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
-                                     const VertexPass& vp, double prune_slack,
-                                     bool witness) {
+                                     const VertexPass& vp, double prune_slack) {
   Pass out;
   const P3<double>* g = vp.g;
   const double* f = vp.f;
@@ -197,12 +200,6 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
       best = out.cand[k].f;
       out.best = k;
     }
-  }
-  if (witness && best == 0) return out;
-  if (witness) {
-    addFace(P, &out);
-    if (out.best == 3 && out.cand[3].f == 0) return out;
-    best = out.cand[out.best].f;
   }
   for (int k = 0; k < 3; ++k) {
     const int i = detail::dist::kEdgeA[k], j = detail::dist::kEdgeB[k];
@@ -254,7 +251,7 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
   // to the double pass's rounding, and the face's candidate cannot beat
   // it). The test only saves work: the refinements certify the result,
   // and complete the face (addFace) before anything but the lean one.
-  if (!witness) {
+  {
     const Candidate<double>& c = out.cand[out.best];
     const int vb = vertexOf(c);
     bool kkt = c.f > 0;
@@ -447,12 +444,14 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
     const P3<double> wd{double(W.x), double(W.y), double(W.z)};
     const double w1 = absd(wd.x) + absd(wd.y) + absd(wd.z);
     const double margin = w1 * (eps_y_d + 5 * kU * M) * (1 + 0x1p-50);
+    int in_bound = (1 << i) | (1 << j);  // the vertices in m
     for (int v = 0; v < 3; ++v) {
       if (v == i || v == j) continue;
       if (!(detail::dist::dot(wd, P.v[v]) - margin >=
             m.hi + 4 * kU * absd(m.hi))) {
         const DDx x = detail::dist::dot(W, vertex(v));
         if (x < m) m = x;
+        in_bound |= 1 << v;
       }
     }
     const double ww = wd.x * wd.x + wd.y * wd.y + wd.z * wd.z;
@@ -460,20 +459,55 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
       if (attempt == 0) continue;
       return false;
     }
-    const DDx hc = detail::mulD(sqrt(W.x * W.x + W.y * W.y), P.r) +
-                   detail::mulD(abs(W.z), P.h);
-    const double L = double(m - hc) / std::sqrt(ww);
-    const double U = lp.U;
+    double L, U = lp.U;
+    LeanPoint lq = lp;
+    if (W.x == DDx(0) && W.y == DDx(0)) {
+      // A vertical W (a point over a cap, W made orthogonal to an edge
+      // parallel to it): the plane's bound is min_i sg z_i - h (sg the sign
+      // of W_z) over the vertices in m, one rounding of a double-word
+      // difference, with none of the products' roundings at the scale of
+      // |W| |v| (which, for a distance far below the coordinates, would
+      // exceed 8 ulps of it). When the vertex attaining it lies over the
+      // cap's disk its distance is that same difference: U = L, the
+      // vertex is the nearest point (a face parallel to the cap ties
+      // every vertex; the double pass's choice among them may be off by
+      // its own rounding).
+      const double sg = W.z.hi > 0 ? 1.0 : -1.0;
+      int vm = -1;
+      DDx mz;
+      for (int v = 0; v < 3; ++v) {
+        if (!(in_bound & (1 << v))) continue;
+        const DDx z = sg > 0 ? vertex(v).z : -vertex(v).z;
+        if (vm < 0 || z < mz) {
+          mz = z;
+          vm = v;
+        }
+      }
+      const DDx gap_z = mz - DDx(P.h);
+      L = double(gap_z);
+      const P3<DDx>& y = vertex(vm);
+      if (L > 0 && !(detail::mulD(DDx(P.r), P.r) < y.x * y.x + y.y * y.y)) {
+        U = L;
+        p = y;
+        lq.w = {0, 0, sg * L};
+      }
+    } else {
+      const DDx hc = detail::mulD(sqrt(W.x * W.x + W.y * W.y), P.r) +
+                     detail::mulD(abs(W.z), P.h);
+      L = double(m - hc) / std::sqrt(ww);
+    }
     if (!(L > 0)) {
       if (attempt == 0) continue;
       return false;
     }
     const double u_hi = U * (1 + kLeanU) + slack_dd;
     const double l_lo = L * (1 - kLeanL) - slack_dd;
-    if (!(l_lo <= u_hi)) {
+    // Not accepted unless it proves the pair disjoint (l_lo > 0: the
+    // caller may not have asked the Boolean), nor for inconsistent bounds.
+    if (!(l_lo > 0) || !(l_lo <= u_hi)) {
       if (attempt == 0) continue;
       return false;
-    }  // inconsistent: not accepted
+    }
     const double dist = 0.5 * (U + L);
     const double err = maxd(u_hi - dist, dist - l_lo) + kU * dist;
     // As in refineFast: accepted within kAcceptRel, or when U and L met (to
@@ -499,7 +533,7 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
       out->error_bound = err * (1 + 0x1p-50);
       const P3<double> pd{double(p.x), double(p.y), double(p.z)};
       out->point_on_triangle = toWorld(wm, pd);
-      out->point_on_cylinder = toWorld(wm, pd - lp.w);
+      out->point_on_cylinder = toWorld(wm, pd - lq.w);
     }
     return true;
   }
@@ -647,13 +681,43 @@ TRICYL_DIST_NOINLINE bool refineFast(const Pass& pass, const Problem<double>& P,
   return true;
 }
 
+// One coordinate of a double-word pulled-back vertex, sum_k (s_k + e_k) R_k
+// with s_k + e_k = x_k - t_k exactly (TwoSum): the three products s_k R_k
+// split exactly (TwoProduct: p_k + q_k), the p_k summed by two TwoSums
+// (exact: p_0 + p_1 + p_2 = s2 + t1 + t2), and every low-order term
+// (t1, t2, q_k + e_k R_k) summed in double, then one TwoSum. With
+// |q_k|, |e_k| <= u |p_k| (1 + u), |t1| <= u |p_0 + p_1|, |t2| <= u |s2|,
+// the low-order sum's terms total at most 4u (|p_0| + |p_1| + |p_2|) and
+// its five roundings (and those of e_k R_k, q_k + e_k R_k) cost at most
+// 25 u^2 sum_k |R_k (x_k - t_k)| < 2^-101 S: the double-word vertices'
+// bound of docs/distance.md, section 4, at half the operations of three
+// double-word products and two double-word sums.
+template <class DDx>
+inline DDx pullBackDW(const double s[3], const double e[3], double r0,
+                      double r1, double r2) {
+  constexpr bool kF = std::is_same_v<DDx, detail::DDT<true>>;
+  double p0, q0, p1, q1, p2, q2;
+  detail::twoProdT<kF>(s[0], r0, p0, q0);
+  detail::twoProdT<kF>(s[1], r1, p1, q1);
+  detail::twoProdT<kF>(s[2], r2, p2, q2);
+  double s1, t1, s2, t2;
+  detail::twoSum(p0, p1, s1, t1);
+  detail::twoSum(s1, p2, s2, t2);
+  const double lo =
+      ((t1 + t2) + (q0 + e[0] * r0)) + ((q1 + e[1] * r1) + (q2 + e[2] * r2));
+  double h, l;
+  detail::twoSum(s2, lo, h, l);
+  return DDx(h, l);
+}
+
 // The distance for valid double inputs of moderate magnitude (no
 // overflow of products of up to six lengths: every length below 2^100).
 // `booleanOf()` returns the exact Boolean (kIntersect or kDisjoint) of the
-// query; it is called only when the double pass cannot prove separation
-// (a certified lower bound of the distance above its own error), and
-// before the rest of the double pass when a vertex lies within that error
-// of C (then the pair usually intersects, and a vertex in C is a witness).
+// query; it is called only when no certified lower bound proves the pair
+// disjoint (the lean refinement's, or the double pass's above its own
+// error), and first when the double pass puts a vertex, an edge point or
+// the face in C (then the pair usually intersects, and that point is the
+// witness).
 template <class DDx, class BooleanFn>
 TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
                                   const Pose<double>& pose,
@@ -711,48 +775,55 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   int vmin = 0;
   for (int i = 1; i < 3; ++i)
     if (vp.f[i] < vp.f[vmin]) vmin = i;
-  if (!(vp.f[vmin] > slack_d)) {
-    if (booleanOf() == Answer::kIntersect) {
-      // A vertex in C (in double) is the witness; otherwise the double
-      // pass's search for a candidate at distance 0.
-      if (vp.f[vmin] == 0) return intersecting(P.v[vmin], P.v[vmin]);
-      const Pass pass = doublePass(P, vp, slack_d, true);
-      const Candidate<double>& c = pass.cand[pass.best >= 0 ? pass.best : 0];
-      return intersecting(c.p, c.q);
-    }
+  // A vertex in C in double (f = 0): usually an intersecting pair, which
+  // the Boolean decides first, the vertex the witness. (A vertex just
+  // outside in double, 0 < f <= slack_d, is nearly always disjoint:
+  // the lean refinement below is tried before the Boolean.)
+  if (vp.f[vmin] == 0 && booleanOf() == Answer::kIntersect) {
+    TRICYL_DIST_PATH(1);
+    return intersecting(P.v[vmin], P.v[vmin]);
   }
-  Pass pass = doublePass(P, vp, slack_d, false);
+  Pass pass = doublePass(P, vp, slack_d);
 
   // Double-word refinement. x - t is exact as a pair (TwoSum); the sum
   // of three double-word products is within 2^-101 S (dd.h).
   auto ddVertex = [&](int v) {
     const double x[3] = {X[v]->x, X[v]->y, X[v]->z};
-    DDx dx[3];
-    for (int k = 0; k < 3; ++k) {
-      double s, e;
-      detail::twoSum(x[k], -tt[k], s, e);
-      dx[k] = DDx(s, e);
-    }
-    DDx y[3];
-    for (int i = 0; i < 3; ++i)
-      y[i] = detail::mulD(dx[0], pose.R[0][i]) +
-             detail::mulD(dx[1], pose.R[1][i]) +
-             detail::mulD(dx[2], pose.R[2][i]);
-    return P3<DDx>{y[0], y[1], y[2]};
+    double ds[3], de[3];
+    for (int k = 0; k < 3; ++k) detail::twoSum(x[k], -tt[k], ds[k], de[k]);
+    return P3<DDx>{
+        pullBackDW<DDx>(ds, de, pose.R[0][0], pose.R[1][0], pose.R[2][0]),
+        pullBackDW<DDx>(ds, de, pose.R[0][1], pose.R[1][1], pose.R[2][1]),
+        pullBackDW<DDx>(ds, de, pose.R[0][2], pose.R[1][2], pose.R[2][2])};
   };
   const double slack_dd = 2 * kUdd * S + kAlg * kUdd * Mx;
-  // A best candidate within the double pass's error of C: usually an
-  // intersecting pair, which the Boolean decides before any refinement.
-  if (!(pass.cand[pass.best].f > 2 * slack_d) &&
-      booleanOf() == Answer::kIntersect) {
+  // A best candidate of the double pass within its error of C: at
+  // distance 0 in double (an edge or the face through C), usually an
+  // intersecting pair, which the Boolean decides before any refinement;
+  // at a positive double distance (0 < f <= 2 slack_d), nearly always a
+  // disjoint one (a pair at a distance below the double pass's error),
+  // which the lean refinement usually proves disjoint without the
+  // Boolean; if it does not, the Boolean decides next.
+  const bool near_c = !(pass.cand[pass.best].f > 2 * slack_d);
+  auto intersectingBest = [&]() {
     if (pass.face_pending) addFace(P, &pass);
     const Candidate<double>& c = pass.cand[pass.best];
     return intersecting(c.p, c.q);
+  };
+  if (near_c && pass.cand[pass.best].f == 0 &&
+      booleanOf() == Answer::kIntersect) {
+    TRICYL_DIST_PATH(2);
+    return intersectingBest();
   }
   DDVertices<DDx, decltype(ddVertex)> vertex{ddVertex};
   // Accepted: L_lo > 0 proves the pair disjoint, no Boolean needed.
   if (leanRefine<DDx>(pass, P, vertex, eps_y_d, M, slack_dd, wm, out)) {
+    TRICYL_DIST_PATH(3);
     return Answer::kDisjoint;
+  }
+  if (near_c && booleanOf() == Answer::kIntersect) {
+    TRICYL_DIST_PATH(8);
+    return intersectingBest();
   }
   if (pass.face_pending) addFace(P, &pass);
 
@@ -774,6 +845,7 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   // Otherwise the Boolean decides (it was already known to be false if a
   // vertex was within slack_d of C: the call is then cached by booleanOf).
   if (!(L > slack_d * (1 + 0x1p-40)) && booleanOf() == Answer::kIntersect) {
+    TRICYL_DIST_PATH(4);
     const Candidate<double>& c = pass.cand[pass.best >= 0 ? pass.best : 0];
     return intersecting(c.p, c.q);
   }
@@ -788,13 +860,16 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
       out->point_on_triangle = toWorld(wm, c.p);
       out->point_on_cylinder = toWorld(wm, c.q);
     }
+    TRICYL_DIST_PATH(5);
     return Answer::kDisjoint;
   }
 
   const double tie = 2 * err_d;
   if (refineFast<DDx>(pass, P, vertex, U, tie, eps_y_d, M, slack_dd, wm, out)) {
+    TRICYL_DIST_PATH(6);
     return Answer::kDisjoint;
   }
+  TRICYL_DIST_PATH(7);
 
   // The general refinement: every candidate within the double pass's
   // error of the best, each edge re-solved in a bracket.
@@ -862,6 +937,7 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   Answer boolean = Answer::kInvalidInput;
   auto booleanOf = [&]() {
     if (boolean == Answer::kInvalidInput) {
+      TRICYL_DIST_PATH(10);
       boolean = tryIntersect(cyl, pose, tri);
     }
     return boolean;
