@@ -367,35 +367,48 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
   const P3<DDx>& a = vertex(i);
   P3<DDx> d{};
   if (vb < 0) d = vertex(j) - a;
-  // An edge point is a + d s. First (attempt 0), where the double pass's
-  // point lies in the slab |z| <= h: the barrel's closed form, s* with
-  // p_xy . d_xy = 0, in double-word (s* = s_hi + s_lo). Where the edge's
-  // minimum is in the barrel's region, phi' = (1 - r/rho) p_xy . d_xy
-  // vanishes exactly there; near a tangency (rho - r tiny) phi' is below
-  // the double pass's resolution over an interval of width about
+  // An edge point is a + d s: first (attempt 1) at the double pass's
+  // parameter s. Where that does not certify and the double pass's point
+  // lies in the slab |z| <= h, next (attempt 0) the barrel's closed form,
+  // s* with p_xy . d_xy = 0, in double-word (s* = s_hi + s_lo): where the
+  // edge's minimum is in the barrel's region, phi' = (1 - r/rho) p_xy .
+  // d_xy vanishes exactly there. Near a tangency (rho - r tiny) phi' is
+  // below the double pass's resolution over an interval of width about
   // sqrt(u M / |d|^2 / rho), and f grows by (s - s*)^2 |d|^2 / (2 rho)
   // across it, so the double parameter does not certify 8 ulps of a small
   // distance (and Newton's steps only shrink s - s* by 2/3 each in that
-  // cubic regime). Then (attempt 1) the double pass's parameter s, and
-  // (attempt 2) s + sc, sc a Newton correction from phi'(s) = w . d (w =
-  // p - P(p) to a few ulps, the product in double-word) and the double
-  // phi''(s). Each attempt is certified on its own (U: a point of T; L: a
-  // separating plane), whichever parameter it used.
+  // cubic regime). Last (attempt 2) s + sc, sc a Newton correction from
+  // phi'(s) = w . d (w = p - P(p) to a few ulps, the product in
+  // double-word) and the double phi''(s). Each attempt is certified on its
+  // own (U: a point of T; L: a separating plane), whichever parameter it
+  // used.
   double sc = 0, s_hi = cb.s, s_lo = 0;
-  int first = 1;
-  if (vb < 0 && absd(cb.p.z) <= P.h) {
-    const DDx dxy2 = d.x * d.x + d.y * d.y;
-    if (dxy2.hi > detail::dist::kTinyDen) {
-      const DDx sb = (a.x * d.x + a.y * d.y) / dxy2;  // -s*
-      const double sh = sb.hi, sl = sb.lo;
-      if (sh < 0 && sh > -1) {
-        s_hi = -sh;
-        s_lo = -sl;
-        first = 0;
+  // (The closed form second: its double-word quotient is a long latency
+  // chain, wasted where the double parameter certifies.)
+  bool closed_open = vb < 0 && absd(cb.p.z) <= P.h, newton_open = false;
+  int attempt = 1;
+  for (int step = 0; step < 3; ++step) {
+    if (step > 0) {
+      attempt = -1;
+      if (closed_open) {
+        closed_open = false;
+        const DDx dxy2 = d.x * d.x + d.y * d.y;
+        if (dxy2.hi > detail::dist::kTinyDen) {
+          const DDx sb = (a.x * d.x + a.y * d.y) / dxy2;  // -s*
+          const double sh = sb.hi, sl = sb.lo;
+          if (sh < 0 && sh > -1) {
+            s_hi = -sh;
+            s_lo = -sl;
+            attempt = 0;
+          }
+        }
       }
+      if (attempt < 0 && newton_open) {
+        newton_open = false;
+        attempt = 2;
+      }
+      if (attempt < 0) return false;
     }
-  }
-  for (int attempt = first; attempt < 3; ++attempt) {
     P3<DDx> p = a;
     if (vb < 0) {
       const double s = attempt == 0 ? s_hi : cb.s;
@@ -410,8 +423,7 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
     }
     const LeanPoint lp = leanPoint(p, P.r, P.h);
     if (!(lp.U > 0)) {
-      if (attempt == 0) continue;
-      return false;
+      continue;
     }
     P3<DDx> W{DDx(lp.w.x), DDx(lp.w.y), DDx(lp.w.z)};
     DDx m;
@@ -430,8 +442,7 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
                    dz = slab ? 0.0 : double(d.z);
       const double dd = dx * dx + dy * dy + dz * dz;
       if (!(dd > detail::dist::kTinyDen)) {
-        if (attempt == 0) continue;
-        return false;
+        continue;
       }
       const double c = double(wd) / dd;
       W = {DDx(lp.w.x) - detail::mulD(d.x, c),
@@ -456,8 +467,7 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
     }
     const double ww = wd.x * wd.x + wd.y * wd.y + wd.z * wd.z;
     if (!(ww > detail::dist::kTinyDen)) {
-      if (attempt == 0) continue;
-      return false;
+      continue;
     }
     double L, U = lp.U;
     LeanPoint lq = lp;
@@ -497,16 +507,14 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
       L = double(m - hc) / std::sqrt(ww);
     }
     if (!(L > 0)) {
-      if (attempt == 0) continue;
-      return false;
+      continue;
     }
     const double u_hi = U * (1 + kLeanU) + slack_dd;
     const double l_lo = L * (1 - kLeanL) - slack_dd;
     // Not accepted unless it proves the pair disjoint (l_lo > 0: the
     // caller may not have asked the Boolean), nor for inconsistent bounds.
     if (!(l_lo > 0) || !(l_lo <= u_hi)) {
-      if (attempt == 0) continue;
-      return false;
+      continue;
     }
     const double dist = 0.5 * (U + L);
     const double err = maxd(u_hi - dist, dist - l_lo) + kU * dist;
@@ -516,16 +524,15 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
     if (!(err <= kAcceptRel * dist ||
           (slack_dd > kTightGap * dist &&
            U - L <= (kLeanU + kLeanL + kTightGap) * dist))) {
-      if (vb >= 0 || attempt == 2) return false;
-      if (attempt == 0) continue;
+      if (vb >= 0 || attempt != 1) continue;
       const int ki = detail::dist::kEdgeA[cb.kind];
       const P3<double> dd = P.v[detail::dist::kEdgeB[cb.kind]] - P.v[ki];
       const double g2 = detail::dist::edgeDphi(P.v[ki], dd, cb.s, P.r, P.h).g2;
       const DDx wdd = detail::mulD(d.x, lp.w.x) + detail::mulD(d.y, lp.w.y) +
                       detail::mulD(d.z, lp.w.z);
-      if (!(g2 > detail::dist::kTinyDen)) return false;
+      if (!(g2 > detail::dist::kTinyDen)) continue;
       sc = -double(wdd) / g2;
-      if (!(absd(sc) < 0x1p-20)) return false;
+      newton_open = absd(sc) < 0x1p-20;
       continue;
     }
     if (out) {
