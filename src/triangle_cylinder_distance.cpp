@@ -47,6 +47,12 @@
 #define TRICYL_DIST_NOINLINE
 #endif
 
+// Which step answered a query, for a profiling driver that defines it
+// (docs/distance.md, section 8): empty otherwise.
+#ifndef TRICYL_DIST_PATH
+#define TRICYL_DIST_PATH(k)
+#endif
+
 namespace tricyl {
 namespace {
 
@@ -170,11 +176,8 @@ VertexPass vertexPass(const Problem<double>& P) {
 // and f >= f_b - (1 - s) f'(1), f' = phi' / f); where the two lines meet is a
 // lower bound of the edge's minimum (the edge is skipped when it cannot
 // beat the best so far) and the start of the Newton iteration.
-// `witness`: the pair intersects, only a common point is wanted (the pass
-// stops at the first candidate at distance 0).
 TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
-                                     const VertexPass& vp, double prune_slack,
-                                     bool witness) {
+                                     const VertexPass& vp, double prune_slack) {
   Pass out;
   const P3<double>* g = vp.g;
   const double* f = vp.f;
@@ -197,12 +200,6 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
       best = out.cand[k].f;
       out.best = k;
     }
-  }
-  if (witness && best == 0) return out;
-  if (witness) {
-    addFace(P, &out);
-    if (out.best == 3 && out.cand[3].f == 0) return out;
-    best = out.cand[out.best].f;
   }
   for (int k = 0; k < 3; ++k) {
     const int i = detail::dist::kEdgeA[k], j = detail::dist::kEdgeB[k];
@@ -254,7 +251,7 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
   // to the double pass's rounding, and the face's candidate cannot beat
   // it). The test only saves work: the refinements certify the result,
   // and complete the face (addFace) before anything but the lean one.
-  if (!witness) {
+  {
     const Candidate<double>& c = out.cand[out.best];
     const int vb = vertexOf(c);
     bool kkt = c.f > 0;
@@ -370,36 +367,87 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
   const P3<DDx>& a = vertex(i);
   P3<DDx> d{};
   if (vb < 0) d = vertex(j) - a;
-  // An edge point is a + d (s + sc): s the double pass's parameter, sc a
-  // Newton correction (second attempt) from phi'(s) = w . d (w = p - P(p)
-  // to a few ulps, the product in double-word) and the double phi''(s).
-  double sc = 0;
-  for (int attempt = 0; attempt < 2; ++attempt) {
+  // An edge point is a + d s: first (attempt 1) at the double pass's
+  // parameter s. Where that does not certify and the double pass's point
+  // lies in the slab |z| <= h, next (attempt 0) the barrel's closed form,
+  // s* with p_xy . d_xy = 0, in double-word (s* = s_hi + s_lo): where the
+  // edge's minimum is in the barrel's region, phi' = (1 - r/rho) p_xy .
+  // d_xy vanishes exactly there. Near a tangency (rho - r tiny) phi' is
+  // below the double pass's resolution over an interval of width about
+  // sqrt(u M / |d|^2 / rho), and f grows by (s - s*)^2 |d|^2 / (2 rho)
+  // across it, so the double parameter does not certify 8 ulps of a small
+  // distance (and Newton's steps only shrink s - s* by 2/3 each in that
+  // cubic regime). Last (attempt 2) s + sc, sc a Newton correction from
+  // phi'(s) = w . d (w = p - P(p) to a few ulps, the product in
+  // double-word) and the double phi''(s). Each attempt is certified on its
+  // own (U: a point of T; L: a separating plane), whichever parameter it
+  // used.
+  double sc = 0, s_hi = cb.s, s_lo = 0;
+  // (The closed form second: its double-word quotient is a long latency
+  // chain, wasted where the double parameter certifies.)
+  bool closed_open = vb < 0 && absd(cb.p.z) <= P.h, newton_open = false;
+  int attempt = 1;
+  for (int step = 0; step < 3; ++step) {
+    if (step > 0) {
+      attempt = -1;
+      if (closed_open) {
+        closed_open = false;
+        const DDx dxy2 = d.x * d.x + d.y * d.y;
+        if (dxy2.hi > detail::dist::kTinyDen) {
+          const DDx sb = (a.x * d.x + a.y * d.y) / dxy2;  // -s*
+          const double sh = sb.hi, sl = sb.lo;
+          if (sh < 0 && sh > -1) {
+            s_hi = -sh;
+            s_lo = -sl;
+            attempt = 0;
+          }
+        }
+      }
+      if (attempt < 0 && newton_open) {
+        newton_open = false;
+        attempt = 2;
+      }
+      if (attempt < 0) return false;
+    }
     P3<DDx> p = a;
     if (vb < 0) {
-      p = {a.x + detail::mulD(d.x, cb.s), a.y + detail::mulD(d.y, cb.s),
-           a.z + detail::mulD(d.z, cb.s)};
-      if (sc != 0)
+      const double s = attempt == 0 ? s_hi : cb.s;
+      p = {a.x + detail::mulD(d.x, s), a.y + detail::mulD(d.y, s),
+           a.z + detail::mulD(d.z, s)};
+      if (attempt == 0 && s_lo != 0)
+        p = {p.x + DDx(d.x.hi * s_lo), p.y + DDx(d.y.hi * s_lo),
+             p.z + DDx(d.z.hi * s_lo)};
+      if (attempt == 2)
         p = {p.x + detail::mulD(d.x, sc), p.y + detail::mulD(d.y, sc),
              p.z + detail::mulD(d.z, sc)};
     }
     const LeanPoint lp = leanPoint(p, P.r, P.h);
-    if (!(lp.U > 0)) return false;
+    if (!(lp.U > 0)) {
+      continue;
+    }
     P3<DDx> W{DDx(lp.w.x), DDx(lp.w.y), DDx(lp.w.z)};
     DDx m;
     if (vb >= 0) {
       m = detail::mulD(a.x, lp.w.x) + detail::mulD(a.y, lp.w.y) +
           detail::mulD(a.z, lp.w.z);
     } else {
+      // In the slab (w_z = 0) W stays horizontal: W_xy = w_xy - d_xy c.
+      // Made orthogonal to the whole d, W would tilt by the rounding of
+      // w . d (about u |w| |d|), and the cap's term h |W_z| of the
+      // support function would cost L an absolute u h, not a relative one.
+      const bool slab = lp.w.z == 0;
       const DDx wd = detail::mulD(d.x, lp.w.x) + detail::mulD(d.y, lp.w.y) +
-                     detail::mulD(d.z, lp.w.z);
-      const double dx = double(d.x), dy = double(d.y), dz = double(d.z);
+                     (slab ? DDx(0) : detail::mulD(d.z, lp.w.z));
+      const double dx = double(d.x), dy = double(d.y),
+                   dz = slab ? 0.0 : double(d.z);
       const double dd = dx * dx + dy * dy + dz * dz;
-      if (!(dd > detail::dist::kTinyDen)) return false;
+      if (!(dd > detail::dist::kTinyDen)) {
+        continue;
+      }
       const double c = double(wd) / dd;
       W = {DDx(lp.w.x) - detail::mulD(d.x, c),
            DDx(lp.w.y) - detail::mulD(d.y, c),
-           DDx(lp.w.z) - detail::mulD(d.z, c)};
+           slab ? DDx(0) : DDx(lp.w.z) - detail::mulD(d.z, c)};
       const DDx ma = detail::dist::dot(W, a),
                 mb = detail::dist::dot(W, vertex(j));
       m = ma < mb ? ma : mb;
@@ -407,24 +455,67 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
     const P3<double> wd{double(W.x), double(W.y), double(W.z)};
     const double w1 = absd(wd.x) + absd(wd.y) + absd(wd.z);
     const double margin = w1 * (eps_y_d + 5 * kU * M) * (1 + 0x1p-50);
+    int in_bound = (1 << i) | (1 << j);  // the vertices in m
     for (int v = 0; v < 3; ++v) {
       if (v == i || v == j) continue;
       if (!(detail::dist::dot(wd, P.v[v]) - margin >=
             m.hi + 4 * kU * absd(m.hi))) {
         const DDx x = detail::dist::dot(W, vertex(v));
         if (x < m) m = x;
+        in_bound |= 1 << v;
       }
     }
     const double ww = wd.x * wd.x + wd.y * wd.y + wd.z * wd.z;
-    if (!(ww > detail::dist::kTinyDen)) return false;
-    const DDx hc = detail::mulD(sqrt(W.x * W.x + W.y * W.y), P.r) +
-                   detail::mulD(abs(W.z), P.h);
-    const double L = double(m - hc) / std::sqrt(ww);
-    const double U = lp.U;
-    if (!(L > 0)) return false;
+    if (!(ww > detail::dist::kTinyDen)) {
+      continue;
+    }
+    double L, U = lp.U;
+    LeanPoint lq = lp;
+    if (W.x == DDx(0) && W.y == DDx(0)) {
+      // A vertical W (a point over a cap, W made orthogonal to an edge
+      // parallel to it): the plane's bound is min_i sg z_i - h (sg the sign
+      // of W_z) over the vertices in m, one rounding of a double-word
+      // difference, with none of the products' roundings at the scale of
+      // |W| |v| (which, for a distance far below the coordinates, would
+      // exceed 8 ulps of it). When the vertex attaining it lies over the
+      // cap's disk its distance is that same difference: U = L, the
+      // vertex is the nearest point (a face parallel to the cap ties
+      // every vertex; the double pass's choice among them may be off by
+      // its own rounding).
+      const double sg = W.z.hi > 0 ? 1.0 : -1.0;
+      int vm = -1;
+      DDx mz;
+      for (int v = 0; v < 3; ++v) {
+        if (!(in_bound & (1 << v))) continue;
+        const DDx z = sg > 0 ? vertex(v).z : -vertex(v).z;
+        if (vm < 0 || z < mz) {
+          mz = z;
+          vm = v;
+        }
+      }
+      const DDx gap_z = mz - DDx(P.h);
+      L = double(gap_z);
+      const P3<DDx>& y = vertex(vm);
+      if (L > 0 && !(detail::mulD(DDx(P.r), P.r) < y.x * y.x + y.y * y.y)) {
+        U = L;
+        p = y;
+        lq.w = {0, 0, sg * L};
+      }
+    } else {
+      const DDx hc = detail::mulD(sqrt(W.x * W.x + W.y * W.y), P.r) +
+                     detail::mulD(abs(W.z), P.h);
+      L = double(m - hc) / std::sqrt(ww);
+    }
+    if (!(L > 0)) {
+      continue;
+    }
     const double u_hi = U * (1 + kLeanU) + slack_dd;
     const double l_lo = L * (1 - kLeanL) - slack_dd;
-    if (!(l_lo <= u_hi)) return false;  // inconsistent: not accepted
+    // Not accepted unless it proves the pair disjoint (l_lo > 0: the
+    // caller may not have asked the Boolean), nor for inconsistent bounds.
+    if (!(l_lo > 0) || !(l_lo <= u_hi)) {
+      continue;
+    }
     const double dist = 0.5 * (U + L);
     const double err = maxd(u_hi - dist, dist - l_lo) + kU * dist;
     // As in refineFast: accepted within kAcceptRel, or when U and L met (to
@@ -433,15 +524,15 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
     if (!(err <= kAcceptRel * dist ||
           (slack_dd > kTightGap * dist &&
            U - L <= (kLeanU + kLeanL + kTightGap) * dist))) {
-      if (vb >= 0 || attempt > 0) return false;
+      if (vb >= 0 || attempt != 1) continue;
       const int ki = detail::dist::kEdgeA[cb.kind];
       const P3<double> dd = P.v[detail::dist::kEdgeB[cb.kind]] - P.v[ki];
       const double g2 = detail::dist::edgeDphi(P.v[ki], dd, cb.s, P.r, P.h).g2;
       const DDx wdd = detail::mulD(d.x, lp.w.x) + detail::mulD(d.y, lp.w.y) +
                       detail::mulD(d.z, lp.w.z);
-      if (!(g2 > detail::dist::kTinyDen)) return false;
+      if (!(g2 > detail::dist::kTinyDen)) continue;
       sc = -double(wdd) / g2;
-      if (!(absd(sc) < 0x1p-20)) return false;
+      newton_open = absd(sc) < 0x1p-20;
       continue;
     }
     if (out) {
@@ -449,7 +540,7 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
       out->error_bound = err * (1 + 0x1p-50);
       const P3<double> pd{double(p.x), double(p.y), double(p.z)};
       out->point_on_triangle = toWorld(wm, pd);
-      out->point_on_cylinder = toWorld(wm, pd - lp.w);
+      out->point_on_cylinder = toWorld(wm, pd - lq.w);
     }
     return true;
   }
@@ -597,13 +688,43 @@ TRICYL_DIST_NOINLINE bool refineFast(const Pass& pass, const Problem<double>& P,
   return true;
 }
 
+// One coordinate of a double-word pulled-back vertex, sum_k (s_k + e_k) R_k
+// with s_k + e_k = x_k - t_k exactly (TwoSum): the three products s_k R_k
+// split exactly (TwoProduct: p_k + q_k), the p_k summed by two TwoSums
+// (exact: p_0 + p_1 + p_2 = s2 + t1 + t2), and every low-order term
+// (t1, t2, q_k + e_k R_k) summed in double, then one TwoSum. With
+// |q_k|, |e_k| <= u |p_k| (1 + u), |t1| <= u |p_0 + p_1|, |t2| <= u |s2|,
+// the low-order sum's terms total at most 4u (|p_0| + |p_1| + |p_2|) and
+// its five roundings (and those of e_k R_k, q_k + e_k R_k) cost at most
+// 25 u^2 sum_k |R_k (x_k - t_k)| < 2^-101 S: the double-word vertices'
+// bound of docs/distance.md, section 4, at half the operations of three
+// double-word products and two double-word sums.
+template <class DDx>
+inline DDx pullBackDW(const double s[3], const double e[3], double r0,
+                      double r1, double r2) {
+  constexpr bool kF = std::is_same_v<DDx, detail::DDT<true>>;
+  double p0, q0, p1, q1, p2, q2;
+  detail::twoProdT<kF>(s[0], r0, p0, q0);
+  detail::twoProdT<kF>(s[1], r1, p1, q1);
+  detail::twoProdT<kF>(s[2], r2, p2, q2);
+  double s1, t1, s2, t2;
+  detail::twoSum(p0, p1, s1, t1);
+  detail::twoSum(s1, p2, s2, t2);
+  const double lo =
+      ((t1 + t2) + (q0 + e[0] * r0)) + ((q1 + e[1] * r1) + (q2 + e[2] * r2));
+  double h, l;
+  detail::twoSum(s2, lo, h, l);
+  return DDx(h, l);
+}
+
 // The distance for valid double inputs of moderate magnitude (no
 // overflow of products of up to six lengths: every length below 2^100).
 // `booleanOf()` returns the exact Boolean (kIntersect or kDisjoint) of the
-// query; it is called only when the double pass cannot prove separation
-// (a certified lower bound of the distance above its own error), and
-// before the rest of the double pass when a vertex lies within that error
-// of C (then the pair usually intersects, and a vertex in C is a witness).
+// query; it is called only when no certified lower bound proves the pair
+// disjoint (the lean refinement's, or the double pass's above its own
+// error), and first when the double pass puts a vertex, an edge point or
+// the face in C (then the pair usually intersects, and that point is the
+// witness).
 template <class DDx, class BooleanFn>
 TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
                                   const Pose<double>& pose,
@@ -661,48 +782,56 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   int vmin = 0;
   for (int i = 1; i < 3; ++i)
     if (vp.f[i] < vp.f[vmin]) vmin = i;
-  if (!(vp.f[vmin] > slack_d)) {
-    if (booleanOf() == Answer::kIntersect) {
-      // A vertex in C (in double) is the witness; otherwise the double
-      // pass's search for a candidate at distance 0.
-      if (vp.f[vmin] == 0) return intersecting(P.v[vmin], P.v[vmin]);
-      const Pass pass = doublePass(P, vp, slack_d, true);
-      const Candidate<double>& c = pass.cand[pass.best >= 0 ? pass.best : 0];
-      return intersecting(c.p, c.q);
-    }
+  // A vertex in C in double (f = 0): usually an intersecting pair, which
+  // the Boolean decides first, the vertex the witness. (A vertex just
+  // outside in double, 0 < f <= slack_d, is nearly always disjoint:
+  // the lean refinement below is tried before the Boolean.)
+  if (vp.f[vmin] == 0 && booleanOf() == Answer::kIntersect) {
+    TRICYL_DIST_PATH(1);
+    return intersecting(P.v[vmin], P.v[vmin]);
   }
-  Pass pass = doublePass(P, vp, slack_d, false);
+  Pass pass = doublePass(P, vp, slack_d);
 
   // Double-word refinement. x - t is exact as a pair (TwoSum); the sum
   // of three double-word products is within 2^-101 S (dd.h).
   auto ddVertex = [&](int v) {
     const double x[3] = {X[v]->x, X[v]->y, X[v]->z};
-    DDx dx[3];
-    for (int k = 0; k < 3; ++k) {
-      double s, e;
-      detail::twoSum(x[k], -tt[k], s, e);
-      dx[k] = DDx(s, e);
-    }
-    DDx y[3];
-    for (int i = 0; i < 3; ++i)
-      y[i] = detail::mulD(dx[0], pose.R[0][i]) +
-             detail::mulD(dx[1], pose.R[1][i]) +
-             detail::mulD(dx[2], pose.R[2][i]);
-    return P3<DDx>{y[0], y[1], y[2]};
+    double ds[3], de[3];
+    for (int k = 0; k < 3; ++k) detail::twoSum(x[k], -tt[k], ds[k], de[k]);
+    return P3<DDx>{
+        pullBackDW<DDx>(ds, de, pose.R[0][0], pose.R[1][0], pose.R[2][0]),
+        pullBackDW<DDx>(ds, de, pose.R[0][1], pose.R[1][1], pose.R[2][1]),
+        pullBackDW<DDx>(ds, de, pose.R[0][2], pose.R[1][2], pose.R[2][2])};
   };
   const double slack_dd = 2 * kUdd * S + kAlg * kUdd * Mx;
-  // A best candidate within the double pass's error of C: usually an
-  // intersecting pair, which the Boolean decides before any refinement.
-  if (!(pass.cand[pass.best].f > 2 * slack_d) &&
-      booleanOf() == Answer::kIntersect) {
+  // A best candidate of the double pass within its error of C: at
+  // distance 0 in double (an edge or the face through C), usually an
+  // intersecting pair, which the Boolean decides before any refinement;
+  // at a positive double distance (0 < f <= 2 slack_d), nearly always a
+  // disjoint one (a pair at a distance below the double pass's error),
+  // which the lean refinement usually proves disjoint without the
+  // Boolean; if it does not, the Boolean decides next.
+  const bool near_c = !(pass.cand[pass.best].f > 2 * slack_d);
+  auto intersectingBest = [&]() {
     if (pass.face_pending) addFace(P, &pass);
     const Candidate<double>& c = pass.cand[pass.best];
     return intersecting(c.p, c.q);
+  };
+  if (near_c && pass.cand[pass.best].f == 0 &&
+      booleanOf() == Answer::kIntersect) {
+    TRICYL_DIST_PATH(2);
+    return intersectingBest();
   }
   DDVertices<DDx, decltype(ddVertex)> vertex{ddVertex};
   // Accepted: L_lo > 0 proves the pair disjoint, no Boolean needed.
-  if (leanRefine<DDx>(pass, P, vertex, eps_y_d, M, slack_dd, wm, out))
+  if (leanRefine<DDx>(pass, P, vertex, eps_y_d, M, slack_dd, wm, out)) {
+    TRICYL_DIST_PATH(3);
     return Answer::kDisjoint;
+  }
+  if (near_c && booleanOf() == Answer::kIntersect) {
+    TRICYL_DIST_PATH(8);
+    return intersectingBest();
+  }
   if (pass.face_pending) addFace(P, &pass);
 
   double U = std::numeric_limits<double>::infinity(), L = 0;
@@ -723,6 +852,7 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   // Otherwise the Boolean decides (it was already known to be false if a
   // vertex was within slack_d of C: the call is then cached by booleanOf).
   if (!(L > slack_d * (1 + 0x1p-40)) && booleanOf() == Answer::kIntersect) {
+    TRICYL_DIST_PATH(4);
     const Candidate<double>& c = pass.cand[pass.best >= 0 ? pass.best : 0];
     return intersecting(c.p, c.q);
   }
@@ -737,12 +867,16 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
       out->point_on_triangle = toWorld(wm, c.p);
       out->point_on_cylinder = toWorld(wm, c.q);
     }
+    TRICYL_DIST_PATH(5);
     return Answer::kDisjoint;
   }
 
   const double tie = 2 * err_d;
-  if (refineFast<DDx>(pass, P, vertex, U, tie, eps_y_d, M, slack_dd, wm, out))
+  if (refineFast<DDx>(pass, P, vertex, U, tie, eps_y_d, M, slack_dd, wm, out)) {
+    TRICYL_DIST_PATH(6);
     return Answer::kDisjoint;
+  }
+  TRICYL_DIST_PATH(7);
 
   // The general refinement: every candidate within the double pass's
   // error of the best, each edge re-solved in a bracket.
@@ -809,8 +943,10 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   // by the double pass's certificate alone).
   Answer boolean = Answer::kInvalidInput;
   auto booleanOf = [&]() {
-    if (boolean == Answer::kInvalidInput)
+    if (boolean == Answer::kInvalidInput) {
+      TRICYL_DIST_PATH(10);
       boolean = tryIntersect(cyl, pose, tri);
+    }
     return boolean;
   };
   // Power-of-two scaling keeps the products of up to six local lengths
