@@ -19,6 +19,7 @@
 #include "tricyl/fcl_adapters.h"
 #include "tricyl/fcl_contact.h"
 #include "tricyl/fcl_mesh_cylinder.h"
+#include "tricyl/triangle_cylinder.h"
 #include "tricyl/triangle_cylinder_distance.h"
 
 namespace tricyl {
@@ -254,13 +255,15 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
       continue;
     }
     const fcl::BVNode<BV>& node = model.getBV(e.node);
+    // A leaf's world triangle (read once) and the best bound known for it.
+    V3 p[3];
+    double lt = e.lb;
     if (e.kind == kLeafBoxBound) {
-      V3 p[3];
       triangleOf(node, p);
       const double x[3][3] = {{p[0][0], p[0][1], p[0][2]},
                               {p[1][0], p[1][1], p[1][2]},
                               {p[2][0], p[2][1], p[2][2]}};
-      const double lt = triangleLowerBound(x, pose.R, t_cyl, cyl.radius, k.h);
+      lt = triangleLowerBound(x, pose.R, t_cyl, cyl.radius, k.h);
       if (pruner.prune(lt, best)) {
         ++skipped;
         continue;
@@ -299,12 +302,16 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
       continue;
     }
     const int id = primitiveId(node);
-    V3 p[3];
-    triangleOf(node, p);
+    if (e.kind != kLeafBoxBound) triangleOf(node, p);
     const Triangle<double> tri{toVec3(p[0]), toVec3(p[1]), toVec3(p[2])};
     ++leaves;
+    // A triangle whose bound proves nothing may meet the cylinder: the
+    // Boolean first (tryIntersect: not kDisjoint exactly when tryDistance
+    // is not, and several times cheaper), then the distance only if they
+    // are apart. A pose in collision stops at such a triangle.
     DistanceResult<double> d;
-    if (tryDistance(cyl, pose, tri, &d) == Answer::kDisjoint) {
+    if ((gt(lt, 0) || tryIntersect(cyl, pose, tri) == Answer::kDisjoint) &&
+        tryDistance(cyl, pose, tri, &d) == Answer::kDisjoint) {
       if (d.distance < best) {
         ++hits;
         best = d.distance;
