@@ -616,12 +616,15 @@ bool prepare(const fcl::BVHModel<BV>& model, const Tf& tf_mesh,
   k.global = k.rel * (norm1(c) + norm1(tf_mesh.translation()) +
                       norm1(tf_cyl.translation()) + k.r + k.h + margin) +
              kAbsMargin + margin;
-  for (int i = 0; i < 3; ++i) {
-    k.au[i] = std::fabs(u[i]);
-    // h |u_i| + r |e_i x u| (see THE NODE TEST AND ITS MARGIN): |e_i x u|
-    // is the length of u's other two components.
-    const double uj = u[(i + 1) % 3], uk = u[(i + 2) % 3];
-    k.support[i] = k.h * k.au[i] + k.r * sqrtNonNegative(uj * uj + uk * uk);
+  // (Read by the axis-aligned boxes' tests only.)
+  if constexpr (Boxer::kAligned) {
+    for (int i = 0; i < 3; ++i) {
+      k.au[i] = std::fabs(u[i]);
+      // h |u_i| + r |e_i x u| (see THE NODE TEST AND ITS MARGIN): |e_i x u|
+      // is the length of u's other two components.
+      const double uj = u[(i + 1) % 3], uk = u[(i + 2) % 3];
+      k.support[i] = k.h * k.au[i] + k.r * sqrtNonNegative(uj * uj + uk * uk);
+    }
   }
 
   // World vertices exactly as the Solver sees them (fcl_solver.h, FRAMES):
