@@ -124,41 +124,10 @@ class EntryQueue {
   }
 
  private:
-  /// Entries in place up to kInline (no allocation on a typical call: about
-  /// 90 bounds a call on bunny.obj), then in a vector.
-  class Array {
-   public:
-    std::size_t size() const { return size_; }
-    Entry* data() { return size_ <= kInline ? inline_ : spill_.data(); }
-    const Entry* data() const {
-      return size_ <= kInline ? inline_ : spill_.data();
-    }
-    void push(const Entry& e) {
-      if (size_ < kInline) {
-        inline_[size_++] = e;
-        return;
-      }
-      if (size_ == kInline) spill_.assign(inline_, inline_ + kInline);
-      spill_.push_back(e);
-      ++size_;
-    }
-    Entry pop() {
-      --size_;
-      if (size_ < kInline) return inline_[size_];
-      const Entry e = spill_.back();
-      spill_.pop_back();
-      if (size_ == kInline) std::copy(spill_.begin(), spill_.end(), inline_);
-      return e;
-    }
-
-   private:
-    static constexpr std::size_t kInline = 256;
-    Entry inline_[kInline];
-    std::size_t size_ = 0;
-    std::vector<Entry> spill_;
-  };
-  Array heap_;
-  Array stack_;
+  // In place up to 256 entries each (no allocation on a typical call: about
+  // 90 bounds a call on bunny.obj).
+  InlineStack<Entry, 256> heap_;
+  InlineStack<Entry, 256> stack_;
 };
 
 class Pruner {

@@ -430,32 +430,43 @@ inline void prefetchTriangle(const fcl::Triangle& t) {
 #endif
 }
 
-/// A small explicit stack (FCL's trees are rarely deeper than 64; deeper
-/// ones spill to the heap).
-class NodeStack {
+/// A stack of T held in place up to N entries, then in a vector (moved back
+/// in place when it shrinks to N): no allocation on a typical call. Its
+/// entries are contiguous (data(), size()), so the distance walk keeps its
+/// binary heap in one too.
+template <class T, std::size_t N>
+class InlineStack {
  public:
-  void push(int n) {
-    if (size_ < kInline)
-      inline_[size_] = n;
-    else
-      spill_.push_back(n);
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  T* data() { return size_ <= N ? inline_ : spill_.data(); }
+  const T* data() const { return size_ <= N ? inline_ : spill_.data(); }
+  void push(const T& x) {
+    if (size_ < N) {
+      inline_[size_++] = x;
+      return;
+    }
+    if (size_ == N) spill_.assign(inline_, inline_ + N);
+    spill_.push_back(x);
     ++size_;
   }
-  bool empty() const { return size_ == 0; }
-  int pop() {
+  T pop() {
     --size_;
-    if (size_ < kInline) return inline_[size_];
-    const int n = spill_.back();
+    if (size_ < N) return inline_[size_];
+    const T x = spill_.back();
     spill_.pop_back();
-    return n;
+    if (size_ == N) std::copy(spill_.begin(), spill_.end(), inline_);
+    return x;
   }
 
  private:
-  static constexpr std::size_t kInline = 128;
-  int inline_[kInline];
+  T inline_[N];
   std::size_t size_ = 0;
-  std::vector<int> spill_;
+  std::vector<T> spill_;
 };
+
+/// The collide walk's stack (FCL's trees are rarely deeper than 64).
+using NodeStack = InlineStack<int, 128>;
 
 /// A certified lower bound of the distance between the node's box and the
 /// cylinder (in the mesh frame), or a value <= 0 (or NaN) when none is
