@@ -22,12 +22,27 @@
 //    within 2^-40 .. 1 of the largest length so that the tori are reached).
 //    Each query timed three times, the least kept (a preemption of the
 //    shared machine is not the query's cost); median, p99, max.
+// 3. Hostile thresholds: the queries of the set outside the range gate
+//    with their margin at the threshold where the answer flips (the two
+//    adjacent doubles lo < hi with withinDistance false at lo and true at
+//    hi, found by bisection on the bit patterns; both answers are exact, so
+//    the bracket is the true one): at lo every part of the neighbourhood
+//    is decided and misses, one of them by a hair, the slowest queries
+//    there are. Timed as in 2, at lo and at hi.
+// 4. Wide-spread tangencies: an edge tangent to a rim torus whose tube is
+//    2^-1000 .. 2^-800 of the cylinder while the edge's ends are
+//    2^900 .. 2^1020 away (the construction of the test
+//    WideSpreadTiesAgreeWithConstruction, tests/triangle_cylinder_margin_
+//    test.cpp), margins at the tangency distance and 1 ulp either side:
+//    the quartic's Sturm sequence on coefficients of about 12,000 bits.
 //
 // Usage: tricyl-margin-stage-costs [passes] [--dump N] [--only SECTION]
 //   --dump N: also print the N slowest hostile queries as hex floats
 //   (cylinder r lz, R row-major, t, the three vertices, margin);
-//   --only ties|outside|inside: run one section (for a profiler);
-//   --count N: N hostile queries per set (default 20,000).
+//   --only ties|outside|inside|thresholds|tangents: run one section (for
+//   a profiler);
+//   --count N: N hostile queries per set (default 20,000; the thresholds
+//   take the first N / 50 queries of the set outside the gate).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -164,8 +179,9 @@ void hostileReport(const char* title, const std::vector<Hostile>& v, int dump) {
               *std::max_element(ti.begin(), ti.end()) / 1e3);
   std::printf("\nwithinDistance by deciding stage:");
   for (tricyl::Stage s : {tricyl::Stage::kEarlyOut, tricyl::Stage::kFastPath,
-                          tricyl::Stage::kExtended, tricyl::Stage::kExact,
-                          tricyl::Stage::kExactGmp, tricyl::Stage::kInvalid})
+                          tricyl::Stage::kRunning, tricyl::Stage::kExtended,
+                          tricyl::Stage::kExact, tricyl::Stage::kExactGmp,
+                          tricyl::Stage::kInvalid})
     if (by[int(s)] > 0)
       std::printf(" %s %ld (max %.1f us);", tricyl::bench::stageName(s),
                   by[int(s)], max_by[int(s)] / 1e3);
@@ -187,6 +203,70 @@ void hostileReport(const char* title, const std::vector<Hostile>& v, int dump) {
       std::printf("\n");
     }
   }
+}
+
+/// Section 3: the first n queries of `v` with a threshold (disjoint at
+/// margin 0, within at the largest double), the margin set to lo and hi.
+void thresholdReport(const std::vector<Hostile>& v, std::size_t n, int dump) {
+  auto at = [](std::int64_t b) {
+    double x;
+    std::memcpy(&x, &b, sizeof x);
+    return x;
+  };
+  std::vector<Hostile> lo_set, hi_set;
+  for (const Hostile& h0 : v) {
+    if (lo_set.size() >= n) break;
+    auto within = [&](double m) {
+      return tricyl::tryWithinDistance(h0.cyl, h0.pose, h0.tri, m) ==
+             Answer::kIntersect;
+    };
+    std::int64_t lo = 0, hi = 0x7fefffffffffffff;
+    if (within(0) || !within(at(hi))) continue;
+    while (hi - lo > 1) {
+      const std::int64_t mid = lo + (hi - lo) / 2;
+      (within(at(mid)) ? hi : lo) = mid;
+    }
+    Hostile h = h0;
+    h.m = at(lo);
+    lo_set.push_back(h);
+    h.m = at(hi);
+    hi_set.push_back(h);
+  }
+  hostileReport("Thresholds outside the range gate, margin lo (false)", lo_set,
+                dump);
+  hostileReport("Thresholds outside the range gate, margin hi (true)", hi_set,
+                dump);
+}
+
+/// Section 4: n tangent edges (dense mantissas; half reach through a
+/// rotation entry), each with the margins d, d - 1 ulp, d + 1 ulp.
+void tangentReport(int n, int dump) {
+  tricyl::scenes::Rng g(0x74616e67u);
+  auto mantissa = [&g](int bits) {  // in [1, 2), `bits` significant bits
+    return 1.0 + std::ldexp(double(g.next() >> (64 - (bits - 1))), 1 - bits);
+  };
+  std::vector<Hostile> v;
+  for (int i = 0; i < n; ++i) {
+    const double a = i % 2 == 0 ? 3 : 4, b = 7 - a;
+    const double e = std::ldexp(mantissa(48), -1000 + int(g.next() % 200));
+    const double r = std::ldexp(mantissa(53), int(g.next() % 41) - 20);
+    const double lz = std::ldexp(mantissa(53), int(g.next() % 41) - 20);
+    const double h = lz / 2,
+                 A = std::ldexp(mantissa(53), 900 + int(g.next() % 121));
+    Hostile q{{r, lz}, tricyl::identityPose<double>(), {}, 0};
+    q.pose.t = {-a * e, 0, -b * e};
+    if (g.next() % 2 == 0)
+      q.pose.R[1][1] = std::ldexp(mantissa(53), 900 + int(g.next() % 121));
+    q.tri = {{r, -A, h}, {r, A, h}, {r, A, h + std::max(lz, r)}};
+    for (double m :
+         {5 * e, std::nextafter(5 * e, 0.0), std::nextafter(5 * e, 1.0)}) {
+      q.m = m;
+      v.push_back(q);
+    }
+  }
+  hostileReport(
+      "Wide-spread tangencies (tube 2^-1000 .. 2^-800, ends 2^900 .. 2^1020)",
+      v, dump);
 }
 
 }  // namespace
@@ -248,6 +328,10 @@ int main(int argc, char** argv) {
     hostileReport(
         "Random exponents, outside the range gate (2^-1070 .. 2^1020)",
         hostileSet(0x9e3779b97f4a7c15ULL, count, 1020, 1020, false), dump);
+  if (runs("thresholds"))
+    thresholdReport(hostileSet(0x9e3779b97f4a7c15ULL, count, 1020, 1020, false),
+                    std::size_t(std::max(1, count / 50)), dump);
+  if (runs("tangents")) tangentReport(std::max(1, count / 100), dump);
   if (runs("inside"))
     hostileReport(
         "Random exponents inside the range gate (lengths 2^-1070 .. 2^40, "

@@ -13,3 +13,14 @@ if(TRICYL_HAVE_FCL)
   target_link_libraries(bench_queries PRIVATE fcl)
   target_compile_definitions(bench_queries PRIVATE TRICYL_BENCH_WITH_FCL=1)
 endif()
+
+# tricyl-query-counts: the sphere, segment and line queries of one family in
+# bench_queries' order, for callgrind and perf (instruction counts).
+add_executable(tricyl-query-counts ${CMAKE_CURRENT_LIST_DIR}/query_counts.cpp)
+target_link_libraries(tricyl-query-counts PRIVATE tricyl::tricyl)
+target_include_directories(tricyl-query-counts PRIVATE ${PROJECT_SOURCE_DIR}/compare)
+tricyl_set_warnings(tricyl-query-counts)
+tricyl_set_fp_flags(tricyl-query-counts)
+if(TRICYL_BUILD_TESTS)  # a smoke run (it measures nothing): the tool cannot rot
+  add_test(NAME tricyl_query_counts_smoke COMMAND tricyl-query-counts line near 1)
+endif()

@@ -48,6 +48,8 @@ inline const char* stageName(Stage s) {
       return "early-out";
     case Stage::kFastPath:
       return "double filter";
+    case Stage::kRunning:
+      return "running double";
     case Stage::kExtended:
       return "double-word";
     case Stage::kExact:
@@ -101,8 +103,8 @@ FamilyCosts measureFamily(const std::vector<Case>& cases, int passes,
 inline std::vector<std::string> stageRows(const std::string& prefix,
                                           const FamilyCosts& fc) {
   std::vector<std::string> rows;
-  for (Stage s : {Stage::kEarlyOut, Stage::kFastPath, Stage::kExtended,
-                  Stage::kExact, Stage::kExactGmp}) {
+  for (Stage s : {Stage::kEarlyOut, Stage::kFastPath, Stage::kRunning,
+                  Stage::kExtended, Stage::kExact, Stage::kExactGmp}) {
     const auto& b = fc.by[int(s)];
     if (b.empty()) continue;
     double sum = 0;

@@ -24,6 +24,7 @@
 
 #include <gmpxx.h>
 
+#include <array>
 #include <utility>
 #include <vector>
 
@@ -237,18 +238,39 @@ inline bool cylinder(const Q3* v, const Q& r, const Q& h) {
   return oracle::hullMeetsDisk(pts, r * r);
 }
 
+/// The triangle's vertices pulled back exactly into the cylinder frame.
+inline std::array<Q3, 3> localVertices(const Pose<double>& pose,
+                                       const Triangle<double>& tri) {
+  return {oracle::toLocal(pose, tri.a), oracle::toLocal(pose, tri.b),
+          oracle::toLocal(pose, tri.c)};
+}
+
+/// Does the triangle v meet one of the two sized parts of the
+/// neighbourhood, Cyl(r + m, h) or Cyl(r, h + m)?
+inline bool sizedCylinders(const Q3* v, const Q& r, const Q& h, const Q& m) {
+  return cylinder(v, r + m, h) || cylinder(v, r, h + m);
+}
+
+/// The same for the posed triangle (tests use it to tell the margins
+/// decided by a rim torus).
+inline bool sizedCylinders(const Cylinder<double>& cyl,
+                           const Pose<double>& pose,
+                           const Triangle<double>& tri, double margin) {
+  return sizedCylinders(localVertices(pose, tri).data(), Q(cyl.radius),
+                        Q(cyl.lz) / 2, Q(margin));
+}
+
 /// Exact: is the closed triangle within distance m (>= 0) of the closed
 /// posed cylinder (the triangle pulled back exactly, as in intersect)?
 /// Inputs must be finite with radius, lz, m >= 0.
 inline bool withinDistance(const Cylinder<double>& cyl,
                            const Pose<double>& pose,
                            const Triangle<double>& tri, double margin) {
-  const Q3 v[3] = {oracle::toLocal(pose, tri.a), oracle::toLocal(pose, tri.b),
-                   oracle::toLocal(pose, tri.c)};
+  const std::array<Q3, 3> v = localVertices(pose, tri);
   const Q r(cyl.radius), h = Q(cyl.lz) / 2, m(margin);
-  if (cylinder(v, r + m, h) || cylinder(v, r, h + m)) return true;
+  if (sizedCylinders(v.data(), r, h, m)) return true;
   if (m == 0) return false;
-  if (torus(v, r, m, h)) return true;
+  if (torus(v.data(), r, m, h)) return true;
   const Q3 w[3] = {{v[0].x, v[0].y, -v[0].z},
                    {v[1].x, v[1].y, -v[1].z},
                    {v[2].x, v[2].y, -v[2].z}};

@@ -75,8 +75,10 @@
 // third of the queries take them.
 #if defined(__GNUC__) || defined(__clang__)
 #define TRICYL_PER_SIGN_NOINLINE __attribute__((noinline))
+#define TRICYL_PER_SIGN_INLINE inline __attribute__((always_inline))
 #else
 #define TRICYL_PER_SIGN_NOINLINE
+#define TRICYL_PER_SIGN_INLINE inline
 #endif
 
 namespace tricyl::detail {
@@ -151,11 +153,13 @@ inline Sign dwSign(const DwEt<kFma>& d) {
 /// The double-word local coordinates of DwArith (and DwPrioriArith, which
 /// takes the values only: kBound false, no bookkeeping), Z doubled: v[j]
 /// and, with kBound, its bound e[j] (derivation at DwArith::local).
+/// `origin` stands for pose.t (the segment's and line's direction
+/// R^T (q - p) takes p).
 template <bool kFma, bool kBound>
-inline void dwLocal(const Pose<double>& pose, const Vec3<double>& p, DW v[3],
-                    double e_out[3]) {
+inline void dwLocal(const Pose<double>& pose, const Vec3<double>& origin,
+                    const Vec3<double>& p, DW v[3], double e_out[3]) {
   const double pp[3] = {p.x, p.y, p.z};
-  const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
+  const double tt[3] = {origin.x, origin.y, origin.z};
   double D[3], l[3];
   for (int k = 0; k < 3; ++k) twoSum(pp[k], -tt[k], D[k], l[k]);
   for (int j = 0; j < 3; ++j) {
@@ -194,10 +198,15 @@ struct DwArith {
   /// term with a zero factor) has e = 0. The same sequence and bound as
   /// the adaptive kernel's (src/adaptive.cpp, Tape::dwCoord, derives it).
   static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
-                       double /*rho*/) {
+                       double rho) {
+    return localFrom(pose, pose.t, p, rho);
+  }
+  /// The same with `origin` for pose.t: R^T (p - origin).
+  static Pt<Num> localFrom(const Pose<double>& pose, const Vec3<double>& origin,
+                           const Vec3<double>& p, double /*rho*/) {
     DW v[3];
     double e[3];
-    dwLocal<kFma, true>(pose, p, v, e);
+    dwLocal<kFma, true>(pose, origin, p, v, e);
     return {{v[0], e[0]}, {v[1], e[1]}, {v[2], e[2]}};
   }
 };
@@ -273,9 +282,13 @@ struct DwPrioriArith {
   static Num lift(double x) { return {{x, 0.0}}; }
   /// DwArith's values (its bound is the eta above; not computed here).
   static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
-                       double /*rho*/) {
+                       double rho) {
+    return localFrom(pose, pose.t, p, rho);
+  }
+  static Pt<Num> localFrom(const Pose<double>& pose, const Vec3<double>& origin,
+                           const Vec3<double>& p, double /*rho*/) {
     DW v[3];
-    dwLocal<kFma, false>(pose, p, v, nullptr);
+    dwLocal<kFma, false>(pose, origin, p, v, nullptr);
     return {{v[0]}, {v[1]}, {v[2]}};
   }
 };
@@ -313,10 +326,14 @@ struct ExactDoubleArith {
   static constexpr bool kExact = false;
   static Num lift(double x) { return {x, true}; }
   static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
-                       double /*rho*/) {
-    const Xd d[3] = {Xd{p.x, true} - Xd{pose.t.x, true},
-                     Xd{p.y, true} - Xd{pose.t.y, true},
-                     Xd{p.z, true} - Xd{pose.t.z, true}};
+                       double rho) {
+    return localFrom(pose, pose.t, p, rho);
+  }
+  static Pt<Num> localFrom(const Pose<double>& pose, const Vec3<double>& origin,
+                           const Vec3<double>& p, double /*rho*/) {
+    const Xd d[3] = {Xd{p.x, true} - Xd{origin.x, true},
+                     Xd{p.y, true} - Xd{origin.y, true},
+                     Xd{p.z, true} - Xd{origin.z, true}};
     Xd out[3];
     for (int j = 0; j < 3; ++j)
       out[j] = (Xd{pose.R[0][j], true} * d[0] + Xd{pose.R[1][j], true} * d[1]) +
@@ -403,8 +420,34 @@ struct PairFilterArith {
   static Num lift(double x) { return toFp(FilterKernel::lift(x)); }
   static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
                        double rho) {
-    const Pt<Fd> q = KernelArith<FilterKernel>::local(pose, p, rho);
-    return {toFp(q.x), toFp(q.y), toFp(q.Z)};
+    return localFrom(pose, pose.t, p, rho);
+  }
+  /// FilterKernel's frame (toLocal<FilterKernel>, src/triangle_cylinder_impl.h:
+  /// the same IEEE operations in the same order, so the same values and
+  /// magnitudes) with `origin` for pose.t: x and y in the two lanes of one
+  /// SSE2 register (R's rows hold (R_k0, R_k1) side by side).
+  static Pt<Num> localFrom(const Pose<double>& pose, const Vec3<double>& origin,
+                           const Vec3<double>& p, double rho) {
+    const double d0 = p.x - origin.x;
+    const double d1 = p.y - origin.y;
+    const double d2 = p.z - origin.z;
+    const auto& R = pose.R;
+    const double m = rho * (std::fabs(d0) + std::fabs(d1) + std::fabs(d2));
+    const double z = R[0][2] * d0 + R[1][2] * d1 + R[2][2] * d2;
+#if defined(__SSE2__) && !defined(TRICYL_PORTABLE_PROLOGUE)
+    const __m128d xy = _mm_add_pd(
+        _mm_add_pd(_mm_mul_pd(_mm_loadu_pd(&R[0][0]), _mm_set1_pd(d0)),
+                   _mm_mul_pd(_mm_loadu_pd(&R[1][0]), _mm_set1_pd(d1))),
+        _mm_mul_pd(_mm_loadu_pd(&R[2][0]), _mm_set1_pd(d2)));
+    const __m128d mm = _mm_set1_pd(m);
+    return {{_mm_unpacklo_pd(xy, mm)},
+            {_mm_unpackhi_pd(xy, mm)},
+            {_mm_set_pd(m + m, z + z)}};
+#else
+    return {{R[0][0] * d0 + R[1][0] * d1 + R[2][0] * d2, m},
+            {R[0][1] * d0 + R[1][1] * d1 + R[2][1] * d2, m},
+            {z + z, m + m}};
+#endif
   }
 };
 
@@ -437,6 +480,82 @@ struct Verdicts {
 };
 /// The bit of value k.
 constexpr unsigned bit(int k) { return 1u << k; }
+
+/// One conjunction of filter verdicts: every value in `nonneg` >= 0 and
+/// every value in `nonpos` <= 0 (bit masks of the values' indices, as in
+/// Verdicts::all).
+struct Conj {
+  unsigned nonneg, nonpos;
+};
+/// A formula in disjunctive normal form over a query's filter values: up to
+/// 8 conjunctions of values 0..14, as 16-bit lanes (lane i: conjunction i;
+/// the unused lanes require bit 15, which no value has, and are masked out
+/// of the "false" test). Built at compile time (makeDnf).
+struct Dnf {
+  alignas(16) unsigned short nonneg[8];
+  alignas(16) unsigned short nonpos[8];
+  unsigned used;  ///< bit i: lane i is a conjunction
+};
+template <std::size_t n>
+constexpr Dnf makeDnf(const Conj (&c)[n]) {
+  static_assert(n >= 1 && n <= 8, "one 16-bit lane per conjunction");
+  Dnf f{{}, {}, (1u << n) - 1};
+  for (std::size_t i = 0; i < 8; ++i) {
+    const bool in = i < n;
+    // Values 0..14 only (bit 15 marks the unused lanes); a constant
+    // expression fails to compile here otherwise.
+    if (in && ((c[i].nonneg | c[i].nonpos) >> 15) != 0) throw "value > 14";
+    f.nonneg[i] = static_cast<unsigned short>(in ? c[i].nonneg : 0x8000u);
+    f.nonpos[i] = static_cast<unsigned short>(in ? c[i].nonpos : 0x8000u);
+  }
+  return f;
+}
+/// Each conjunction of a Dnf under the filter's verdicts: bit i of t, it is
+/// certainly true (every value in it certified on its side); bit i of f,
+/// certainly false (a value in it certified on the wrong side).
+struct DnfVerdicts {
+  unsigned t, f, used;
+  /// Kleene's OR of the conjunctions: certainly true if one is, certainly
+  /// false if all are (the same as kbOr over Verdicts::all of each).
+  KBool any() const { return {t != 0, (f & used) == used}; }
+  /// Kleene's OR of the conjunctions in `mask` is certainly false.
+  bool allFalse(unsigned mask) const { return (f & mask) == mask; }
+};
+/// All conjunctions at once, without a branch: a handful of SSE2
+/// operations on the eight lanes (scalar loop in portable builds; the same
+/// bits either way).
+inline DnfVerdicts evalDnf(const Verdicts& d, const Dnf& form) {
+#if defined(__SSE2__) && !defined(TRICYL_PORTABLE_PROLOGUE)
+  const __m128i nn =
+      _mm_load_si128(reinterpret_cast<const __m128i*>(form.nonneg));
+  const __m128i np =
+      _mm_load_si128(reinterpret_cast<const __m128i*>(form.nonpos));
+  const __m128i pos = _mm_set1_epi16(static_cast<short>(d.pos));
+  const __m128i neg = _mm_set1_epi16(static_cast<short>(d.neg));
+  const __m128i zero = _mm_setzero_si128();
+  // Certainly true: no required value lacks its certificate.
+  const __m128i miss =
+      _mm_or_si128(_mm_andnot_si128(pos, nn), _mm_andnot_si128(neg, np));
+  // Certainly false: some value certified on the wrong side.
+  const __m128i hit =
+      _mm_or_si128(_mm_and_si128(neg, nn), _mm_and_si128(pos, np));
+  const __m128i t_words = _mm_cmpeq_epi16(miss, zero);
+  const __m128i open_words = _mm_cmpeq_epi16(hit, zero);
+  const unsigned t =
+      unsigned(_mm_movemask_epi8(_mm_packs_epi16(t_words, zero)));
+  const unsigned open =
+      unsigned(_mm_movemask_epi8(_mm_packs_epi16(open_words, zero)));
+  return {t, ~open & 0xffu, form.used};
+#else
+  unsigned t = 0, f = 0;
+  for (unsigned i = 0; i < 8; ++i) {
+    const unsigned nn = form.nonneg[i], np = form.nonpos[i];
+    t |= unsigned(((~d.pos & nn) | (~d.neg & np)) == 0) << i;
+    f |= unsigned(((d.neg & nn) | (d.pos & np)) != 0) << i;
+  }
+  return {t, f, form.used};
+#endif
+}
 
 /// One kernel K for every sign (runStages' stages; outside the range gate,
 /// K = ExactKernel).
@@ -522,6 +641,17 @@ class PerSign {
                      _mm_cmplt_pd(vals, _mm_xor_pd(b, _mm_set1_pd(-0.0)))))
                  << i;
     }
+    if constexpr (n % 2 == 1) {  // the last value paired with itself
+      const __m128d vals = _mm_unpacklo_pd(v[i].x, v[i].x);
+      const __m128d mags = _mm_unpackhi_pd(v[i].x, v[i].x);
+      const __m128d b = _mm_add_pd(_mm_mul_pd(mags, k), a);
+      out.pos |= unsigned(_mm_movemask_pd(_mm_cmpgt_pd(vals, b)) & 1) << i;
+      out.neg |= unsigned(_mm_movemask_pd(_mm_cmplt_pd(
+                              vals, _mm_xor_pd(b, _mm_set1_pd(-0.0)))) &
+                          1)
+                 << i;
+      ++i;
+    }
 #endif
     for (; i < n; ++i) {
       const Fd d = toFd(v[i]);
@@ -538,6 +668,17 @@ class PerSign {
     if (s != Sign::kUnknown) return s;
     return escalate(pred, v);
   }
+  /// resolve for a sign whose a-priori double word is known to fail (a
+  /// square of a term that cancels far below its magnitude: the a-priori
+  /// bound is relative to the magnitude squared): the same stages without
+  /// that one. Only the order of stages changes, never a sign.
+  template <class P>
+  Sign resolveRunning(const P& pred, const Fp& value) {
+    const Fd v = toFd(value);
+    const Sign s = shallowSign(v);
+    if (s != Sign::kUnknown) return s;
+    return escalate<false>(pred, v);
+  }
   /// The strongest arithmetic any sign needed: 0 double, 1 double-word,
   /// 2 expansions, 3 GMP.
   int level() const { return level_; }
@@ -546,7 +687,7 @@ class PerSign {
   template <class A>
   using Frame = typename Q::template Frame<A>;
 
-  template <class P>
+  template <bool kPriori = true, class P>
   TRICYL_PER_SIGN_NOINLINE Sign escalate(const P& pred, const Fd& v) {
     Sign s = Sign::kUnknown;
     if (v.v == 0) {
@@ -565,13 +706,15 @@ class PerSign {
     // of the magnitude against the filter's 2^-49), then with the running
     // bound.
     if (level_ < 1) level_ = 1;
+    if constexpr (kPriori) {
 #if TRICYL_FMA_DISPATCH
-    s = fmaAtRunTime() ? dwPrioriSignFma(pred, v.m)
-                       : dwPrioriSignWith<false>(pred, v.m, dwp_);
+      s = fmaAtRunTime() ? dwPrioriSignFma(pred, v.m)
+                         : dwPrioriSignWith<false>(pred, v.m, dwp_);
 #else
-    s = dwPrioriSignWith<TRICYL_HAVE_FMA != 0>(pred, v.m, dwp_);
+      s = dwPrioriSignWith<TRICYL_HAVE_FMA != 0>(pred, v.m, dwp_);
 #endif
-    if (s != Sign::kUnknown) return s;
+      if (s != Sign::kUnknown) return s;
+    }
 #if TRICYL_FMA_DISPATCH
     s = fmaAtRunTime() ? dwSignFma(pred) : dwSignWith<false>(pred, dw_);
 #else
@@ -650,13 +793,19 @@ class PerSign {
 /// The driver's per-sign policy (runStages' counterpart, src/stages.h):
 /// inside the range gate one run of `query(ctx, &early)` with PerSign,
 /// which always decides; outside it one run on GMP dyadics.
+/// Outside the range gate: one run on GMP dyadics (out of line, so that
+/// the common path below stays small enough to inline).
 template <class Q, class Query>
-Decision runPerSign(const Q& q, bool gate, const Query& query) {
+TRICYL_PER_SIGN_NOINLINE Decision runGmp(const Q& q, const Query& query) {
   bool early = false;
-  if (!gate) {
-    KernelCtx<ExactKernel, Q> ctx(q);
-    return {toAnswer(query(ctx, &early)), Stage::kExactGmp};
-  }
+  KernelCtx<ExactKernel, Q> ctx(q);
+  return {toAnswer(query(ctx, &early)), Stage::kExactGmp};
+}
+template <class Q, class Query>
+TRICYL_PER_SIGN_INLINE Decision runPerSign(const Q& q, bool gate,
+                                           const Query& query) {
+  if (!gate) return runGmp(q, query);
+  bool early = false;
   PerSign<Q> ctx(q);
   const Tri t = query(ctx, &early);
   // Never kUnknown: every sign of PerSign is decided.

@@ -160,49 +160,108 @@ Segment<double> collinearHull(const Triangle<double>& t) {
   return {t.a, t.a};
 }
 
-// The running-bound frame from the fast path's values: the bound of each
-// coordinate from the vertex magnitude (detail::coordinateBound).
 struct Local;
-template <class K>
-detail::TriCylLocal<K> runningLocal(const Inputs& in, const Local& L);
 bool shortRotation(const Pose<double>& pose);
 
-// The double-word stage (src/dw_kernel.h): the tests in `tests` alone, in
-// straight-line double-word arithmetic; `left`: those it left undecided.
-// Flattened (every call inlined), so that the copy compiled for FMA
-// (TRICYL_FMA_DISPATCH) runs FMA throughout; both copies give the same bits.
+// The local coordinates in double word, x, y and Z of each vertex, with
+// their bounds (DwKernel::toLocal: the a-priori bound of dwCoordinate),
+// computed once per query and read by the running stage (rounded) and by
+// the double-word stage.
+struct DwFrame {
+  detail::DwRun c[3][3];  // [vertex][x, y, Z]
+};
 template <bool kFma>
-TRICYL_ALWAYS_INLINE Tri dwTests(const Inputs& in, std::uint32_t tests,
-                                 std::uint32_t* left,
+TRICYL_ALWAYS_INLINE void dwFrame(const Inputs& in, DwFrame* f) {
+  using K = detail::DwKernel<kFma>;
+  const Vec3<double>* P[3] = {&in.tri.a, &in.tri.b, &in.tri.c};
+  for (int i = 0; i < 3; ++i) {
+    typename K::Num c[3];
+    K::toLocal(in.pose, *P[i], c[0], c[1], c[2]);
+    for (int j = 0; j < 3; ++j) f->c[i][j] = {c[j].v, c[j].e};
+  }
+}
+
+// The double-word stage (src/dw_kernel.h): the tests in `tests` alone, in
+// straight-line double-word arithmetic, on the frame `f`; `left`: those it
+// left undecided. Flattened (every call inlined), so that the copy compiled
+// for FMA (TRICYL_FMA_DISPATCH) runs FMA throughout; both copies give the
+// same bits.
+template <bool kFma>
+TRICYL_ALWAYS_INLINE Tri dwTests(const Inputs& in, const DwFrame& f,
+                                 std::uint32_t tests, std::uint32_t* left,
                                  detail::EarlyOuts* early) {
   using K = detail::DwKernel<kFma>;
   detail::TriCylLocal<K> q;
-  const Vec3<double>* P[3] = {&in.tri.a, &in.tri.b, &in.tri.c};
-  for (int i = 0; i < 3; ++i)
-    K::toLocal(in.pose, *P[i], q.x[i], q.y[i], q.Z[i]);
+  for (int i = 0; i < 3; ++i) {
+    q.x[i] = {f.c[i][0].v, f.c[i][0].e};
+    q.y[i] = {f.c[i][1].v, f.c[i][1].e};
+    q.Z[i] = {f.c[i][2].v, f.c[i][2].e};
+  }
   q.H = K::lift(in.cyl.lz);
   q.r = K::lift(in.cyl.radius);
   return detail::triangleCylinderUndecided<K>(q, tests, left, early);
 }
 #if TRICYL_FMA_DISPATCH
+__attribute__((target("fma"), flatten, noinline)) void dwFrameFma(
+    const Inputs& in, DwFrame* f) {
+  dwFrame<true>(in, f);
+}
 __attribute__((target("fma"), flatten, noinline)) Tri dwTestsFma(
-    const Inputs& in, std::uint32_t tests, std::uint32_t* left,
-    detail::EarlyOuts* early) {
-  return dwTests<true>(in, tests, left, early);
+    const Inputs& in, const DwFrame& f, std::uint32_t tests,
+    std::uint32_t* left, detail::EarlyOuts* early) {
+  return dwTests<true>(in, f, tests, left, early);
 }
 #endif
+TRICYL_FLATTEN TRICYL_NOINLINE void dwFramePlain(const Inputs& in, DwFrame* f) {
+  dwFrame<TRICYL_HAVE_FMA != 0>(in, f);
+}
 TRICYL_FLATTEN TRICYL_NOINLINE Tri dwTestsPlain(const Inputs& in,
+                                                const DwFrame& f,
                                                 std::uint32_t tests,
                                                 std::uint32_t* left,
                                                 detail::EarlyOuts* early) {
-  return dwTests<TRICYL_HAVE_FMA != 0>(in, tests, left, early);
+  return dwTests<TRICYL_HAVE_FMA != 0>(in, f, tests, left, early);
 }
-Tri dwStage(const Inputs& in, std::uint32_t tests, std::uint32_t* left,
-            detail::EarlyOuts* early) {
-#if TRICYL_FMA_DISPATCH
-  if (detail::fmaAtRunTime()) return dwTestsFma(in, tests, left, early);
+#if TRICYL_FAST_AVX2
+extern const bool kHasAvx2;
+void dwFrameAvx2Fma(const Inputs& in, DwFrame* f);
 #endif
-  return dwTestsPlain(in, tests, left, early);
+void dwFrameStage(const Inputs& in, DwFrame* f) {
+#if TRICYL_FAST_AVX2
+  if (kHasAvx2 && detail::fmaAtRunTime()) return dwFrameAvx2Fma(in, f);
+#endif
+#if TRICYL_FMA_DISPATCH
+  if (detail::fmaAtRunTime()) return dwFrameFma(in, f);
+#endif
+  dwFramePlain(in, f);
+}
+Tri dwStage(const Inputs& in, const DwFrame& f, std::uint32_t tests,
+            std::uint32_t* left, detail::EarlyOuts* early) {
+#if TRICYL_FMA_DISPATCH
+  if (detail::fmaAtRunTime()) return dwTestsFma(in, f, tests, left, early);
+#endif
+  return dwTestsPlain(in, f, tests, left, early);
+}
+
+// The running frame from the double-word frame: each coordinate rounded to
+// its high part, with the bound e + |lo| (|E - hi| <= |E - (hi + lo)| +
+// |lo|), rounded up by the factor 1 + 2^-50 (one addition rounded by at
+// most 1 + 2^-53). An exact coordinate (e = 0, then lo = 0) keeps the
+// bound 0: RunningExactKernel reads it as exact.
+template <class K>
+detail::TriCylLocal<K> runningFrame(const Inputs& in, const DwFrame& f) {
+  detail::TriCylLocal<K> q;
+  auto leaf = [](const detail::DwRun& c) {
+    return typename K::Num{c.v.hi, (c.e + std::fabs(c.v.lo)) * (1 + 0x1p-50)};
+  };
+  for (int i = 0; i < 3; ++i) {
+    q.x[i] = leaf(f.c[i][0]);
+    q.y[i] = leaf(f.c[i][1]);
+    q.Z[i] = leaf(f.c[i][2]);
+  }
+  q.H = K::lift(in.cyl.lz);
+  q.r = K::lift(in.cyl.radius);
+  return q;
 }
 
 // The whole sequence for validated inputs (src/stages.h): the double filter
@@ -263,34 +322,36 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
     // The undecided tests with a running bound in double (it follows the
     // values, where the filter's follows the magnitudes: it certifies
     // most signs that cancellation left open), then in double word.
-    // An exact pose (shortRotation) on exact data may make exact ties,
-    // which only a kernel that tracks exact values can decide: there
-    // RunningExactKernel, elsewhere the cheaper RunningDoubleKernel.
+    // Both read the double-word frame, computed once: its coordinates,
+    // rounded, are accurate to their own size, where the fast path's are
+    // accurate to the vertex's world terms (a needle's local x and y, far
+    // below them, are decided here instead of in double word), and it
+    // knows which coordinates are exact doubles. An exact pose
+    // (shortRotation) on exact data may make exact ties, which only a
+    // kernel that tracks exact values can decide: there RunningExactKernel,
+    // elsewhere the cheaper RunningDoubleKernel.
     using detail::RunningDoubleKernel;
     using detail::RunningExactKernel;
     using detail::triangleCylinderUndecided;
     std::uint32_t left = 0;
     Tri t;
     detail::EarlyOuts early;  // settled here: the double-word stage skips them
+    DwFrame frame;
+    dwFrameStage(in, &frame);
     detail::tls_exact_zero = false;
-    if (fast == nullptr)
+    if (shortRotation(in.pose))
       t = triangleCylinderUndecided<RunningExactKernel>(
-          detail::makeLocal<RunningExactKernel>(in.cyl, in.pose, in.tri,
-                                                max_unitless),
-          undecided, &left, &early);
-    else if (shortRotation(in.pose))
-      t = triangleCylinderUndecided<RunningExactKernel>(
-          runningLocal<RunningExactKernel>(in, *fast), undecided, &left,
+          runningFrame<RunningExactKernel>(in, frame), undecided, &left,
           &early);
     else
       t = triangleCylinderUndecided<RunningDoubleKernel>(
-          runningLocal<RunningDoubleKernel>(in, *fast), undecided, &left,
+          runningFrame<RunningDoubleKernel>(in, frame), undecided, &left,
           &early);
     if (t != Tri::kUnknown)
       return {detail::toAnswer(t),
-              detail::tls_exact_zero ? Stage::kExact : Stage::kFastPath};
+              detail::tls_exact_zero ? Stage::kExact : Stage::kRunning};
     undecided = left;
-    t = dwStage(in, undecided, &left, &early);
+    t = dwStage(in, frame, undecided, &left, &early);
     if (t != Tri::kUnknown)
       return {detail::toAnswer(t),
               detail::tls_exact_zero ? Stage::kExact : Stage::kExtended};
@@ -351,6 +412,7 @@ TRICYL_NOINLINE Decision decideSlow(const Cylinder<float>& cylinder,
 }
 
 // ---------------------------------------------------------------------------
+
 // The scalar fast path: the double filter (FilterKernel) with validation and
 // range gate fused into the arithmetic, and branch-free early-outs. It
 // computes bit for bit the values and bounds that makeLocal<FilterKernel> and
@@ -383,62 +445,6 @@ struct Local {
   double r, H;
 };
 
-// Which of the fast path's coordinates of p (computed as toLocal does:
-// ((R_0j d_0 + R_1j d_1) + R_2j d_2), d_k = p_k - t_k) are exact, as bits
-// 0 (x), 1 (y), 2 (Z), for a rotation whose entries have at most 27
-// significant bits (shortRotation): every operation re-checked as an
-// error-free transformation with a zero error. A product R d is exact when
-// d has at most 26 significant bits (27 + 26 <= 53) and no underflow
-// touches it (a zero factor, or |R d| >= kProdExactMin); other d take
-// TwoProduct.
-// For a signed permutation (every column one entry +-1, the others 0:
-// `perm[j]` that entry's row), coordinate j is +-d_perm[j] (+-0 terms added
-// exactly), exact iff that difference is: one TwoSum per axis.
-unsigned exactCoordinates(const Pose<double>& pose, const Vec3<double>& p,
-                          const int* perm) {
-  const double pk[3] = {p.x, p.y, p.z}, tk[3] = {pose.t.x, pose.t.y, pose.t.z};
-  if (perm != nullptr) {
-    unsigned exact = 0;
-    for (int j = 0; j < 3; ++j) {
-      double d, err;
-      detail::twoSum(pk[perm[j]], -tk[perm[j]], d, err);
-      exact |= unsigned(err == 0) << j;
-    }
-    return exact;
-  }
-  double d[3];
-  bool shortd[3];
-  for (int k = 0; k < 3; ++k) {
-    double err;
-    detail::twoSum(pk[k], -tk[k], d[k], err);
-    if (err != 0) return 0;
-    std::uint64_t b;
-    std::memcpy(&b, &d[k], sizeof b);
-    shortd[k] = (b & ((std::uint64_t(1) << 27) - 1)) == 0;
-  }
-  unsigned exact = 0;
-  for (int j = 0; j < 3; ++j) {
-    double P[3];
-    bool ok = true;
-    for (int k = 0; k < 3; ++k) {
-      const double R = pose.R[k][j];
-      P[k] = R * d[k];
-      if (R == 0 || d[k] == 0) continue;
-      if (std::fabs(P[k]) < detail::kProdExactMin) ok = false;
-      if (!shortd[k]) {
-        double pp, err;
-        detail::twoProd(R, d[k], pp, err);
-        ok = ok && err == 0;
-      }
-    }
-    double s1, v, e1, e2;
-    detail::twoSum(P[0], P[1], s1, e1);
-    detail::twoSum(s1, P[2], v, e2);
-    if (ok && e1 == 0 && e2 == 0) exact |= 1u << j;
-  }
-  return exact;
-}
-
 // Whether every rotation entry has at most 27 significant bits (the low 26
 // bits of its significand zero): exact poses (signed permutations, short
 // dyadics) do, rounded rotations almost never; only then is it worth
@@ -452,58 +458,6 @@ bool shortRotation(const Pose<double>& pose) {
       low |= b;
     }
   return (low & ((std::uint64_t(1) << 26) - 1)) == 0;
-}
-
-// Whether R is a signed permutation; then perm[j] is the row of column j's
-// non-zero entry.
-bool signedPermutation(const Pose<double>& pose, int perm[3]) {
-  for (int j = 0; j < 3; ++j) {
-    int nonzero = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double r = pose.R[k][j];
-      if (r == 0) continue;
-      if (std::fabs(r) != 1) return false;
-      perm[j] = k;
-      ++nonzero;
-    }
-    if (nonzero != 1) return false;
-  }
-  return true;
-}
-
-template <class K>
-detail::TriCylLocal<K> runningLocal(const Inputs& in, const Local& L) {
-  detail::TriCylLocal<K> q;
-  const Vec3<double>* P[3] = {&in.tri.a, &in.tri.b, &in.tri.c};
-  int perm_storage[3] = {0, 0, 0};
-  const int* perm = nullptr;
-  if constexpr (std::is_same_v<K, detail::RunningExactKernel>)
-    if (signedPermutation(in.pose, perm_storage)) perm = perm_storage;
-  // Exact coordinates: only RunningExactKernel can use them.
-  constexpr bool check = std::is_same_v<K, detail::RunningExactKernel>;
-  for (int i = 0; i < 3; ++i) {
-    const double M = L.m[i];
-    const double z = L.Z[i] * 0.5;
-    q.x[i] = {L.x[i], detail::coordinateBound(M, L.x[i])};
-    q.y[i] = {L.y[i], detail::coordinateBound(M, L.y[i])};
-    q.Z[i] = {L.Z[i], 2 * detail::coordinateBound(M, z)};
-    if constexpr (check) {
-      const unsigned exact = exactCoordinates(in.pose, *P[i], perm);
-      if (exact & 1) q.x[i].e = 0;
-      if (exact & 2) q.y[i].e = 0;
-      if (exact & 4) q.Z[i].e = 0;
-    } else {
-      if (L.x[i] == 0 && detail::exactZeroCoordinate(in.pose, *P[i], 0))
-        q.x[i].e = 0;
-      if (L.y[i] == 0 && detail::exactZeroCoordinate(in.pose, *P[i], 1))
-        q.y[i].e = 0;
-      if (z == 0 && detail::exactZeroCoordinate(in.pose, *P[i], 2))
-        q.Z[i].e = 0;
-    }
-  }
-  q.H = K::lift(in.cyl.lz);
-  q.r = K::lift(in.cyl.radius);
-  return q;
 }
 
 // The adaptive run's local frame from the fast path's (double inputs).
@@ -1166,6 +1120,85 @@ __attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
     return prologueAvx2Body(pd, td, r, H, L);
   }
 }
+// dwFrame in lanes (lanes = vertices a, b, c, c), for CPUs with AVX2 and
+// FMA: every lane runs dwCoordinate's operations in its order, the
+// TwoProduct by FMA (exact, as Dekker's: the same bits), so the frame is
+// the scalar one bit for bit.
+__attribute__((target("avx2,fma"), always_inline)) inline void twoSum4(
+    __m256d a, __m256d b, __m256d* s, __m256d* e) {
+  *s = _mm256_add_pd(a, b);
+  const __m256d bb = _mm256_sub_pd(*s, a);
+  *e = _mm256_add_pd(_mm256_sub_pd(a, _mm256_sub_pd(*s, bb)),
+                     _mm256_sub_pd(b, bb));
+}
+__attribute__((target("avx2,fma"), noinline)) void dwFrameAvx2Fma(
+    const Inputs& in, DwFrame* f) {
+  const Triangle<double>& T = in.tri;
+  const Pose<double>& P = in.pose;
+  const __m256d abs =
+      _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffLL));
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d pk[3] = {lanes(T.a.x, T.b.x, T.c.x), lanes(T.a.y, T.b.y, T.c.y),
+                         lanes(T.a.z, T.b.z, T.c.z)};
+  const double tk[3] = {P.t.x, P.t.y, P.t.z};
+  __m256d D[3], l[3], aD[3], Dz[3];
+  for (int k = 0; k < 3; ++k) {
+    twoSum4(pk[k], _mm256_set1_pd(-tk[k]), &D[k], &l[k]);
+    aD[k] = _mm256_and_pd(D[k], abs);
+    Dz[k] = _mm256_cmp_pd(D[k], zero, _CMP_EQ_OQ);
+  }
+  const __m256d exact_min = _mm256_set1_pd(detail::kProdExactMin);
+  for (int j = 0; j < 3; ++j) {
+    __m256d Pk[3], e[3], q[3], ok[3];
+    __m256d m = zero;
+    for (int k = 0; k < 3; ++k) {
+      const double Rkj = P.R[k][j];
+      const __m256d R = _mm256_set1_pd(Rkj);
+      Pk[k] = _mm256_mul_pd(R, D[k]);
+      e[k] = _mm256_fmsub_pd(R, D[k], Pk[k]);
+      q[k] = _mm256_mul_pd(R, l[k]);
+      m = _mm256_add_pd(m,
+                        _mm256_mul_pd(_mm256_set1_pd(std::fabs(Rkj)), aD[k]));
+      // Term k exact: a zero factor, or no low part, no product error and
+      // no underflow.
+      const __m256d exact_term = _mm256_and_pd(
+          _mm256_and_pd(_mm256_cmp_pd(l[k], zero, _CMP_EQ_OQ),
+                        _mm256_cmp_pd(e[k], zero, _CMP_EQ_OQ)),
+          _mm256_cmp_pd(_mm256_and_pd(Pk[k], abs), exact_min, _CMP_GE_OQ));
+      ok[k] = Rkj == 0 ? _mm256_castsi256_pd(_mm256_set1_epi64x(-1))
+                       : _mm256_or_pd(Dz[k], exact_term);
+    }
+    __m256d s1, f1, s, f2;
+    twoSum4(Pk[0], Pk[1], &s1, &f1);
+    twoSum4(s1, Pk[2], &s, &f2);
+    const __m256d low = _mm256_add_pd(
+        _mm256_add_pd(_mm256_add_pd(_mm256_add_pd(_mm256_add_pd(f1, f2),
+                                                  _mm256_add_pd(e[0], e[1])),
+                                    e[2]),
+                      _mm256_add_pd(q[0], q[1])),
+        q[2]);
+    __m256d hi, lo;
+    twoSum4(s, low, &hi, &lo);
+    __m256d err = _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(0x1p-100), m),
+                                _mm256_set1_pd(detail::kDwTiny));
+    const __m256d exact = _mm256_and_pd(
+        _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(low, zero, _CMP_EQ_OQ),
+                                    _mm256_cmp_pd(f1, zero, _CMP_EQ_OQ)),
+                      _mm256_cmp_pd(f2, zero, _CMP_EQ_OQ)),
+        _mm256_and_pd(_mm256_and_pd(ok[0], ok[1]), ok[2]));
+    err = _mm256_andnot_pd(exact, err);
+    if (j == 2) {  // Z = 2 z: exact scaling
+      hi = _mm256_add_pd(hi, hi);
+      lo = _mm256_add_pd(lo, lo);
+      err = _mm256_add_pd(err, err);
+    }
+    alignas(32) double H[4], Lo[4], E[4];
+    _mm256_store_pd(H, hi);
+    _mm256_store_pd(Lo, lo);
+    _mm256_store_pd(E, err);
+    for (int i = 0; i < 3; ++i) f->c[i][j] = {{H[i], Lo[i]}, E[i]};
+  }
+}
 #undef TRICYL_AVX2_FN
 #endif
 
@@ -1294,6 +1327,208 @@ TRICYL_NOINLINE Tri filterTests(const Local& L, std::uint32_t* undecided) {
   return t;
 }
 
+#if TRICYL_FAST_AVX2
+// filterTests with AVX2 lanes (lanes = vertices, and edges (0,1), (1,2),
+// (2,0); lane 3 repeats vertex 2 and edge (2,0)): the same certified
+// verdicts, reached with fewer instructions. Every value below is a
+// FilterKernel evaluation, a rounded value and its rounded magnitude by the
+// Fd rules (a +- b: magnitude m_a + m_b; a b: m_a m_b; leaves x_i, y_i
+// with m_i, Z_i with 2 m_i, H and r with themselves), of the polynomial the
+// scalar kernel evaluates for that test, so each verdict is one
+// FilterKernel::sign certifies (src/filter.h: any such evaluation of depth
+// <= 56 is within 2^-47 m + 2^-600 of the exact value). A test's verdict
+// is a pair of lane masks, certainly true (t) and certainly false (f);
+// neither is "undecided", and its bit goes to `undecided` as in
+// filterTests. (V), (X) and (E) run in lanes; (A) and (B), one test per
+// triangle or per cap with a shape that depends on the signs, run in the
+// scalar kernel (triangleCylinderTests restricted to them); the
+// certificates of disjointness (plane, direction, bounding square, edge
+// separation) run only for what the fifteen tests leave open.
+struct LaneTri {
+  __m256d t, f;
+};
+// The sign lanes of v with magnitude mv: certainly positive, certainly
+// negative.
+__attribute__((target("avx2"), always_inline)) inline void signLanes(
+    __m256d v, __m256d mv, __m256d* pos, __m256d* neg) {
+  const __m256d b = bound(mv, _mm256_set1_pd(kRel), _mm256_set1_pd(kAbs));
+  *pos = _mm256_cmp_pd(v, b, _CMP_GT_OQ);
+  *neg = _mm256_cmp_pd(v, _mm256_xor_pd(b, _mm256_set1_pd(-0.0)), _CMP_LT_OQ);
+}
+// Bits 0..2 of a lane mask (lane 3 repeats lane 2).
+__attribute__((target("avx2"), always_inline)) inline std::uint32_t bits3(
+    __m256d mask) {
+  return std::uint32_t(_mm256_movemask_pd(mask)) & 7u;
+}
+
+__attribute__((target("avx2"), noinline)) Tri filterTestsAvx2(
+    const Local& L, std::uint32_t* undecided) {
+  using detail::kTestA;
+  using detail::kTestB;
+  using detail::kTestE;
+  using detail::kTestV;
+  using detail::kTestX;
+  constexpr int kNext = 0x09;  // lanes (1, 2, 0, 0): an edge's second end
+  const __m256d x = _mm256_loadu_pd(L.x), y = _mm256_loadu_pd(L.y),
+                Z = _mm256_loadu_pd(L.Z), m = _mm256_loadu_pd(L.m);
+  const __m256d HH = _mm256_set1_pd(L.H), r2 = _mm256_set1_pd(L.r * L.r);
+  const __m256d m2 = _mm256_add_pd(m, m);
+  // Slab signs: a = Z - H (cap 0) and Z + H (cap 1), magnitude 2 m + H.
+  const __m256d ma = _mm256_add_pd(m2, HH);
+  const __m256d a0 = _mm256_sub_pd(Z, HH), a1 = _mm256_add_pd(Z, HH);
+  __m256d pos0, neg0, pos1, neg1;
+  signLanes(a0, ma, &pos0, &neg0);
+  signLanes(a1, ma, &pos1, &neg1);
+
+  // (V): in the slab (Z - H <= 0 <= Z + H) and r^2 - x^2 - y^2 >= 0.
+  __m256d vp, vn;
+  signLanes(_mm256_sub_pd(_mm256_sub_pd(r2, _mm256_mul_pd(x, x)),
+                          _mm256_mul_pd(y, y)),
+            _mm256_add_pd(_mm256_add_pd(r2, _mm256_mul_pd(m, m)),
+                          _mm256_mul_pd(m, m)),
+            &vp, &vn);
+  const LaneTri V = {_mm256_and_pd(_mm256_and_pd(neg0, pos1), vp),
+                     _mm256_or_pd(_mm256_or_pd(pos0, neg1), vn)};
+
+  // (X) on each cap: a_i, a_j certainly of opposite signs, and
+  // r^2 W^2 - X^2 - Y^2 >= 0 with X = x_i a_j - x_j a_i, Y likewise,
+  // W = a_j - a_i.
+  const EdgeLanes e = edgeLanes(x, y, Z, m);
+  const __m256d maj = _mm256_permute4x64_pd(ma, kNext);
+  const __m256d mX =
+      _mm256_add_pd(_mm256_mul_pd(m, maj), _mm256_mul_pd(e.mj, ma));
+  const __m256d mW = _mm256_add_pd(maj, ma);
+  const __m256d mXv =
+      _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(r2, _mm256_mul_pd(mW, mW)),
+                                  _mm256_mul_pd(mX, mX)),
+                    _mm256_mul_pd(mX, mX));
+  LaneTri X[2];
+  for (int s = 0; s < 2; ++s) {
+    const __m256d a = s == 0 ? a0 : a1;
+    const __m256d pi = s == 0 ? pos0 : pos1, ni = s == 0 ? neg0 : neg1;
+    const __m256d aj = _mm256_permute4x64_pd(a, kNext);
+    const __m256d pj = _mm256_permute4x64_pd(pi, kNext),
+                  nj = _mm256_permute4x64_pd(ni, kNext);
+    const __m256d cross_t =
+        _mm256_or_pd(_mm256_and_pd(ni, pj), _mm256_and_pd(pi, nj));
+    const __m256d cross_f =
+        _mm256_and_pd(_mm256_or_pd(pi, nj), _mm256_or_pd(ni, pj));
+    const __m256d Xv =
+        _mm256_sub_pd(_mm256_mul_pd(x, aj), _mm256_mul_pd(e.xj, a));
+    const __m256d Yv =
+        _mm256_sub_pd(_mm256_mul_pd(y, aj), _mm256_mul_pd(e.yj, a));
+    const __m256d W = _mm256_sub_pd(aj, a);
+    __m256d p, n;
+    signLanes(
+        _mm256_sub_pd(_mm256_sub_pd(_mm256_mul_pd(r2, _mm256_mul_pd(W, W)),
+                                    _mm256_mul_pd(Xv, Xv)),
+                      _mm256_mul_pd(Yv, Yv)),
+        mXv, &p, &n);
+    X[s] = {_mm256_and_pd(cross_t, p), _mm256_or_pd(cross_f, n)};
+  }
+
+  // (E): L > 0, r^2 L - c^2 >= 0 (c = x_i y_j - x_j y_i), g >= 0,
+  // L - g >= 0, (H - Z_i) L - g (Z_j - Z_i) >= 0 and
+  // (H + Z_i) L + g (Z_j - Z_i) >= 0, g = -(x_i ex + y_i ey): the kernel's
+  // grouping.
+  __m256d Et, Ef;
+  {
+    __m256d p, n;
+    signLanes(e.L, e.mL, &p, &n);
+    Et = p;
+    Ef = n;
+    signLanes(_mm256_sub_pd(_mm256_mul_pd(r2, e.L), _mm256_mul_pd(e.o, e.o)),
+              _mm256_add_pd(_mm256_mul_pd(r2, e.mL), _mm256_mul_pd(e.mo, e.mo)),
+              &p, &n);
+    Et = _mm256_and_pd(Et, p);
+    Ef = _mm256_or_pd(Ef, n);
+    const __m256d g = _mm256_xor_pd(
+        _mm256_add_pd(_mm256_mul_pd(x, e.ex), _mm256_mul_pd(y, e.ey)),
+        _mm256_set1_pd(-0.0));
+    const __m256d mg =
+        _mm256_add_pd(_mm256_mul_pd(m, e.mE), _mm256_mul_pd(m, e.mE));
+    signLanes(g, mg, &p, &n);
+    Et = _mm256_and_pd(Et, p);
+    Ef = _mm256_or_pd(Ef, n);
+    signLanes(_mm256_sub_pd(e.L, g), _mm256_add_pd(e.mL, mg), &p, &n);
+    Et = _mm256_and_pd(Et, p);
+    Ef = _mm256_or_pd(Ef, n);
+    const __m256d gz = _mm256_mul_pd(g, _mm256_sub_pd(e.Zj, Z));
+    const __m256d mgz =
+        _mm256_mul_pd(mg, _mm256_add_pd(_mm256_add_pd(e.mj, e.mj), m2));
+    const __m256d mside =
+        _mm256_add_pd(_mm256_mul_pd(_mm256_add_pd(HH, m2), e.mL), mgz);
+    signLanes(_mm256_sub_pd(_mm256_mul_pd(_mm256_sub_pd(HH, Z), e.L), gz),
+              mside, &p, &n);
+    Et = _mm256_and_pd(Et, p);
+    Ef = _mm256_or_pd(Ef, n);
+    signLanes(_mm256_add_pd(_mm256_mul_pd(_mm256_add_pd(HH, Z), e.L), gz),
+              mside, &p, &n);
+    Et = _mm256_and_pd(Et, p);
+    Ef = _mm256_or_pd(Ef, n);
+  }
+  const __m256d any_t =
+      _mm256_or_pd(_mm256_or_pd(V.t, Et), _mm256_or_pd(X[0].t, X[1].t));
+  if (bits3(any_t) != 0) return Tri::kTrue;
+  std::uint32_t open =
+      (7u & ~bits3(V.f)) << kTestV | (7u & ~bits3(X[0].f)) << kTestX |
+      (7u & ~bits3(X[1].f)) << (kTestX + 3) | (7u & ~bits3(Ef)) << kTestE;
+
+  // (A) and (B) in the scalar kernel, with the lanes' slab signs.
+  auto sgn = [](std::uint32_t p, std::uint32_t n, int i) {
+    return (p >> i & 1)   ? Sign::kPos
+           : (n >> i & 1) ? Sign::kNeg
+                          : Sign::kUnknown;
+  };
+  const std::uint32_t p0 = bits3(pos0), n0 = bits3(neg0), p1 = bits3(pos1),
+                      n1 = bits3(neg1);
+  Sign top[3], bot[3];
+  detail::TriCylLocal<FilterKernel> q;
+  for (int i = 0; i < 3; ++i) {
+    top[i] = sgn(p0, n0, i);
+    bot[i] = sgn(p1, n1, i);
+    q.x[i] = {L.x[i], L.m[i]};
+    q.y[i] = {L.y[i], L.m[i]};
+    q.Z[i] = {L.Z[i], L.m[i] + L.m[i]};
+  }
+  q.H = FilterKernel::lift(L.H);
+  q.r = FilterKernel::lift(L.r);
+  if (open == 0) {
+    detail::TestMask mask;
+    mask.run = 1u << kTestA | 3u << kTestB;
+    if (detail::triangleCylinderTests<FilterKernel>(q, top, bot, &mask) ==
+        Tri::kTrue)
+      return Tri::kTrue;
+    open |= mask.unknown;
+    if (open == 0) return Tri::kFalse;
+  } else {
+    open |= 1u << kTestA | 3u << kTestB;
+  }
+  // Certificates of disjointness for what the tests leave open: the
+  // early-outs of certainlyBeyond (the slab; x - r, -x - r, y - r and
+  // -y - r with magnitude m + r), edge separation, direction separation.
+  // (planeSeparates, which the scalar filter also tries, decides too few
+  // of these queries to pay for itself here.)
+  const __m256d rr = _mm256_set1_pd(L.r), mr = _mm256_add_pd(m, rr);
+  const __m256d nx = _mm256_xor_pd(x, _mm256_set1_pd(-0.0)),
+                ny = _mm256_xor_pd(y, _mm256_set1_pd(-0.0));
+  __m256d bp, bn;
+  std::uint32_t beyond = (p0 == 7) | (n1 == 7);
+  signLanes(_mm256_sub_pd(x, rr), mr, &bp, &bn);
+  beyond |= bits3(bp) == 7;
+  signLanes(_mm256_sub_pd(nx, rr), mr, &bp, &bn);
+  beyond |= bits3(bp) == 7;
+  signLanes(_mm256_sub_pd(y, rr), mr, &bp, &bn);
+  beyond |= bits3(bp) == 7;
+  signLanes(_mm256_sub_pd(ny, rr), mr, &bp, &bn);
+  beyond |= bits3(bp) == 7;
+  if (beyond || edgeSeparatesAvx2(e, r2) || directionSeparates(q))
+    return Tri::kFalse;
+  *undecided = open;
+  return Tri::kUnknown;
+}
+#endif
+
 // The scalar fast path: the double filter (FilterKernel) with validation and
 // range gate fused into the arithmetic, and branch-free early-outs. It
 // computes bit for bit the values and bounds that makeLocal<FilterKernel> and
@@ -1322,7 +1557,12 @@ TRICYL_ALWAYS_INLINE Fast decideFast(const Cylinder<S>& cyl,
     return Fast::kDecided;
   }
   if (f == Pre::kGateMiss) return Fast::kGateMiss;
+#if TRICYL_FAST_AVX2
+  const Tri t =
+      kAvx2 ? filterTestsAvx2(L, undecided) : filterTests(L, undecided);
+#else
   const Tri t = filterTests(L, undecided);
+#endif
   if (t == Tri::kUnknown) return Fast::kUnknown;
   *out = {detail::toAnswer(t), Stage::kFastPath};
   return Fast::kDecided;
@@ -1445,6 +1685,31 @@ int fastPathGate(const Cylinder<S>& cylinder, const Pose<S>& pose,
   (void)cylinder, (void)pose, (void)triangle;
   return -1;
 }
+int dwFramePathsAgree(const Pose<double>& pose,
+                      const Triangle<double>& triangle) noexcept {
+#if TRICYL_FAST_AVX2
+  if (!kHasAvx2 || !detail::fmaAtRunTime()) return -1;
+  const Cylinder<double> cyl{1, 1};  // not read by the frame
+  const Inputs in{cyl, pose, triangle};
+  DwFrame lanes, scalar;
+  dwFrameAvx2Fma(in, &lanes);
+#if TRICYL_FMA_DISPATCH
+  dwFrameFma(in, &scalar);
+#else
+  dwFramePlain(in, &scalar);
+#endif
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const detail::DwRun &a = lanes.c[i][j], &b = scalar.c[i][j];
+      if (!(a.v.hi == b.v.hi && a.v.lo == b.v.lo && a.e == b.e)) return 0;
+    }
+  return 1;
+#else
+  (void)pose, (void)triangle;
+  return -1;
+#endif
+}
+
 template int fastPathGate(const Cylinder<float>&, const Pose<float>&,
                           const Triangle<float>&) noexcept;
 template int fastPathGate(const Cylinder<double>&, const Pose<double>&,

@@ -155,6 +155,50 @@ Sign signWithRoot(const typename K::Num& a, const typename K::Num& b,
   return s2 == Sign::kPos ? sa : sb;
 }
 
+/// |a| vs |b| sqrt(D) for a = ma 2^ea, b = mb 2^eb != 0 and D = md 2^ed > 0
+/// (GMP integers m, exponents e), i.e. the sign of a^2 - b^2 D, first from
+/// the leading 53 bits of each mantissa: mpz_get_d_2exp gives
+/// |m| = f 2^k (1 + eps) with 0.5 <= f < 1 and 0 <= eps < 2^-52 (it
+/// truncates), so a^2 / (b^2 D) = (fa^2 / (fb^2 fd)) 2^x times a factor
+/// within (1 - 2^-50, 1 + 2^-50), x = 2 (ka + ea) - 2 (kb + eb) - (kd + ed),
+/// and fa^2 / (fb^2 fd) is in (1/4, 8): x >= 4 decides >, x <= -4 decides
+/// <, and otherwise the three rounded products (2^-53 each) with the slack
+/// 2^-45 decide unless the two sides agree to about 2^-45. Only then the
+/// exact squares (of about 40,000 bits for inputs that span 2000 binary
+/// orders, where they were the bulk of the face part's cost). `exact`
+/// returns the sign of a^2 - b^2 D.
+template <class Exact>
+int compareAbsWithRoot(const mpz_class& ma, long ea, const mpz_class& mb,
+                       long eb, const mpz_class& md, long ed, Exact&& exact) {
+  long ka = 0, kb = 0, kd = 0;
+  const double fa = std::fabs(mpz_get_d_2exp(&ka, ma.get_mpz_t()));
+  const double fb = std::fabs(mpz_get_d_2exp(&kb, mb.get_mpz_t()));
+  const double fd = mpz_get_d_2exp(&kd, md.get_mpz_t());
+  const long x = 2 * (ka + ea) - 2 * (kb + eb) - (kd + ed);
+  if (x >= 4) return 1;
+  if (x <= -4) return -1;
+  const double lhs = std::ldexp(fa * fa, int(x));  // exact: x > -4
+  const double rhs = fb * fb * fd;
+  if (lhs > rhs * (1 + 0x1p-45)) return 1;
+  if (lhs * (1 + 0x1p-45) < rhs) return -1;
+  return exact();
+}
+/// signWithRoot in GMP dyadics (the face part's exact stage), with the
+/// comparison of |a| and |b| sqrt(D) filtered on leading bits.
+template <>
+Sign signWithRoot<detail::ExactKernel>(const detail::Dyadic& a,
+                                       const detail::Dyadic& b,
+                                       const detail::Dyadic& D) {
+  using K = detail::ExactKernel;
+  const Sign sa = K::sign(a), sb = K::sign(b);
+  if (sb == Sign::kZero) return sa;
+  if (sa == Sign::kZero || sa == sb) return sb;
+  const int c = compareAbsWithRoot(a.m, a.e, b.m, b.e, D.m, D.e,
+                                   [&] { return sgn((a * a - b * b * D).m); });
+  if (c == 0) return Sign::kZero;
+  return c > 0 ? sa : sb;
+}
+
 /// The face part (see the file comment): does the foot on the triangle's
 /// plane of one of the rim points +-r (n_x, n_y)/|n_xy| lie in the triangle
 /// within m of that rim point? Only asked for a triangle that misses the rim
@@ -228,28 +272,6 @@ Tri faceFeet(const TorusInput<K>& t) {
   return any.result();
 }
 
-/// The coefficients (power basis in s) of L and Q along the edge a -> b.
-template <class K>
-void edgePolys(const TorusInput<K>& t, int a, int b, typename K::Num* l,
-               typename K::Num* q) {
-  using N = typename K::Num;
-  const N ex = t.X[b] - t.X[a], ey = t.Y[b] - t.Y[a], ez = t.Z[b] - t.Z[a];
-  const N za = t.Z[a] - t.C;
-  const N p0 = t.X[a] * t.X[a] + t.Y[a] * t.Y[a];
-  const N p1 = (t.X[a] * ex + t.Y[a] * ey) + (t.X[a] * ex + t.Y[a] * ey);
-  const N p2 = ex * ex + ey * ey;
-  const N R2 = t.R * t.R;
-  const N R4 = (R2 + R2) + (R2 + R2);
-  l[0] = p0 + za * za + (R2 - t.M * t.M);
-  l[1] = p1 + (za * ez + za * ez);
-  l[2] = p2 + ez * ez;
-  q[0] = l[0] * l[0] - R4 * p0;
-  q[1] = (l[0] * l[1] + l[0] * l[1]) - R4 * p1;
-  q[2] = l[1] * l[1] + (l[0] * l[2] + l[0] * l[2]) - R4 * p2;
-  q[3] = l[1] * l[2] + l[1] * l[2];
-  q[4] = l[2] * l[2];
-}
-
 // ---- The filter: Bernstein coefficients with subdivision ------------------
 
 using Rd = detail::Rd;
@@ -273,37 +295,63 @@ using Rd = detail::Rd;
 /// eta / 2 per rounding that underflows (the product's four products, the
 /// sum's one: covered by the added eta terms). sign() compares v with
 /// fl(e (1 + 2^-40)) + eta, the last covering that product's underflow.
-struct Ru {
-  double v;
-  double e;
+///
+/// The same rules hold for any binary floating type F with gradual
+/// underflow and u' = u (1 + 2u) (u = epsilon / 2 <= 2^-53, eta F's
+/// smallest subnormal): UnderflowKernelT<double> is the filter on the
+/// rescaled inputs, UnderflowKernelT<long double> (the x87 format on
+/// x86-64: 64-bit significand, exponents down to 2^-16445; IEEE quadruple
+/// on AArch64; double itself where long double is double, the stage then
+/// only deciding less) the one on the exact local coordinates rounded once
+/// (torusWideInput), whose exponent range holds the products of inputs
+/// that span 2000 binary orders.
+template <class F>
+struct RuT {
+  F v;
+  F e;
 };
-constexpr double kEta = std::numeric_limits<double>::denorm_min();
-inline Ru operator+(Ru a, Ru b) {
-  const double v = a.v + b.v;
-  return {v, a.e + b.e + detail::kU1d * std::fabs(v) + kEta};
+template <class F>
+constexpr F kEtaT = std::numeric_limits<F>::denorm_min();
+template <class F>
+constexpr F kU1T = std::numeric_limits<F>::epsilon() / 2 *
+                   (1 + std::numeric_limits<F>::epsilon());
+template <class F>
+inline RuT<F> operator+(RuT<F> a, RuT<F> b) {
+  const F v = a.v + b.v;
+  return {v, a.e + b.e + kU1T<F> * std::fabs(v) + kEtaT<F>};
 }
-inline Ru operator-(Ru a, Ru b) {
-  const double v = a.v - b.v;
-  return {v, a.e + b.e + detail::kU1d * std::fabs(v) + kEta};
+template <class F>
+inline RuT<F> operator-(RuT<F> a, RuT<F> b) {
+  const F v = a.v - b.v;
+  return {v, a.e + b.e + kU1T<F> * std::fabs(v) + kEtaT<F>};
 }
-inline Ru operator-(Ru a) { return {-a.v, a.e}; }
-inline Ru operator*(Ru a, Ru b) {
-  const double v = a.v * b.v;
+template <class F>
+inline RuT<F> operator-(RuT<F> a) {
+  return {-a.v, a.e};
+}
+template <class F>
+inline RuT<F> operator*(RuT<F> a, RuT<F> b) {
+  const F v = a.v * b.v;
   return {v, std::fabs(a.v) * b.e + std::fabs(b.v) * a.e + a.e * b.e +
-                 detail::kU1d * std::fabs(v) + 4 * kEta};
+                 kU1T<F> * std::fabs(v) + 4 * kEtaT<F>};
 }
-struct UnderflowKernel {
-  using Num = Ru;
+template <class F>
+struct UnderflowKernelT {
+  using Num = RuT<F>;
   static constexpr bool kExact = false;
-  static Num lift(double x) { return {x, 0}; }
+  static Num lift(double x) { return {F(x), 0}; }
   static Sign sign(const Num& a) {
-    const double bound = a.e * (1 + 0x1p-40) + kEta;
+    const F bound = a.e * (1 + F(0x1p-40)) + kEtaT<F>;
     if (a.v > bound) return Sign::kPos;
     if (a.v < -bound) return Sign::kNeg;
     return Sign::kUnknown;
   }
 };
-using Uk = UnderflowKernel;
+using Ru = RuT<double>;
+using Uk = UnderflowKernelT<double>;
+using Ul = UnderflowKernelT<long double>;
+static_assert(kU1T<double> == detail::kU1d, "u' of src/filter.h");
+constexpr double kEta = kEtaT<double>;
 
 /// Double-word values with a running bound: the intermediate stage of the
 /// torus edges (Stage::kExtended), between the double filter and GMP, on
@@ -458,20 +506,64 @@ Tri edgeFilter(const TorusInput<K>& t, int a, int b) {
 
 // ---- The exact stage: GMP integers, Sturm sequence ------------------------
 
-using detail::sturm::Poly;
-using detail::sturm::rootsInUnit;
+/// Is a0 + a1 s + a2 s^2 > 0 for every s in [0, 1]? At the ends, and at
+/// the interior vertex -a1 / (2 a2) of a convex parabola, where the value is
+/// (4 a0 a2 - a1^2) / (4 a2).
+bool quadraticPositiveOnUnit(const mpz_class& a0, const mpz_class& a1,
+                             const mpz_class& a2) {
+  if (sgn(a0) <= 0 || sgn(a0 + a1 + a2) <= 0) return false;
+  if (sgn(a2) > 0 && sgn(a1) < 0 && a1 + 2 * a2 > 0)
+    return sgn(4 * a0 * a2 - a1 * a1) > 0;
+  return true;
+}
 
+/// The exact stage of one edge (GMP integers). With p(s) = A + s E,
+/// rho^2 = p0 + p1 s + p2 s^2 and z - C = za + ez s, in this order:
+///
+/// 1. L <= 0 somewhere on [0, 1] (L = rho^2 + (z - C)^2 + R^2 - M^2, a
+///    quadratic): a hit.
+/// 2. The edge misses a simple set around the torus: a miss. Every point p
+///    of Tor is p = g + w with g on the rim circle (radius R about
+///    o = (0, 0, C) in the plane z = C) and |w| <= M, so Tor lies in the
+///    slab |z - C| <= M, in the solid cylinder rho <= R + M
+///    (|p_xy| <= |g_xy| + |w|) and in the ball |p - o| <= R + M. Along the
+///    edge z - C is linear (a miss iff both ends are beyond the same face
+///    of the slab), rho^2 and |p - o|^2 are quadratics (a miss iff the
+///    quadratic minus the squared bound is positive on [0, 1]). The hole
+///    rho < R - M needs no test: an edge inside it that reaches this stage
+///    misses Cyl(r, h + m), so it lies wholly above or below that cylinder,
+///    beyond one face of the slab. Products of the inputs' size only. On
+///    the wide-exponent inputs outside the range gate (lengths spanning
+///    2000 binary orders) this is what decides the edges that miss: their
+///    quartic Q has coefficients of about 15,000 bits, and its Sturm
+///    sequence cost milliseconds.
+/// 3. Q = L^2 - 4 R^2 rho^2 <= 0 at an end: a hit; its Bernstein
+///    coefficients on [0, 1] all > 0: a miss; else the Sturm sequence
+///    counts its roots in (0, 1) (both ends > 0: a root is a point where
+///    Q <= 0), which decides every tie (rootsInUnitTorus: its remainders
+///    in closed form, no gcd; exact subdivision of the Bernstein form was
+///    tried before it and dropped: on the wide inputs whose edges reach
+///    this point it needed thousands of pieces).
 bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
-  mpz_class l[3], q[5];
-  edgePolys<ZKernel>(t, a, b, l, q);
-  // L <= 0 somewhere on [0, 1]: at an end, or at the interior vertex of the
-  // parabola (l2 > 0, -l1 / (2 l2) in (0, 1), 4 l0 l2 - l1^2 <= 0).
-  const mpz_class l_end = l[0] + l[1] + l[2];
-  if (sgn(l[0]) <= 0 || sgn(l_end) <= 0) return true;
-  if (sgn(l[2]) > 0 && sgn(l[1]) < 0 && l[1] + 2 * l[2] > 0 &&
-      4 * l[0] * l[2] - l[1] * l[1] <= 0)
-    return true;
-  // Q <= 0 somewhere: at an end, or (both ends > 0) at a root in (0, 1).
+  const mpz_class ex = t.X[b] - t.X[a], ey = t.Y[b] - t.Y[a],
+                  ez = t.Z[b] - t.Z[a];
+  const mpz_class za = t.Z[a] - t.C, zb = t.Z[b] - t.C;
+  const mpz_class p0 = t.X[a] * t.X[a] + t.Y[a] * t.Y[a];
+  const mpz_class p1 = 2 * (t.X[a] * ex + t.Y[a] * ey);
+  const mpz_class p2 = ex * ex + ey * ey;
+  const mpz_class R2 = t.R * t.R, M2 = t.M * t.M;
+  const mpz_class l[3] = {p0 + za * za + (R2 - M2), p1 + 2 * za * ez,
+                          p2 + ez * ez};
+  if (!quadraticPositiveOnUnit(l[0], l[1], l[2])) return true;  // 1.
+  if ((za > t.M && zb > t.M) || (za < -t.M && zb < -t.M)) return false;
+  const mpz_class rm2 = (t.R + t.M) * (t.R + t.M);
+  if (quadraticPositiveOnUnit(p0 - rm2, p1, p2)) return false;
+  if (quadraticPositiveOnUnit(p0 + za * za - rm2, l[1], l[2])) return false;
+  // 3. Q's coefficients in the power basis.
+  const mpz_class R4 = 4 * R2;
+  const mpz_class q[5] = {l[0] * l[0] - R4 * p0, 2 * l[0] * l[1] - R4 * p1,
+                          l[1] * l[1] + 2 * l[0] * l[2] - R4 * p2,
+                          2 * l[1] * l[2], l[2] * l[2]};
   const mpz_class q_end = q[0] + q[1] + q[2] + q[3] + q[4];
   if (sgn(q[0]) <= 0 || sgn(q_end) <= 0) return true;
   // Bernstein coefficients (times 12) all > 0: Q > 0 on [0, 1], no roots.
@@ -479,7 +571,7 @@ bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
   if (sgn(q0 + 3 * q[1]) > 0 && sgn(q0 + 6 * q[1] + 2 * q[2]) > 0 &&
       sgn(q0 + 9 * q[1] + 6 * q[2] + 3 * q[3]) > 0)
     return false;
-  return rootsInUnit(Poly(q, q + 5)) > 0;
+  return detail::sturm::rootsInUnitTorus(q, l[1], l[2]) > 0;
 }
 
 /// The edges of one torus in the filter: kTrue if one certainly meets it,
@@ -745,10 +837,55 @@ TorusInput<Uk> torusRobustInput(const Query& q, bool top) {
   return t;
 }
 
+/// The exact torus input (torusExactInput) rounded once to long double for
+/// UnderflowKernelT<long double>: each integer z as d 2^k with d its leading
+/// 53 bits (mpz_get_d_2exp truncates: |z - d 2^k| < 2^-52 |d 2^k|, the
+/// bound carried), all scaled by one power of two that brings the largest
+/// below 1 (an underflowed scaled value is off by at most eta / 2, and eta
+/// is added to every bound). The exact local coordinates rounded once are
+/// what the rescaled double inputs (torusRobustInput) cannot be when the
+/// inputs span more binary orders than double's exponents: there a torus
+/// 2^-1200 the size of the triangle leaves every double filter sign open,
+/// and the GMP stages behind it cost hundreds of microseconds.
+TorusInput<Ul> torusWideInput(const TorusInput<ZKernel>& t) {
+  using L = long double;
+  const mpz_class* in[12] = {&t.X[0], &t.X[1], &t.X[2], &t.Y[0],
+                             &t.Y[1], &t.Y[2], &t.Z[0], &t.Z[1],
+                             &t.Z[2], &t.R,    &t.M,    &t.C};
+  double d[12];
+  long k[12];
+  long top = std::numeric_limits<long>::min();
+  for (int i = 0; i < 12; ++i) {
+    d[i] = mpz_get_d_2exp(&k[i], in[i]->get_mpz_t());
+    if (d[i] != 0) top = std::max(top, k[i]);
+  }
+  TorusInput<Ul> w;
+  RuT<L>* out[12] = {&w.X[0], &w.X[1], &w.X[2], &w.Y[0], &w.Y[1], &w.Y[2],
+                     &w.Z[0], &w.Z[1], &w.Z[2], &w.R,    &w.M,    &w.C};
+  for (int i = 0; i < 12; ++i) {
+    if (d[i] == 0) {
+      *out[i] = {0, 0};  // an exact 0 (mpz_get_d_2exp of 0)
+      continue;
+    }
+    // k[i] - top > -4,400 here (the integers have at most about 4,300
+    // bits: lengths and rotation entries from 2^-1074 to 2^1024), inside long
+    // double's exponents on x86-64 and AArch64; where long double is double,
+    // ldexp underflows and eta covers the loss.
+    const int e = int(std::max(k[i] - top, -20000L));
+    const L v = std::ldexp(L(d[i]), e);
+    *out[i] = {v, std::ldexp(std::fabs(L(d[i])) * L(0x1p-52), e) + kEtaT<L>};
+  }
+  return w;
+}
+
 /// The face part of one torus through the stage driver (src/stages.h):
-/// FilterKernel, then the adaptive kernel, on the scaled inputs; GMP
-/// dyadics alone on the original ones where the scaling is not exact.
-Decision faceStage(const Query& q, const ScaledInputs& s, bool top) {
+/// FilterKernel, then the adaptive kernel, on the scaled inputs. Where the
+/// scaling is not exact: UnderflowKernel on the rescaled inputs, then on
+/// the exact local coordinates rounded once to long double (`wide()`, the
+/// torus's torusWideInput), then GMP dyadics on the original inputs.
+template <class Wide>
+Decision faceStage(const Query& q, const ScaledInputs& s, bool top,
+                   Wide&& wide) {
   auto pred = [&](auto tag, bool*) {
     using K = typename decltype(tag)::type;
     const auto l =
@@ -763,6 +900,10 @@ Decision faceStage(const Query& q, const ScaledInputs& s, bool top) {
         return {f == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
                 Stage::kFastPath};
     }
+    const Tri f = faceFeet<Ul>(wide());
+    if (f != Tri::kUnknown)
+      return {f == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
+              Stage::kExtended};
     return detail::runAdaptive(pred, false);
   }
   return detail::runStages(pred, 2.0, q.max_unitless);
@@ -799,14 +940,16 @@ Stage stronger(Stage a, Stage b) {
         return 0;
       case Stage::kFastPath:
         return 1;
-      case Stage::kExtended:
+      case Stage::kRunning:
         return 2;
-      case Stage::kExact:
+      case Stage::kExtended:
         return 3;
-      case Stage::kExactGmp:
+      case Stage::kExact:
         return 4;
-      default:
+      case Stage::kExactGmp:
         return 5;
+      default:
+        return 6;
     }
   };
   return rank(a) >= rank(b) ? a : b;
@@ -928,20 +1071,45 @@ Decision decide(Query& q) {
       }
     }
   }
+  // The exact torus inputs (GMP integers) and, where the scaling is not
+  // exact, their long double rounding, made once when first needed.
   std::optional<TorusInput<ZKernel>> exact_top;  // the bottom one mirrors it
-  for (int i = 0; i < 2; ++i) {
-    if (!(open[i][0] || open[i][1] || open[i][2])) continue;
+  auto exactTorus = [&](int i) {
     if (!exact_top) exact_top = torusExactInput(q, 1);
     TorusInput<ZKernel> t = *exact_top;
     if (i == 1)
       for (auto& z : t.Z) z = -z;
+    return t;
+  };
+  std::optional<TorusInput<Ul>> wide_in[2];
+  auto wideTorus = [&](int i) -> const TorusInput<Ul>& {
+    if (!wide_in[i]) wide_in[i] = torusWideInput(exactTorus(i));
+    return *wide_in[i];
+  };
+  // The edges the rescaled double filter left open: the same filter in
+  // long double on the exact coordinates (torusWideInput).
+  if (!s.ok)
+    for (int i = 0; i < 2; ++i) {
+      if (!(open[i][0] || open[i][1] || open[i][2])) continue;
+      stage = stronger(stage, Stage::kExtended);
+      for (int e = 0; e < 3; ++e) {
+        if (!open[i][e]) continue;
+        const Tri r = edgeFilter<Ul>(wideTorus(i), kEdge[e][0], kEdge[e][1]);
+        if (r == Tri::kTrue) return yes(stage);
+        open[i][e] = r == Tri::kUnknown;
+      }
+    }
+  for (int i = 0; i < 2; ++i) {
+    if (!(open[i][0] || open[i][1] || open[i][2])) continue;
+    const TorusInput<ZKernel> t = exactTorus(i);
     stage = Stage::kExactGmp;
     for (int e = 0; e < 3; ++e)
       if (open[i][e] && edgeExact(t, kEdge[e][0], kEdge[e][1]))
         return yes(stage);
   }
   for (int i = 0; i < 2; ++i) {
-    const Decision d = faceStage(q, s, i == 0);
+    const Decision d = faceStage(
+        q, s, i == 0, [&]() -> const TorusInput<Ul>& { return wideTorus(i); });
     stage = stronger(stage, d.stage);
     if (d.answer == Answer::kIntersect) return yes(stage);
   }

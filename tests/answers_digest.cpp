@@ -448,11 +448,11 @@ int main(int argc, char** argv) {
       }
     std::printf(
         "%-10s intersect %5ld disjoint %5ld invalid %3ld | stages:"
-        " early %4ld fast %4ld double-word %4ld exact %4ld"
+        " early %4ld fast %4ld running %4ld double-word %4ld exact %4ld"
         " GMP %4ld\n",
         kKindNames[kind], answers[kind][1], answers[kind][0], answers[kind][2],
         stages[kind][int(Stage::kEarlyOut)],
-        stages[kind][int(Stage::kFastPath)],
+        stages[kind][int(Stage::kFastPath)], stages[kind][int(Stage::kRunning)],
         stages[kind][int(Stage::kExtended)], stages[kind][int(Stage::kExact)],
         stages[kind][int(Stage::kExactGmp)]);
   }

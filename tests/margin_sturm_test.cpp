@@ -140,5 +140,67 @@ TEST(MarginSturm, AgreesWithRationalSturmOnRandomPolynomials) {
   EXPECT_GT(with_roots, compared / 20);
 }
 
+/// The torus quartic Q = L^2 - 4 R^2 P from the quadratics L, P (lowest
+/// first) and R.
+Poly torusQuartic(const Poly& l, const Poly& pp, const mpz_class& R) {
+  Poly q = multiply(l, l);
+  const Poly rp = multiply(Poly{4 * R * R}, pp);
+  for (size_t i = 0; i < rp.size(); ++i) q[i] -= rp[i];
+  return q;
+}
+
+// rootsInUnitTorus (the closed-form chain of the torus edges) against the
+// rational reference: an edge tangent to the tube (a double root, counted
+// once), just missing it and just crossing it, at scales up to 2^100; then
+// random torus quartics, whose small ranges make exact degeneracies (a
+// remainder's degree dropping, common factors) frequent.
+TEST(MarginSturm, TorusChainAgreesWithRationalSturm) {
+  // Rim radius R = 5k at height 0, the edge (8k, -2k + 4k s, 4k), s in
+  // [0, 1]: at s = 1/2 the point (8k, 0, 4k) is 5k from the rim point
+  // (5k, 0, 0) along the meridian, and the edge is perpendicular to the
+  // meridian plane there: tangent to the tube of radius 5k. rho^2 =
+  // 68k^2 - 16k^2 s + 16k^2 s^2, (z - C)^2 = 16k^2; the tube's squared
+  // radius M^2 = 25k^2 + dm (only M^2 enters L): Q(1/2) = dm^2 - 160k^2 dm,
+  // Q(0) = Q(1) = 256k^4 - 168k^2 dm + dm^2.
+  for (const mpz_class& k : {mpz_class(1), mpz_class(10), mpz_class(1000),
+                             mpz_class(mpz_class(1) << 100)}) {
+    const mpz_class k2 = k * k, R = 5 * k;
+    const Poly pp{68 * k2, -16 * k2, 16 * k2};
+    for (int dm : {-1, 0, 1}) {
+      const Poly l{pp[0] + 16 * k2 - dm, pp[1], pp[2]};  // R^2 - M^2 = -dm
+      const Poly q = torusQuartic(l, pp, R);
+      const int want = dm < 0 ? 0 : (dm == 0 ? 1 : 2);
+      EXPECT_EQ(referenceRootsInUnit(toRational(q)), want) << show(q);
+      EXPECT_EQ(detail::sturm::rootsInUnitTorus(q.data(), l[1], l[2]), want)
+          << show(q);
+    }
+  }
+  const std::uint64_t seed = test::baseSeed();
+  SCOPED_TRACE(test::seedTrace(seed));
+  scenes::Rng g(seed ^ 0x7475u);
+  const long n = test::scaled(8000);
+  long compared = 0, with_roots = 0;
+  for (long i = 0; i < n; ++i) {
+    const int range = i % 3 == 0 ? 3 : (i % 3 == 1 ? 12 : 1000);
+    auto draw = [&] { return mpz_class(g.integer(2 * range + 1) - range); };
+    const Poly l{draw(), draw(), mpz_class(1 + g.integer(range))};  // l2 > 0
+    const Poly pp{draw(), draw(), draw()};
+    const mpz_class R = g.integer(range + 1);
+    const Poly q = torusQuartic(l, pp, R);
+    mpz_class at1 = 0;
+    for (const auto& c : q) at1 += c;
+    if (sgn(q[0]) == 0 || sgn(at1) == 0) continue;  // the documented domain
+    const int want = referenceRootsInUnit(toRational(q));
+    ASSERT_EQ(detail::sturm::rootsInUnitTorus(q.data(), l[1], l[2]), want)
+        << show(q) << " l1 " << l[1].get_str() << " l2 " << l[2].get_str()
+        << " R " << R.get_str();
+    ++compared;
+    with_roots += want > 0;
+  }
+  std::printf("[ stats ] %ld random torus quartics, %ld with roots in (0, 1)\n",
+              compared, with_roots);
+  EXPECT_GT(with_roots, compared / 20);
+}
+
 }  // namespace
 }  // namespace tricyl

@@ -382,6 +382,61 @@ TEST(DwKernelFrame, BoundEnclosesTheExactLocalCoordinates) {
   dwFrameEncloses<true>(seed);  // std::fma: correctly rounded everywhere
 }
 
+// The vectorised double-word frame (AVX2 with FMA, src/triangle_cylinder.cpp
+// dwFrameAvx2Fma) is the scalar one, value for value: on every scene family
+// and on inputs that stress each exact-value rule of dwCoordinate (zero
+// rotation entries, vertices equal to the translation in some axis, short
+// dyadics whose products are exact, subnormal and mixed-exponent values
+// inside the fast path's gate).
+TEST(DwFramePaths, VectorisedEqualsScalar) {
+  const std::uint64_t seed = test::baseSeed() + 75;
+  SCOPED_TRACE(test::seedTrace(seed));
+  const Pose<double> I = identityPose<double>();
+  if (diagnostic::dwFramePathsAgree(I, Triangle<double>{}) < 0)
+    GTEST_SKIP() << "no AVX2+FMA frame in this build or on this CPU";
+  long failures = 0;
+  const long n = test::scaled(3000);
+  for (auto fam : scenes::kAllFamilies)
+    for (long i = 0; i < n && failures < 10; ++i) {
+      const auto k = scenes::generate(fam, seed, std::uint64_t(i));
+      if (diagnostic::fastPathGate(k.cyl, k.pose, k.tri) != 1) continue;
+      if (diagnostic::dwFramePathsAgree(k.pose, k.tri) != 1) {
+        ++failures;
+        ADD_FAILURE() << scenes::kFamilyNames[int(fam)] << " case " << i;
+      }
+    }
+  std::mt19937_64 g(seed);
+  auto pick = [&](int regime) {
+    const double u = std::ldexp(double(g() >> 11), -53) * 2 - 1;
+    switch (regime) {
+      case 0:
+        return double(long(g() % 17) - 8) * 0.25;  // short dyadics
+      case 1:
+        return std::ldexp(u, int(g() % 200) - 100);  // mixed exponents
+      case 2:
+        return std::ldexp(u, -1060);  // subnormal
+      default:
+        return u;
+    }
+  };
+  for (long i = 0; i < test::scaled(20000) && failures < 10; ++i) {
+    const int regime = int(i % 4);
+    Pose<double> p;
+    for (auto& row : p.R)
+      for (double& r : row) r = g() % 3 == 0 ? 0.0 : pick(regime) * 0.99;
+    p.t = {pick(regime), pick(regime), pick(regime)};
+    Triangle<double> t{{pick(regime), pick(regime), pick(regime)},
+                       {pick(regime), pick(regime), pick(regime)},
+                       {pick(regime), pick(regime), pick(regime)}};
+    if (g() % 4 == 0) t.b.y = p.t.y;  // d = 0 in one axis
+    if (diagnostic::dwFramePathsAgree(p, t) != 1) {
+      ++failures;
+      ADD_FAILURE() << "regime " << regime << " case " << i;
+    }
+  }
+  EXPECT_EQ(failures, 0);
+}
+
 // The arithmetic of the tracking kernels on polynomials of the triangle's
 // shape (a b - c d, (a b - c d) (e + f) - g h, squares), with inputs that
 // make exact ties, cancellations and mixed exponents: the bound of every

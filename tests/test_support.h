@@ -101,11 +101,12 @@ struct StageCounts {
     char buf[256];
     std::snprintf(
         buf, sizeof buf,
-        "early-out %ld, fast %ld, double-word %ld, exact %ld "
+        "early-out %ld, fast %ld, running %ld, double-word %ld, exact %ld "
         "(stack %ld, GMP %ld: %.3f%%)",
         n[std::size_t(Stage::kEarlyOut)], n[std::size_t(Stage::kFastPath)],
-        n[std::size_t(Stage::kExtended)], exact(),
-        n[std::size_t(Stage::kExact)], n[std::size_t(Stage::kExactGmp)],
+        n[std::size_t(Stage::kRunning)], n[std::size_t(Stage::kExtended)],
+        exact(), n[std::size_t(Stage::kExact)],
+        n[std::size_t(Stage::kExactGmp)],
         100.0 * double(exact()) / double(total ? total : 1));
     return buf;
   }

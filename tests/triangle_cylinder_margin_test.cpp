@@ -405,6 +405,120 @@ TEST(Margin, HostileExponentsAgreeWithOracle) {
 }
 
 // ---------------------------------------------------------------------------
+// Ties whose coordinates span 2000 binary orders (outside the range gate:
+// the torus edges' exact stage in GMP integers, the quartic's coefficients
+// of about 12,000 bits). In the cylinder frame, with e a dyadic of at most
+// 48 significant bits (so that 3e, 4e and 5e are exact) and (a, b) =
+// (3, 4) or (4, 3), the point P = (r + a e, 0, h + b e) is exactly 5e from
+// the rim point (r, 0, h), on the torus' outer upper quarter, where neither
+// sized cylinder reaches it (rho > r, z > h). Two constructions:
+//  - tangent: the edge through P along y (perpendicular to the meridian
+//    plane, so tangent to the tube at P; every other point of the line is
+//    farther from the rim), the third vertex higher up; the edge's ends are
+//    +-A in y, A up to 2^1020, or 2^1020 times a rotation entry up to
+//    2^1020 (the pulled-back triangle is what is judged);
+//  - vertex: P a vertex (lz = 0, so h = 0 and A + b e is exact as the
+//    pulled-back z), the other two at (r + a e, +-A, b e + A): along both
+//    edges and across the face rho >= r + a e and z >= b e, so P is the
+//    nearest point.
+// The local coordinates come from world vertices and a translation
+// t = (-a e, 0, -b e) (x - t is exact in the pull-back). Margins 5e and
+// 1, 4 ulps either side: true iff >= 5e, by construction and by the oracle.
+TEST(Margin, WideSpreadTiesAgreeWithConstruction) {
+  const std::uint64_t seed = test::baseSeed();
+  SCOPED_TRACE(test::seedTrace(seed));
+  scenes::Rng g(seed ^ 0x57696465u);
+  auto mantissa = [&g](int bits) {  // in [1, 2), `bits` significant bits
+    return 1.0 + std::ldexp(double(g.next() >> (64 - (bits - 1))), 1 - bits);
+  };
+  const long n = test::scaled(24);
+  long checked = 0;
+  test::StageCounts stages;
+  for (long i = 0; i < n; ++i) {
+    const bool tangent = i % 2 == 0;
+    const double a = (i / 2) % 2 == 0 ? 3 : 4, b = 7 - a;
+    const double e =
+        std::ldexp(mantissa(48), -1000 + int(g.next() % 200));  // tiny tube
+    const double r = std::ldexp(mantissa(53), int(g.next() % 41) - 20);
+    const double lz =
+        tangent ? std::ldexp(mantissa(53), int(g.next() % 41) - 20) : 0.0;
+    const double h = lz / 2;
+    const double A = std::ldexp(mantissa(53), 900 + int(g.next() % 121));
+    TriCase k;
+    k.cyl = {r, lz};
+    k.pose = identityPose<double>();
+    k.pose.t = {-a * e, 0, -b * e};
+    k.feature = tangent ? "wide tangent edge" : "wide vertex";
+    // Half the tangent edges reach through R: world y = +-A is pulled back
+    // to +-R11 A.
+    if (tangent && g.next() % 2 == 0)
+      k.pose.R[1][1] = std::ldexp(mantissa(53), 900 + int(g.next() % 121));
+    if (tangent)
+      k.tri = {{r, -A, h}, {r, A, h}, {r, A, h + std::max(lz, r)}};
+    else
+      k.tri = {{r, 0, 0}, {r, A, A}, {r, -A, A}};
+    const double d = 5 * e;
+    for (std::int64_t u : {0, -1, 1, -4, 4}) {
+      const double m = ulpsFrom(d, u);
+      const bool want = u >= 0;
+      SCOPED_TRACE("case " + std::to_string(i) + " ulps " + std::to_string(u) +
+                   " " + describe(k, m));
+      ASSERT_EQ(oracleWithin(k, m), want) << "oracle";
+      const Decision dec = decideWithinDistance(k.cyl, k.pose, k.tri, m);
+      stages.add(dec.stage);
+      ASSERT_EQ(dec.answer, want ? Answer::kIntersect : Answer::kDisjoint);
+      ++checked;
+    }
+  }
+  std::printf("[ stats ] wide-spread ties: %ld margins checked; %s\n", checked,
+              stages.summary(checked).c_str());
+}
+
+// Margins at the exact threshold of hostile inputs outside the range gate:
+// the queries that pass every part but one by a hair (both sized cylinders,
+// the torus edges and both faces decided before the answer), the slowest
+// ones. The threshold is bracketed between two adjacent doubles by
+// bisection steered by the kernel, and the bracket confirmed by the oracle
+// (false at the low end, true at the high end). The oracle takes up to a
+// few seconds on these inputs: few cases by default.
+TEST(Margin, HostileThresholdsAgreeWithOracle) {
+  const std::uint64_t seed = test::baseSeed();
+  SCOPED_TRACE(test::seedTrace(seed));
+  scenes::Rng g(seed ^ 0x5468726573u);
+  auto next = [&g] { return g.next(); };
+  const long n = test::scaled(3);
+  auto at = [](std::int64_t bits) {
+    double x;
+    std::memcpy(&x, &bits, sizeof x);
+    return x;
+  };
+  long found = 0;
+  for (long tries = 0; found < n && tries < 400 * n; ++tries) {
+    const TriCase k = scenes::randomExponentCase(next, 1020, 1020);
+    auto kernel = [&](double m) {
+      return tryWithinDistance(k.cyl, k.pose, k.tri, m) == Answer::kIntersect;
+    };
+    if (kernel(0)) continue;  // distance 0: no threshold
+    std::int64_t lo = 0, hi = 0x7fefffffffffffff;
+    if (!kernel(at(hi))) continue;
+    while (hi - lo > 1) {
+      const std::int64_t mid = lo + (hi - lo) / 2;
+      (kernel(at(mid)) ? hi : lo) = mid;
+    }
+    // Only thresholds decided by a torus: at the high end neither sized
+    // cylinder holds a point of the triangle.
+    const double m = at(hi);
+    if (margin_oracle::sizedCylinders(k.cyl, k.pose, k.tri, m)) continue;
+    ++found;
+    SCOPED_TRACE("case " + std::to_string(found) + " " + describe(k, at(lo)));
+    ASSERT_FALSE(oracleWithin(k, at(lo))) << "bracket, low end";
+    ASSERT_TRUE(oracleWithin(k, m)) << "bracket, high end";
+  }
+  std::printf("[ stats ] hostile thresholds decided by a torus: %ld\n", found);
+  EXPECT_EQ(found, n) << "too few thresholds decided by a torus";
+}
+
+// ---------------------------------------------------------------------------
 // The six families, margins 0..10% of the size; margin 0 is intersect.
 
 /// A case rounded to float, and the same float values widened (exactly).

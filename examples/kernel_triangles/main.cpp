@@ -30,6 +30,8 @@ const char* name(tricyl::Stage s) {
       return "early-out";
     case tricyl::Stage::kFastPath:
       return "double filter";
+    case tricyl::Stage::kRunning:
+      return "double, running bound (a sign re-decided)";
     case tricyl::Stage::kExtended:
       return "double-word (a sign re-decided)";
     case tricyl::Stage::kExact:

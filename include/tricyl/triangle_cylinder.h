@@ -89,6 +89,16 @@ bool intersectUncertified(const Cylinder<S>& cylinder, const Pose<S>& pose,
 template <class S>
 int fastPathGate(const Cylinder<S>& cylinder, const Pose<S>& pose,
                  const Triangle<S>& triangle) noexcept;
+
+/// Whether the vectorised (AVX2 with FMA) double-word local frame of the
+/// triangle's vertices (the running and double-word stages' coordinates,
+/// docs/exactness.md section 4) equals the scalar one, value for value
+/// (hi, lo and bound of every coordinate): 1 (equal), 0 (they differ: a
+/// bug), or -1 (no vectorised path in this build or on this CPU). For the
+/// test that pins the two paths to each other. Inputs inside the fast
+/// path's gate only (every length |x| < 2^40, every |R_jk| < 2, finite).
+int dwFramePathsAgree(const Pose<double>& pose,
+                      const Triangle<double>& triangle) noexcept;
 }  // namespace diagnostic
 
 extern template bool intersect(const Cylinder<float>&, const Pose<float>&,

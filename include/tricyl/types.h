@@ -123,6 +123,10 @@ enum class Stage : unsigned char {
   kInvalid = 3,   ///< input rejected before any arithmetic
   kExtended = 4,  ///< some sign decided in double-word arithmetic (about
                   ///< 106 bits) with a running error bound, none exactly
+  kRunning = 5,   ///< some sign the double filter left open decided in
+                  ///< double with a running error bound (which follows the
+                  ///< values, where the filter's follows their magnitudes),
+                  ///< none in double word or exactly (the triangle)
   kExactGmp = 6,  ///< some sign decided exactly with GMP (inputs outside
                   ///< the expansions' exponent window)
 };
