@@ -220,6 +220,44 @@ TYPED_TEST(FclDistanceTest, MinimumAndNearestPointsEqualBruteForce) {
       checked, apart, stats.nodes_tested, stats.nodes_skipped, stats.leaves);
 }
 
+// Exact ties over a large region: a cylinder standing above an integer
+// grid, its cap parallel to it at height 1/4, so every triangle under the
+// cap is exactly 1/4 away and none can be pruned. The walk's queue then
+// holds far more entries than it keeps in place (mesh_distance.cpp,
+// EntryQueue: 256) and moves them to the heap and back; the answer is the
+// brute-force minimum, with a triangle reaching it and its points.
+TYPED_TEST(FclDistanceTest, ManyTiesOverflowTheQueue) {
+  using BV = TypeParam;
+  const Mesh m = fcltest::flatGridMesh(48, 0, 1);  // 4608 triangles
+  auto model = fcltest::makeModel<BV>(m);
+  Scene s;
+  s.r = 20;
+  s.lz = 2;
+  s.kind = "ties";
+  s.cyl_tf = Tf::Identity();
+  s.cyl_tf.translation() = V3(24.5, 23.5, 1.25);  // cap at z = 1/4
+  s.mesh_tf = Tf::Identity();
+  const Brute b = bruteForce<BV>(m, s);
+  ASSERT_FALSE(b.collides);
+  ASSERT_EQ(b.min, 0.25);
+  auto cyl = std::make_shared<fcl::Cylinderd>(s.r, s.lz);
+  fcl::DistanceResultd w;
+  TraversalStats stats;
+  ASSERT_TRUE(distanceMeshCylinder(model.get(), s.mesh_tf, cyl.get(), s.cyl_tf,
+                                   fcl::DistanceRequestd(true), w, &stats));
+  EXPECT_EQ(w.min_distance, 0.25);
+  ASSERT_GE(w.b1, 0);
+  const DistanceResult<double> at =
+      tricyl::distance(Cylinder<double>{s.r, s.lz}, toPose(s.cyl_tf),
+                       worldTri<BV>(m, s.mesh_tf, std::size_t(w.b1)));
+  EXPECT_EQ(at.distance, 0.25);
+  EXPECT_EQ(w.nearest_points[0], fclPoint(at.point_on_triangle));
+  EXPECT_EQ(w.nearest_points[1], fclPoint(at.point_on_cylinder));
+  // Every triangle under the cap was measured: more than the queue's
+  // in-place entries were open at once.
+  EXPECT_GT(stats.leaves, 2000u);
+}
+
 // enable_signed_distance: minus the depth of the contact tricyl::collide
 // reports (FCL's signed step, with the same contact), and both points at it.
 TYPED_TEST(FclDistanceTest, SignedDistanceIsMinusTheContactDepth) {

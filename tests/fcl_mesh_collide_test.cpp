@@ -2,14 +2,17 @@
 // tricyl's own BVHModel/Cylinder traversal (fcl_mesh_cylinder.h), which
 // tricyl::collide runs for mesh/cylinder pairs: the same answers as
 // fcl::collide with tricyl::Solver (FCL's traversal, exact leaves), contact
-// for contact and in the same order where the contract says so; exact
+// for contact; the walk's order (nearer child first); exact
 // touching found; the node test actually prunes; every request it does not
 // handle goes back to FCL.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <memory>
 #include <random>
 #include <set>
@@ -71,8 +74,9 @@ TYPED_TEST_SUITE(MeshCollideTest, fcltest::AllBvs);
 // Every request shape on seeded scenes (random, grazing face/edge/vertex,
 // thin), half of them with an identity mesh transform: the exhaustive set is
 // the brute-force set; FCL's (with tricyl::Solver) is a subset (its BV tests
-// round) and, when equal, comes in the same order with bit-identical
-// contact data, and the first-k contacts are FCL's first k.
+// round) and, when equal, comes in the same order; the contact data are
+// FCL's, bit for bit, for every triangle both report; a first-k query gives
+// k distinct colliding triangles.
 TYPED_TEST(MeshCollideTest, SameContactsAsFclTraversalWithSolver) {
   const std::uint64_t seed = test::baseSeed() ^ 0x6d657368u;
   SCOPED_TRACE(test::seedTrace(seed));
@@ -111,35 +115,47 @@ TYPED_TEST(MeshCollideTest, SameContactsAsFclTraversalWithSolver) {
         ASSERT_EQ(got, truth) << "scene " << k;
         EXPECT_EQ(st.hits, truth.size());
         for (std::size_t id : fcl_got) EXPECT_EQ(truth.count(id), 1u);
-        if (fcl_got != got) {
-          ++fcl_missed;
-          continue;
-        }
         for (std::size_t i = 0; i < ours.numContacts(); ++i) {
           const fcl::Contactd& c = ours.getContact(i);
           EXPECT_EQ(c.o1, model.get());
           EXPECT_EQ(c.o2, cyl.get());
           EXPECT_EQ(c.b2, int(fcl::Contactd::NONE));
         }
-        if (!same_tree) continue;
-        ASSERT_EQ(sequence(ours), sequence(theirs)) << "scene " << k;
-        if (contact)
-          for (std::size_t i = 0; i < ours.numContacts(); ++i) {
-            const fcl::Contactd& a = ours.getContact(i);
-            const fcl::Contactd& b = theirs.getContact(i);
-            EXPECT_EQ(a.pos, b.pos);
-            EXPECT_EQ(a.normal, b.normal);
-            EXPECT_EQ(a.penetration_depth, b.penetration_depth);
+        // FCL's contact data, for every triangle both report.
+        std::map<int, const fcl::Contactd*> fcl_by_id;
+        for (std::size_t i = 0; i < theirs.numContacts(); ++i)
+          fcl_by_id[theirs.getContact(i).b1] = &theirs.getContact(i);
+        const auto same_data = [&](const fcl::CollisionResultd& r) {
+          if (!contact || !same_tree) return;
+          for (std::size_t i = 0; i < r.numContacts(); ++i) {
+            const fcl::Contactd& a = r.getContact(i);
+            const auto it = fcl_by_id.find(a.b1);
+            if (it == fcl_by_id.end()) continue;
+            EXPECT_EQ(a.pos, it->second->pos);
+            EXPECT_EQ(a.normal, it->second->normal);
+            EXPECT_EQ(a.penetration_depth, it->second->penetration_depth);
           }
+        };
+        same_data(ours);
+        // An exhaustive query keeps FCL's order (fcl_mesh_cylinder.h).
+        if (fcl_got != got)
+          ++fcl_missed;
+        else if (same_tree) {
+          ASSERT_EQ(sequence(ours), sequence(theirs)) << "scene " << k;
+        }
+        // A first-k query (the walk's own order): k distinct colliding
+        // triangles, or all of them when fewer collide.
         for (std::size_t max_c : {std::size_t(1), std::size_t(3)}) {
           fcl::CollisionRequestd req(max_c, contact);
-          fcl::CollisionResultd o, t;
+          fcl::CollisionResultd o;
           ASSERT_TRUE(collideMeshCylinder(model.get(), s.mesh_tf, cyl.get(),
                                           s.cyl_tf, req, o, &n));
-          fcl::collide(model.get(), s.mesh_tf, cyl.get(), s.cyl_tf, &solver,
-                       req, t);
-          EXPECT_EQ(sequence(o), sequence(t))
+          EXPECT_EQ(o.numContacts(), std::min(max_c, truth.size()))
               << "scene " << k << " max " << max_c;
+          const std::vector<int> ids = sequence(o);
+          EXPECT_EQ(std::set<int>(ids.begin(), ids.end()).size(), ids.size());
+          for (int id : ids) EXPECT_EQ(truth.count(std::size_t(id)), 1u);
+          same_data(o);
         }
       }
     }
@@ -220,6 +236,57 @@ TYPED_TEST(MeshCollideTest, ExactTouchingIsFound) {
                 << "axis " << axis << " dir " << dir;
           }
       }
+}
+
+// ORDER (fcl_mesh_cylinder.h): of two subtrees that both may hold a hit,
+// the one whose box centre is nearer the cylinder's centre is walked first,
+// so a first-hit query reports a triangle of the cluster nearer the
+// cylinder's centre, whichever side of the tree FCL's split put it on. Two
+// clusters of two triangles, 10 apart along a cylinder that holds all four;
+// its centre moved from one cluster to the other. An exhaustive query keeps
+// FCL's order.
+TYPED_TEST(MeshCollideTest, NearerSubtreeFirst) {
+  Mesh m;
+  for (double z : {0.0, 0.5, 10.0, 10.5}) {
+    const int base = int(m.v.size());
+    m.v.push_back(V3(-0.1, -0.1, z));
+    m.v.push_back(V3(0.1, -0.1, z));
+    m.v.push_back(V3(0.0, 0.1, z));
+    m.t.push_back(fcl::Triangle(base, base + 1, base + 2));
+  }
+  auto model = fcltest::makeModel<TypeParam>(m);
+  auto cyl = std::make_shared<fcl::Cylinderd>(0.5, 30.0);
+  const tricyl::Solver<double> solver;
+  for (double zc : {-4.0, 0.25, 4.0, 6.5, 10.25, 14.0}) {
+    Tf at = Tf::Identity();
+    at.translation() = V3(0.01, 0.02, zc);
+    fcl::CollisionRequestd all(kMany, false), one(1, false);
+    fcl::CollisionResultd res_all, res_one;
+    std::size_t n = 0;
+    ASSERT_TRUE(collideMeshCylinder(model.get(), Tf::Identity(), cyl.get(), at,
+                                    all, res_all, &n));
+    ASSERT_EQ(n, 4u) << "zc " << zc;
+    ASSERT_TRUE(collideMeshCylinder(model.get(), Tf::Identity(), cyl.get(), at,
+                                    one, res_one, &n));
+    ASSERT_EQ(n, 1u);
+    const int id = res_one.getContact(0).b1;
+    const bool low = zc < 5.25;  // nearer the cluster at z = 0 .. 0.5
+    EXPECT_EQ(id < 2, low) << "zc " << zc << " id " << id;
+    // First three: that cluster's two, then one of the other.
+    fcl::CollisionRequestd three(3, false);
+    fcl::CollisionResultd res_three;
+    ASSERT_TRUE(collideMeshCylinder(model.get(), Tf::Identity(), cyl.get(), at,
+                                    three, res_three, &n));
+    ASSERT_EQ(n, 3u);
+    EXPECT_EQ(res_three.getContact(0).b1 < 2, low) << "zc " << zc;
+    EXPECT_EQ(res_three.getContact(1).b1 < 2, low) << "zc " << zc;
+    EXPECT_EQ(res_three.getContact(2).b1 < 2, !low) << "zc " << zc;
+    // The exhaustive query cannot stop early: FCL's order.
+    fcl::CollisionResultd theirs;
+    fcl::collide(model.get(), Tf::Identity(), cyl.get(), at, &solver, all,
+                 theirs);
+    EXPECT_EQ(sequence(res_all), sequence(theirs)) << "zc " << zc;
+  }
 }
 
 // The node test prunes: a cylinder far from the mesh costs one node test
@@ -454,7 +521,11 @@ TEST(MeshCollideOrder, BothOrdersAndPrefilledResults) {
   EXPECT_EQ(tricyl::collide(&o_mesh, &o_cyl, two, pre), 2u);
   fcl::CollisionRequestd three(3, false);
   EXPECT_EQ(tricyl::collide(&o_mesh, &o_cyl, three, pre), 3u);
-  EXPECT_EQ(pre.getContact(2).b1, a.getContact(0).b1);
+  // Topped up with what a first-hit query on an empty result reports.
+  fcl::CollisionRequestd one(1, false);
+  fcl::CollisionResultd first;
+  EXPECT_EQ(tricyl::collide(&o_mesh, &o_cyl, one, first), 1u);
+  EXPECT_EQ(pre.getContact(2).b1, first.getContact(0).b1);
 }
 
 // A NaN vertex spoils FCL's fit of the root (its covariance): the boxes
