@@ -390,7 +390,6 @@ inline Rw operator*(Rw a, Rw b) {
 }
 struct DoubleWordKernel {
   using Num = Rw;
-  static constexpr bool kExact = false;
   static Num lift(double x) { return {{x, 0}, 0}; }
   /// a - b exactly as a double-word (TwoSum; the inputs are finite and
   /// scaled to unit size, so nothing overflows).
