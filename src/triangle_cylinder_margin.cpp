@@ -846,6 +846,18 @@ TorusInput<Uk> torusRobustInput(const Query& q, bool top) {
 /// inputs span more binary orders than double's exponents: there a torus
 /// 2^-1200 the size of the triangle leaves every double filter sign open,
 /// and the GMP stages behind it cost hundreds of microseconds.
+/// v 2^e in long double. Where long double is double (MSVC, or a build
+/// with -mlong-double-64, whose libm long double functions still take the
+/// 80-bit format) the double ldexp: no libm long double function is called
+/// there (scripts/test.sh checks the symbols).
+long double ldexpWide(long double v, int e) {
+  if constexpr (std::numeric_limits<long double>::digits ==
+                std::numeric_limits<double>::digits)
+    return static_cast<long double>(std::ldexp(static_cast<double>(v), e));
+  else
+    return std::ldexp(v, e);
+}
+
 TorusInput<Ul> torusWideInput(const TorusInput<ZKernel>& t) {
   using L = long double;
   const mpz_class* in[12] = {&t.X[0], &t.X[1], &t.X[2], &t.Y[0],
@@ -871,8 +883,8 @@ TorusInput<Ul> torusWideInput(const TorusInput<ZKernel>& t) {
     // double's exponents on x86-64 and AArch64; where long double is double,
     // ldexp underflows and eta covers the loss.
     const int e = int(std::max(k[i] - top, -20000L));
-    const L v = std::ldexp(L(d[i]), e);
-    *out[i] = {v, std::ldexp(std::fabs(L(d[i])) * L(0x1p-52), e) + kEtaT<L>};
+    const L v = ldexpWide(L(d[i]), e);
+    *out[i] = {v, ldexpWide(std::fabs(L(d[i])) * L(0x1p-52), e) + kEtaT<L>};
   }
   return w;
 }
