@@ -274,6 +274,8 @@ detail::TriCylLocal<K> runningFrame(const Inputs& in, const DwFrame& f) {
 struct Local;
 detail::TriCylLocal<detail::AdaptiveKernel> adaptiveLocal(const Inputs& in,
                                                           const Local& L);
+bool areaNonzero(const Local& L);
+bool earlySettled(const Local& L);
 
 Decision decide(const Inputs& in, std::uint32_t undecided,
                 const Local* fast = nullptr) {
@@ -293,9 +295,16 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
       return {detail::toAnswer(t), early ? Stage::kEarlyOut : Stage::kFastPath};
     undecided = mask.unknown;
   }
+  // What the fast path's filter certified on its way (Local), when it ran
+  // and left `undecided` open.
+  const bool filtered = fast != nullptr && undecided != 0;
   // Outside the gate no filter ran: every test.
   if (undecided == 0) undecided = detail::kAllTests;
-  const Decision degenerate = detail::runStages(
+  // A certified non-zero projected area: not degenerate, no hand-off.
+  const Decision degenerate =
+      filtered && areaNonzero(*fast)
+          ? Decision{Answer::kDisjoint, Stage::kFastPath}
+          : detail::runStages(
       [&](auto tag, bool*) {
         return collinear<typename decltype(tag)::type>(in.tri);
       },
@@ -335,7 +344,9 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
     using detail::triangleCylinderUndecided;
     std::uint32_t left = 0;
     Tri t;
-    detail::EarlyOuts early;  // settled here: the double-word stage skips them
+    // Settled by the filter, or here: the stages skip them.
+    detail::EarlyOuts early;
+    early.settled = filtered && earlySettled(*fast);
     DwFrame frame;
     dwFrameStage(in, &frame);
     detail::tls_exact_zero = false;
@@ -443,6 +454,13 @@ enum class Pre { kGateMiss, kEarlyOut, kHit, kDisjoint, kOpen };
 struct Local {
   double x[4], y[4], Z[4], m[4];  // [3]: scratch (the AVX2 lane 3)
   double r, H;
+  // What the filter certified on its way, for the stages after it (set
+  // when it leaves the query open; the scalar filter leaves both false):
+  // twice the projected area A2 = o01 + o12 + o20 is not 0, so the
+  // triangle is not degenerate (the projection of three collinear points is
+  // collinear); each of the six early-outs has a vertex certainly not
+  // beyond its plane, so none can decide in any arithmetic (EarlyOuts).
+  bool area_nonzero, early_settled;
 };
 
 // Whether every rotation entry has at most 27 significant bits (the low 26
@@ -459,6 +477,9 @@ bool shortRotation(const Pose<double>& pose) {
     }
   return (low & ((std::uint64_t(1) << 26) - 1)) == 0;
 }
+
+bool areaNonzero(const Local& L) { return L.area_nonzero; }
+bool earlySettled(const Local& L) { return L.early_settled; }
 
 // The adaptive run's local frame from the fast path's (double inputs).
 detail::TriCylLocal<detail::AdaptiveKernel> adaptiveLocal(const Inputs& in,
@@ -880,20 +901,26 @@ __attribute__((target("avx2"), always_inline)) inline bool edgeHitAvx2(
 // magnitude `me` per vertex: the same Fd expressions, values and magnitudes
 // in separate registers, so a lane it reports is a separation
 // FilterKernel::sign certifies (docs/exactness.md, "Edge separation").
-__attribute__((target("avx2"), always_inline)) inline bool edgeSeparatesAvx2(
-    const EdgeLanes& e, __m256d r2) {
-  const __m256d kr = _mm256_set1_pd(kRel), ka = _mm256_set1_pd(kAbs);
-  const __m256d neg = _mm256_set1_pd(-0.0);
-  // A2 = (o0 + o1) + o2 in every lane, and its magnitude.
-  const __m256d A2 =
-      _mm256_add_pd(_mm256_add_pd(_mm256_permute4x64_pd(e.o, 0x00),
-                                  _mm256_permute4x64_pd(e.o, 0x55)),
-                    _mm256_permute4x64_pd(e.o, 0xaa));
+// A2 = (o01 + o12) + o20 (twice the projected area, the kernel's (A)
+// grouping) in every lane, and the bound of its sign (FilterKernel).
+__attribute__((target("avx2"), always_inline)) inline void areaLanes(
+    const EdgeLanes& e, __m256d* A2, __m256d* bA) {
+  *A2 = _mm256_add_pd(_mm256_add_pd(_mm256_permute4x64_pd(e.o, 0x00),
+                                    _mm256_permute4x64_pd(e.o, 0x55)),
+                      _mm256_permute4x64_pd(e.o, 0xaa));
   const __m256d mA =
       _mm256_add_pd(_mm256_add_pd(_mm256_permute4x64_pd(e.mo, 0x00),
                                   _mm256_permute4x64_pd(e.mo, 0x55)),
                     _mm256_permute4x64_pd(e.mo, 0xaa));
-  const __m256d bA = bound(mA, kr, ka);
+  *bA = bound(mA, _mm256_set1_pd(kRel), _mm256_set1_pd(kAbs));
+}
+
+__attribute__((target("avx2"), always_inline)) inline bool edgeSeparatesAvx2(
+    const EdgeLanes& e, __m256d r2) {
+  const __m256d kr = _mm256_set1_pd(kRel), ka = _mm256_set1_pd(kAbs);
+  const __m256d neg = _mm256_set1_pd(-0.0);
+  __m256d A2, bA;
+  areaLanes(e, &A2, &bA);
   const __m256d bo = bound(e.mo, kr, ka);
   // The origin strictly beyond edge i's line: sign(o_i) = -sign(A2) != 0.
   const __m256d outside = _mm256_or_pd(
@@ -1360,8 +1387,10 @@ struct LaneTri {
 // The sign lanes of v with magnitude mv: certainly positive, certainly
 // negative.
 __attribute__((target("avx2"), always_inline)) inline void signLanes(
-    __m256d v, __m256d mv, __m256d* pos, __m256d* neg) {
-  const __m256d b = bound(mv, _mm256_set1_pd(kRel), _mm256_set1_pd(kAbs));
+    __m256d v, __m256d mv, __m256d* pos, __m256d* neg, bool is_bound = false) {
+  // is_bound: mv is already the bound (areaLanes).
+  const __m256d b =
+      is_bound ? mv : bound(mv, _mm256_set1_pd(kRel), _mm256_set1_pd(kAbs));
   *pos = _mm256_cmp_pd(v, b, _CMP_GT_OQ);
   *neg = _mm256_cmp_pd(v, _mm256_xor_pd(b, _mm256_set1_pd(-0.0)), _CMP_LT_OQ);
 }
@@ -1372,7 +1401,7 @@ __attribute__((target("avx2"), always_inline)) inline std::uint32_t bits3(
 }
 
 __attribute__((target("avx2"), noinline)) Tri filterTestsAvx2(
-    const Local& L, std::uint32_t* undecided) {
+    const Local& L, std::uint32_t* undecided, Local* out) {
   using detail::kTestA;
   using detail::kTestB;
   using detail::kTestE;
@@ -1507,17 +1536,31 @@ __attribute__((target("avx2"), noinline)) Tri filterTestsAvx2(
                 ny = _mm256_xor_pd(y, _mm256_set1_pd(-0.0));
   __m256d bp, bn;
   std::uint32_t beyond = (p0 == 7) | (n1 == 7);
+  // Each early-out settled: some vertex certainly not beyond its plane
+  // (Z - H < 0; -Z - H < 0, i.e. Z + H > 0; x - r < 0, ...).
+  bool settled = (n0 != 0) & (p1 != 0);
   signLanes(_mm256_sub_pd(x, rr), mr, &bp, &bn);
   beyond |= bits3(bp) == 7;
+  settled &= bits3(bn) != 0;
   signLanes(_mm256_sub_pd(nx, rr), mr, &bp, &bn);
   beyond |= bits3(bp) == 7;
+  settled &= bits3(bn) != 0;
   signLanes(_mm256_sub_pd(y, rr), mr, &bp, &bn);
   beyond |= bits3(bp) == 7;
+  settled &= bits3(bn) != 0;
   signLanes(_mm256_sub_pd(ny, rr), mr, &bp, &bn);
   beyond |= bits3(bp) == 7;
+  settled &= bits3(bn) != 0;
   if (beyond || edgeSeparatesAvx2(e, r2) || directionSeparates(q))
     return Tri::kFalse;
   *undecided = open;
+  // For the stages after the filter (Local).
+  __m256d A2, bA;
+  areaLanes(e, &A2, &bA);
+  __m256d ap, an;
+  signLanes(A2, bA, &ap, &an, /*is_bound=*/true);
+  out->area_nonzero = (_mm256_movemask_pd(_mm256_or_pd(ap, an)) & 1) != 0;
+  out->early_settled = settled;
   return Tri::kUnknown;
 }
 #endif
@@ -1552,11 +1595,14 @@ TRICYL_ALWAYS_INLINE Fast decideFast(const Cylinder<S>& cyl,
   if (f == Pre::kGateMiss) return Fast::kGateMiss;
 #if TRICYL_FAST_AVX2
   const Tri t =
-      kAvx2 ? filterTestsAvx2(L, undecided) : filterTests(L, undecided);
+      kAvx2 ? filterTestsAvx2(L, undecided, &L) : filterTests(L, undecided);
 #else
   const Tri t = filterTests(L, undecided);
 #endif
-  if (t == Tri::kUnknown) return Fast::kUnknown;
+  if (t == Tri::kUnknown) {
+    if (!kAvx2) L.area_nonzero = L.early_settled = false;  // not certified
+    return Fast::kUnknown;
+  }
   *out = {detail::toAnswer(t), Stage::kFastPath};
   return Fast::kDecided;
 }
