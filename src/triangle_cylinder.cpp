@@ -1120,10 +1120,9 @@ __attribute__((target("avx2"), always_inline)) inline Pre prologueAvx2Body(
 // read their bits) are widened once, exactly, by vector conversions into
 // double aggregates of the same layout, so the arithmetic reads doubles.
 template <class S>
-__attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
-                                                        const Pose<S>& pose,
-                                                        const Triangle<S>& tri,
-                                                        Local* L) {
+__attribute__((target("avx2"))) inline Pre prologueAvx2(
+    const Cylinder<S>& cyl, const Pose<S>& pose, const Triangle<S>& tri,
+    Local* L) {
   if (!gateBitsOkAvx2(cyl, pose, tri)) return Pre::kGateMiss;
   const double r = double(cyl.radius), H = double(cyl.lz);
   if constexpr (sizeof(S) == 4) {  // (double: the gate read the signs)
@@ -1607,6 +1606,9 @@ TRICYL_ALWAYS_INLINE Fast decideFast(const Cylinder<S>& cyl,
   return Fast::kDecided;
 }
 
+// Set by diagnostic::filterOnly: decideBody stops after the fast path.
+thread_local bool tls_stop_after_filter = false;
+
 template <bool kAvx2, class S>
 TRICYL_ALWAYS_INLINE Decision decideBody(const Cylinder<S>& cylinder,
                                          const Pose<S>& pose,
@@ -1617,6 +1619,9 @@ TRICYL_ALWAYS_INLINE Decision decideBody(const Cylinder<S>& cylinder,
   const Fast f =
       decideFast<kAvx2>(cylinder, pose, triangle, &d, &undecided, &L);
   if (f == Fast::kDecided) return d;
+  if (tls_stop_after_filter)  // diagnostic::filterOnly: no answer
+    return {Answer::kInvalidInput,
+            f == Fast::kUnknown ? Stage::kFastPath : Stage::kInvalid};
   return decideSlow(cylinder, pose, triangle,
                     f == Fast::kUnknown ? undecided : 0, &L);
 }
@@ -1647,6 +1652,7 @@ __attribute__((target("avx2"), noinline)) Decision decideAvx2(
   return decideBody<true>(cylinder, pose, triangle);
 }
 #endif
+
 
 // The baseline path out of line too, so that the entry points stay a
 // test and a call (no stack frame of their own).
@@ -1724,6 +1730,20 @@ int fastPathGate(const Cylinder<S>& cylinder, const Pose<S>& pose,
   (void)cylinder, (void)pose, (void)triangle;
   return -1;
 }
+template <class S>
+int filterOnly(const Cylinder<S>& cylinder, const Pose<S>& pose,
+               const Triangle<S>& triangle) noexcept {
+  tls_stop_after_filter = true;
+  const Decision d = decideAny(cylinder, pose, triangle);
+  tls_stop_after_filter = false;
+  if (d.answer != Answer::kInvalidInput) return 1;  // the fast path decided
+  return d.stage == Stage::kFastPath ? 0 : -1;
+}
+template int filterOnly(const Cylinder<float>&, const Pose<float>&,
+                        const Triangle<float>&) noexcept;
+template int filterOnly(const Cylinder<double>&, const Pose<double>&,
+                        const Triangle<double>&) noexcept;
+
 int dwFramePathsAgree(const Pose<double>& pose,
                       const Triangle<double>& triangle) noexcept {
 #if TRICYL_FAST_AVX2

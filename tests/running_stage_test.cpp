@@ -544,5 +544,48 @@ TEST(DwKernelTriangle, AgreesWithTheOracle) {
     agreesWithOracle<detail::DwKernel<false>>(f, test::scaled(1500), seed);
 }
 
+// diagnostic::filterOnly (the stage report's "filter's part") stops where
+// the fast path stops: what it decides is what decideIntersect reports as
+// decided by the early-outs or the filter; what it leaves open goes to a
+// later stage; invalid input and gate misses are not its to time; and it
+// leaves no trace on the next query.
+TEST(FilterOnly, StopsWhereTheFastPathStops) {
+  const std::uint64_t seed = test::baseSeed() + 76;
+  SCOPED_TRACE(test::seedTrace(seed));
+  long open = 0, failures = 0;
+  const long n = test::scaled(2000);
+  for (auto fam : scenes::kAllFamilies)
+    for (long i = 0; i < n && failures < 10; ++i) {
+      const auto k = scenes::generate(fam, seed, std::uint64_t(i));
+      const int f = diagnostic::filterOnly(k.cyl, k.pose, k.tri);
+      const Decision d = decideIntersect(k.cyl, k.pose, k.tri);
+      const bool by_fast =
+          d.stage == Stage::kEarlyOut || d.stage == Stage::kFastPath;
+      const bool ok = f == 1 ? by_fast
+                      : f == 0 ? d.stage != Stage::kEarlyOut
+                               : diagnostic::fastPathGate(k.cyl, k.pose,
+                                                          k.tri) != 1;
+      open += f == 0;
+      if (!ok) {
+        ++failures;
+        ADD_FAILURE() << scenes::kFamilyNames[int(fam)] << " case " << i
+                      << ": filterOnly " << f << ", stage " << int(d.stage);
+      }
+    }
+  EXPECT_EQ(failures, 0);
+  EXPECT_GT(open, 0) << "no query left open: the check above proved nothing";
+  const Cylinder<double> cyl{1, 2};
+  const Triangle<double> tri{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  Pose<double> bad = identityPose<double>();
+  bad.t.x = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(diagnostic::filterOnly(cyl, bad, tri), -1);
+  Pose<double> far = identityPose<double>();
+  far.t.x = 0x1p41;  // outside the fast path's gate
+  EXPECT_EQ(diagnostic::filterOnly(cyl, far, tri), -1);
+  EXPECT_EQ(decideIntersect(cyl, identityPose<double>(), tri).answer,
+            Answer::kIntersect);
+  EXPECT_EQ(decideIntersect(cyl, far, tri).answer, Answer::kDisjoint);
+}
+
 }  // namespace
 }  // namespace tricyl

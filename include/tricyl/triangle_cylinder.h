@@ -90,6 +90,17 @@ template <class S>
 int fastPathGate(const Cylinder<S>& cylinder, const Pose<S>& pose,
                  const Triangle<S>& triangle) noexcept;
 
+/// The fast path alone, as decideIntersect runs it (validation, range gate,
+/// prologue and the double filter), stopped there: 1 if it decided the
+/// query, 0 if it left the query to the stages after it, -1 if the query
+/// does not take it (outside its gate, or invalid). Its only use is to
+/// time the filter's part of a query, so that the stage report
+/// (tricyl-stage-costs) can give what the stages after it cost; it
+/// answers nothing.
+template <class S>
+int filterOnly(const Cylinder<S>& cylinder, const Pose<S>& pose,
+               const Triangle<S>& triangle) noexcept;
+
 /// Whether the vectorised (AVX2 with FMA) double-word local frame of the
 /// triangle's vertices (the running and double-word stages' coordinates,
 /// docs/exactness.md section 4) equals the scalar one, value for value
@@ -126,6 +137,10 @@ extern template bool intersectUncertified(const Cylinder<float>&,
 extern template bool intersectUncertified(const Cylinder<double>&,
                                           const Pose<double>&,
                                           const Triangle<double>&) noexcept;
+extern template int filterOnly(const Cylinder<float>&, const Pose<float>&,
+                               const Triangle<float>&) noexcept;
+extern template int filterOnly(const Cylinder<double>&, const Pose<double>&,
+                               const Triangle<double>&) noexcept;
 extern template int fastPathGate(const Cylinder<float>&, const Pose<float>&,
                                  const Triangle<float>&) noexcept;
 extern template int fastPathGate(const Cylinder<double>&, const Pose<double>&,
