@@ -61,6 +61,11 @@
 #if defined(__SSE2__) && !defined(TRICYL_PORTABLE_PROLOGUE)
 #include <emmintrin.h>
 #endif
+#if (defined(__x86_64__) || defined(__i386__)) && \
+    (defined(__GNUC__) || defined(__clang__)) &&  \
+    !defined(TRICYL_PORTABLE_PROLOGUE)
+#include <immintrin.h>
+#endif
 
 #include "adaptive.h"
 #include "eft.h"
@@ -127,7 +132,7 @@ inline DwEt<kFma> operator-(const DwEt<kFma>& a, const DwEt<kFma>& b) {
 }
 template <bool kFma>
 inline DwEt<kFma> operator*(const DwEt<kFma>& a, const DwEt<kFma>& b) {
-  const DW v = dwMulT<kFma>(a.v, b.v);
+  const DW v = dwMulFastT<kFma>(a.v, b.v);
   const double ma = std::fabs(a.v.hi) + std::fabs(a.v.lo);
   const double mb = std::fabs(b.v.hi) + std::fabs(b.v.lo);
   return {v,
@@ -150,14 +155,107 @@ inline Sign dwSign(const DwEt<kFma>& d) {
   return Sign::kUnknown;
 }
 
+// The double-word frame point in lanes (x, y, z of the point in the lanes
+// of one AVX register; a spare fourth lane), for the FMA copies on x86-64:
+// lane j runs exactly dwLocal's operations for coordinate j below, in its
+// order, the TwoProduct by FMA (exact, as Dekker's), so the same bits as
+// the scalar loop (tests/per_sign_test.cpp compares the two paths). Row k
+// of R, (R_k0, R_k1, R_k2), is contiguous in Pose; the load of its fourth
+// lane reads the next double of the Pose (R_{k+1,0}, or t.x for k = 2),
+// whose lane is discarded.
+#if (defined(__x86_64__) || defined(__i386__)) && \
+    (defined(__GNUC__) || defined(__clang__)) &&  \
+    !defined(TRICYL_PORTABLE_PROLOGUE) &&         \
+    (TRICYL_FMA_DISPATCH || (defined(__FMA__) && defined(__AVX__)))
+#define TRICYL_DW_LANES 1
+#if TRICYL_FMA_DISPATCH
+#define TRICYL_DW_LANES_FN __attribute__((target("fma")))
+#else
+#define TRICYL_DW_LANES_FN
+#endif
+TRICYL_DW_LANES_FN inline void twoSumLanes(__m256d a, __m256d b, __m256d* s,
+                                           __m256d* e) {
+  *s = _mm256_add_pd(a, b);
+  const __m256d bb = _mm256_sub_pd(*s, a);
+  *e = _mm256_add_pd(_mm256_sub_pd(a, _mm256_sub_pd(*s, bb)),
+                     _mm256_sub_pd(b, bb));
+}
+template <bool kBound>
+TRICYL_DW_LANES_FN inline void dwLocalLanes(const Pose<double>& pose,
+                                            const Vec3<double>& origin,
+                                            const Vec3<double>& p, DW v[3],
+                                            double e_out[3]) {
+  static_assert(sizeof(Pose<double>) == 12 * sizeof(double),
+                "R's rows and t contiguous");
+  const double pp[3] = {p.x, p.y, p.z};
+  const double tt[3] = {origin.x, origin.y, origin.z};
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d abs =
+      _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffLL));
+  __m256d P[3], e[3], q[3], m = zero;
+  __m256d nonzero = _mm256_castsi256_pd(_mm256_setzero_si256());
+  for (int k = 0; k < 3; ++k) {
+    double Dk, lk;
+    twoSum(pp[k], -tt[k], Dk, lk);
+    const __m256d R = _mm256_loadu_pd(&pose.R[k][0]);
+    const __m256d D = _mm256_set1_pd(Dk);
+    P[k] = _mm256_mul_pd(R, D);
+    e[k] = _mm256_fmsub_pd(R, D, P[k]);
+    q[k] = _mm256_mul_pd(R, _mm256_set1_pd(lk));
+    if constexpr (kBound) {
+      m = _mm256_add_pd(m, _mm256_mul_pd(_mm256_and_pd(R, abs),
+                                         _mm256_set1_pd(std::fabs(Dk))));
+      // Term k is not a zero product: R_kj != 0 and D_k != 0.
+      if (Dk != 0)
+        nonzero = _mm256_or_pd(nonzero, _mm256_cmp_pd(R, zero, _CMP_NEQ_UQ));
+    }
+  }
+  __m256d s1, f1, s, f2, hi, lo;
+  twoSumLanes(P[0], P[1], &s1, &f1);
+  twoSumLanes(s1, P[2], &s, &f2);
+  const __m256d low = _mm256_add_pd(
+      _mm256_add_pd(_mm256_add_pd(_mm256_add_pd(_mm256_add_pd(f1, f2),
+                                                _mm256_add_pd(e[0], e[1])),
+                                  e[2]),
+                    _mm256_add_pd(q[0], q[1])),
+      q[2]);
+  twoSumLanes(s, low, &hi, &lo);
+  alignas(32) double H[4], L[4];
+  _mm256_store_pd(H, hi);
+  _mm256_store_pd(L, lo);
+  v[0] = {H[0], L[0]};
+  v[1] = {H[1], L[1]};
+  v[2] = {H[2] * 2, L[2] * 2};  // exact
+  if constexpr (kBound) {
+    const __m256d err = _mm256_and_pd(
+        nonzero, _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(0x1p-100), m),
+                               _mm256_set1_pd(kDwTiny)));
+    alignas(32) double E[4];
+    _mm256_store_pd(E, err);
+    e_out[0] = E[0];
+    e_out[1] = E[1];
+    e_out[2] = E[2] * 2;
+  }
+}
+#else
+#define TRICYL_DW_LANES 0
+#endif
+
 /// The double-word local coordinates of DwArith (and DwPrioriArith, which
 /// takes the values only: kBound false, no bookkeeping), Z doubled: v[j]
 /// and, with kBound, its bound e[j] (derivation at DwArith::local).
 /// `origin` stands for pose.t (the segment's and line's direction
-/// R^T (q - p) takes p).
+/// R^T (q - p) takes p). The FMA copies on x86-64 take dwLocalLanes (the
+/// same bits).
 template <bool kFma, bool kBound>
 inline void dwLocal(const Pose<double>& pose, const Vec3<double>& origin,
                     const Vec3<double>& p, DW v[3], double e_out[3]) {
+#if TRICYL_DW_LANES
+  if constexpr (kFma) {
+    dwLocalLanes<kBound>(pose, origin, p, v, e_out);
+    return;
+  }
+#endif
   const double pp[3] = {p.x, p.y, p.z};
   const double tt[3] = {origin.x, origin.y, origin.z};
   double D[3], l[3];
@@ -260,7 +358,7 @@ inline DwPt<kFma> operator-(const DwPt<kFma>& a, const DwPt<kFma>& b) {
 }
 template <bool kFma>
 inline DwPt<kFma> operator*(const DwPt<kFma>& a, const DwPt<kFma>& b) {
-  return {dwMulT<kFma>(a.v, b.v)};
+  return {dwMulFastT<kFma>(a.v, b.v)};
 }
 template <bool kFma>
 inline DwPt<kFma> absolute(const DwPt<kFma>& a) {
