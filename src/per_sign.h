@@ -400,27 +400,41 @@ struct DwPrioriArith {
 // an exact 0 factor. If every operation was exact, the double value is the
 // exact value (the adaptive kernel's exactInDouble, src/adaptive.cpp, does
 // the same on its tape).
-struct Xd {
+// kFma: the TwoProduct by a fused multiply-add (the FMA copy, chosen at run
+// time as the double word's, TRICYL_FMA_DISPATCH) or by Dekker's splits:
+// exact either way, so the same values and the same verdicts.
+template <bool kFma>
+struct XdT {
   double v;
   bool exact;
 };
-inline Xd operator+(const Xd& a, const Xd& b) {
+using Xd = XdT<TRICYL_HAVE_FMA != 0>;
+template <bool kFma>
+inline XdT<kFma> operator+(const XdT<kFma>& a, const XdT<kFma>& b) {
   double s, e;
   twoSum(a.v, b.v, s, e);
   return {s, a.exact && b.exact && e == 0 && std::isfinite(s)};
 }
-inline Xd operator-(const Xd& a) { return {-a.v, a.exact}; }
-inline Xd operator-(const Xd& a, const Xd& b) { return a + (-b); }
-inline Xd operator*(const Xd& a, const Xd& b) {
+template <bool kFma>
+inline XdT<kFma> operator-(const XdT<kFma>& a) {
+  return {-a.v, a.exact};
+}
+template <bool kFma>
+inline XdT<kFma> operator-(const XdT<kFma>& a, const XdT<kFma>& b) {
+  return a + (-b);
+}
+template <bool kFma>
+inline XdT<kFma> operator*(const XdT<kFma>& a, const XdT<kFma>& b) {
   if ((a.exact && a.v == 0) || (b.exact && b.v == 0)) return {0.0, true};
   double p, e;
-  twoProd(a.v, b.v, p, e);
+  twoProdT<kFma>(a.v, b.v, p, e);
   return {p, a.exact && b.exact && e == 0 && std::fabs(p) >= kProdExactMin &&
                  std::isfinite(p)};
 }
 
-struct ExactDoubleArith {
-  using Num = Xd;
+template <bool kFma>
+struct ExactDoubleArithT {
+  using Num = XdT<kFma>;
   static constexpr bool kExact = false;
   static Num lift(double x) { return {x, true}; }
   static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
@@ -429,16 +443,18 @@ struct ExactDoubleArith {
   }
   static Pt<Num> localFrom(const Pose<double>& pose, const Vec3<double>& origin,
                            const Vec3<double>& p, double /*rho*/) {
-    const Xd d[3] = {Xd{p.x, true} - Xd{origin.x, true},
-                     Xd{p.y, true} - Xd{origin.y, true},
-                     Xd{p.z, true} - Xd{origin.z, true}};
-    Xd out[3];
+    const Num d[3] = {Num{p.x, true} - Num{origin.x, true},
+                      Num{p.y, true} - Num{origin.y, true},
+                      Num{p.z, true} - Num{origin.z, true}};
+    Num out[3];
     for (int j = 0; j < 3; ++j)
-      out[j] = (Xd{pose.R[0][j], true} * d[0] + Xd{pose.R[1][j], true} * d[1]) +
-               Xd{pose.R[2][j], true} * d[2];
+      out[j] =
+          (Num{pose.R[0][j], true} * d[0] + Num{pose.R[1][j], true} * d[1]) +
+          Num{pose.R[2][j], true} * d[2];
     return {out[0], out[1], out[2] + out[2]};
   }
 };
+using ExactDoubleArith = ExactDoubleArithT<TRICYL_HAVE_FMA != 0>;
 
 // ---------------------------------------------------------------------------
 // Stage 2: exact stack expansions; stage 3: GMP.
@@ -465,7 +481,10 @@ struct ExpansionArith {
 /// (||a| - |b|| <= |a - b|).
 inline Fd absolute(const Fd& a) { return {std::fabs(a.v), a.m}; }
 inline Rd absolute(const Rd& a) { return {std::fabs(a.v), a.e}; }
-inline Xd absolute(const Xd& a) { return {std::fabs(a.v), a.exact}; }
+template <bool kFma>
+inline XdT<kFma> absolute(const XdT<kFma>& a) {
+  return {std::fabs(a.v), a.exact};
+}
 inline Expansion absolute(const Expansion& a) { return a.sign() < 0 ? -a : a; }
 inline Dyadic absolute(const Dyadic& a) { return sgn(a.m) < 0 ? -a : a; }
 
@@ -792,11 +811,14 @@ class PerSign {
       // A double value that is exactly 0 is most often a true tie (exact
       // data in an exact pose), which no bound certifies: was the double
       // evaluation exact?
-      if (!xd_) build(xd_);
-      const Xd x = pred(*xd_);
-      if (x.exact) {
+#if TRICYL_FMA_DISPATCH
+      s = fmaAtRunTime() ? exactInDoubleFma(pred) : exactInDouble(pred, xd_);
+#else
+      s = exactInDouble(pred, xd_);
+#endif
+      if (s != Sign::kUnknown) {
         if (level_ < 2) level_ = 2;
-        return x.v > 0 ? Sign::kPos : (x.v < 0 ? Sign::kNeg : Sign::kZero);
+        return s;
       }
     }
     // Double word, first with the a-priori bound from the filter's
@@ -831,6 +853,31 @@ class PerSign {
     return ExactKernel::sign(pred(*gmp_));
   }
 
+  /// The exact sign of pred if its double evaluation, every operation
+  /// checked, was exact (with FMA or not), else kUnknown; on a frame built
+  /// when first needed.
+  template <bool kFma, class P>
+  static Sign exactInDoubleSign(const XdT<kFma>& x) {
+    if (!x.exact) return Sign::kUnknown;
+    return x.v > 0 ? Sign::kPos : (x.v < 0 ? Sign::kNeg : Sign::kZero);
+  }
+  template <class P>
+  Sign exactInDouble(const P& pred,
+                     std::optional<Frame<ExactDoubleArith>>& frame) {
+    if (!frame) build(frame);
+    return exactInDoubleSign<TRICYL_HAVE_FMA != 0, P>(pred(*frame));
+  }
+#if TRICYL_FMA_DISPATCH
+  template <class P>
+  TRICYL_TARGET_FMA Sign exactInDoubleFma(const P& pred) {
+    if (!xdf_) buildXdFma();
+    return exactInDoubleSign<true, P>(pred(*xdf_));
+  }
+  TRICYL_TARGET_FMA TRICYL_PER_SIGN_NOINLINE void buildXdFma() {
+    xdf_.emplace(q_);
+  }
+  std::optional<Frame<ExactDoubleArithT<true>>> xdf_;
+#endif
   /// The double-word stage with the a-priori bound (with FMA or not), on a
   /// frame built when first needed; m: the filter's magnitude of pred.
   template <bool kFma, class P>
