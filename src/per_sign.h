@@ -364,6 +364,16 @@ template <bool kFma>
 inline DwPt<kFma> absolute(const DwPt<kFma>& a) {
   return a.v.hi < 0 ? -a : a;
 }
+/// 4 x (times4 of src/cylinder_queries_impl.h, (x + x) + (x + x)): both
+/// words scaled by 4, exact (no overflow under the range gate; a subnormal
+/// low word scales exactly). The same double word as the two double-word
+/// additions, which double hi and lo exactly (hi = fl(hi + lo), so
+/// fl(2 hi + 2 lo) = 2 hi), up to the sign of a zero low word; and no
+/// error term where the a-priori bound below counts one per addition.
+template <bool kFma>
+inline DwPt<kFma> times4(const DwPt<kFma>& a) {
+  return {{a.v.hi * 4, a.v.lo * 4}};
+}
 /// The certified sign of an a-priori double-word value whose predicate has
 /// the double filter's magnitude m (see above), or kUnknown.
 template <bool kFma>
