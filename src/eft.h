@@ -168,16 +168,14 @@ inline void fastTwoSum(double a, double b, double& s, double& e) {
 /// exact pair that TwoSum returns: the same double words as dwMulT, up to
 /// the sign of a zero low part (which no later sum, product or sign test
 /// tells apart), and the same error bound kDwRel.
+/// (The same operations in the same order as dwMulT up to its last step:
+/// cl3 = cl1 + (x_h y_l + x_l y_h).)
 template <bool kFma>
 inline DW dwMulFastT(DW x, DW y) {
   double ch, cl1;
   twoProdT<kFma>(x.hi, y.hi, ch, cl1);
-  const double tl1 = x.hi * y.lo;
-  const double tl2 = x.lo * y.hi;
-  const double cl2 = tl1 + tl2;
-  const double cl3 = cl1 + cl2;
   DW z;
-  fastTwoSum(ch, cl3, z.hi, z.lo);
+  fastTwoSum(ch, cl1 + (x.hi * y.lo + x.lo * y.hi), z.hi, z.lo);
   return z;
 }
 

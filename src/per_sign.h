@@ -173,12 +173,13 @@ inline Sign dwSign(const DwEt<kFma>& d) {
 #else
 #define TRICYL_DW_LANES_FN
 #endif
-TRICYL_DW_LANES_FN inline void twoSumLanes(__m256d a, __m256d b, __m256d* s,
-                                           __m256d* e) {
-  *s = _mm256_add_pd(a, b);
-  const __m256d bb = _mm256_sub_pd(*s, a);
-  *e = _mm256_add_pd(_mm256_sub_pd(a, _mm256_sub_pd(*s, bb)),
-                     _mm256_sub_pd(b, bb));
+// (GCC's and clang's vector operators on __m256d: one IEEE operation per
+// lane, as written.)
+TRICYL_DW_LANES_FN inline void twoSumLanes(__m256d a, __m256d b, __m256d& s,
+                                           __m256d& e) {
+  s = a + b;
+  const __m256d bb = s - a;
+  e = (a - (s - bb)) + (b - bb);
 }
 template <bool kBound>
 TRICYL_DW_LANES_FN inline void dwLocalLanes(const Pose<double>& pose,
@@ -211,15 +212,11 @@ TRICYL_DW_LANES_FN inline void dwLocalLanes(const Pose<double>& pose,
     }
   }
   __m256d s1, f1, s, f2, hi, lo;
-  twoSumLanes(P[0], P[1], &s1, &f1);
-  twoSumLanes(s1, P[2], &s, &f2);
-  const __m256d low = _mm256_add_pd(
-      _mm256_add_pd(_mm256_add_pd(_mm256_add_pd(_mm256_add_pd(f1, f2),
-                                                _mm256_add_pd(e[0], e[1])),
-                                  e[2]),
-                    _mm256_add_pd(q[0], q[1])),
-      q[2]);
-  twoSumLanes(s, low, &hi, &lo);
+  twoSumLanes(P[0], P[1], s1, f1);
+  twoSumLanes(s1, P[2], s, f2);
+  const __m256d low =
+      ((((f1 + f2) + (e[0] + e[1])) + e[2]) + (q[0] + q[1])) + q[2];
+  twoSumLanes(s, low, hi, lo);
   alignas(32) double H[4], L[4];
   _mm256_store_pd(H, hi);
   _mm256_store_pd(L, lo);
