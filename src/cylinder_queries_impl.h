@@ -497,6 +497,20 @@ inline auto axisFootHeight(const F& f, int side) {
   return side > 0 ? f.H * L - zL : f.H * L + zL;
 }
 
+/// L = e_x^2 + e_y^2 > 0, certified from the filter's value of L (PerSign):
+/// L is a sum of squares, so L > 0 iff e_x != 0 or e_y != 0, exactly. The
+/// two signs of degree 2 decide where L's own sign (degree 4) would take
+/// the running double word: a direction nearly along the axis has L near
+/// 1e-32 of its magnitude, below the a-priori double word's 2^-90.
+template <class C>
+inline bool axisLenPositive(C& c, const Fp& len_value) {
+  auto ex_p = [](const auto& f) { return f.e().x; };
+  auto ey_p = [](const auto& f) { return f.e().y; };
+  return shallowSign(toFd(len_value)) == Sign::kPos ||
+         c.resolve(ex_p, c.value(ex_p)) != Sign::kZero ||
+         c.resolve(ey_p, c.value(ey_p)) != Sign::kZero;
+}
+
 template <class C>
 inline Tri axisApproach(C& c, bool interior, Sign sep) {
   Tri t = isPos(c.sign([](const auto& f) { return axisLen(f); }));
@@ -889,8 +903,8 @@ TRICYL_PER_SIGN_INLINE Tri lineCylinder(C& c, bool* early) {
     auto nonNegR = [&c](const auto& pred, const Fp& value) {
       return c.resolve(pred, value) != Sign::kNeg;
     };
-    if (!approach.f && c.resolve(len_p, v[kL]) == Sign::kPos &&
-        nonNegR(foot_top, v[kHT]) && nonNegR(foot_bot, v[kHB]))
+    if (!approach.f && axisLenPositive(c, v[kL]) && nonNegR(foot_top, v[kHT]) &&
+        nonNegR(foot_bot, v[kHB]))
       return Tri::kTrue;
     if (!cross.f && ((!d.isNeg(kXT) && nonNegR(cap_top, v[kXT])) ||
                      (!d.isNeg(kXB) && nonNegR(cap_bot, v[kXB]))))

@@ -152,6 +152,33 @@ inline DW dwMulT(DW x, DW y) {
 }
 inline DW dwMul(DW x, DW y) { return dwMulT<TRICYL_HAVE_FMA != 0>(x, y); }
 
+/// FastTwoSum (Dekker): s = fl(a + b) and e = (a + b) - s EXACTLY when
+/// |a| >= |b| or a = 0 (and always when the sum is subnormal: such sums are
+/// exact). Three operations instead of TwoSum's six.
+inline void fastTwoSum(double a, double b, double& s, double& e) {
+  s = a + b;
+  e = b - (s - a);
+}
+
+/// dwMulT with its final normalisation by FastTwoSum (Joldes, Muller and
+/// Popescu's Algorithm 10 as published): for normalised operands
+/// (|lo| <= u |hi|, which every operation here returns) |cl3| <= 3u (1 +
+/// 5u) |ch| < |ch|, and ch = 0 (a zero factor, or a product below 2^-1075)
+/// makes cl3 = 0; so FastTwoSum's precondition holds and it returns the
+/// exact pair that TwoSum returns: the same double words as dwMulT, up to
+/// the sign of a zero low part (which no later sum, product or sign test
+/// tells apart), and the same error bound kDwRel.
+/// (The same operations in the same order as dwMulT up to its last step:
+/// cl3 = cl1 + (x_h y_l + x_l y_h).)
+template <bool kFma>
+inline DW dwMulFastT(DW x, DW y) {
+  double ch, cl1;
+  twoProdT<kFma>(x.hi, y.hi, ch, cl1);
+  DW z;
+  fastTwoSum(ch, cl1 + (x.hi * y.lo + x.lo * y.hi), z.hi, z.lo);
+  return z;
+}
+
 /// The relative error bound of dwMul used by the running bound of
 /// src/adaptive.cpp: 2^-103 = 8u^2 covers 7u^2 with room for the (1 + u)
 /// between |x y| and |z.hi|.

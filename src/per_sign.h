@@ -61,6 +61,11 @@
 #if defined(__SSE2__) && !defined(TRICYL_PORTABLE_PROLOGUE)
 #include <emmintrin.h>
 #endif
+#if (defined(__x86_64__) || defined(__i386__)) && \
+    (defined(__GNUC__) || defined(__clang__)) &&  \
+    !defined(TRICYL_PORTABLE_PROLOGUE)
+#include <immintrin.h>
+#endif
 
 #include "adaptive.h"
 #include "eft.h"
@@ -127,7 +132,7 @@ inline DwEt<kFma> operator-(const DwEt<kFma>& a, const DwEt<kFma>& b) {
 }
 template <bool kFma>
 inline DwEt<kFma> operator*(const DwEt<kFma>& a, const DwEt<kFma>& b) {
-  const DW v = dwMulT<kFma>(a.v, b.v);
+  const DW v = dwMulFastT<kFma>(a.v, b.v);
   const double ma = std::fabs(a.v.hi) + std::fabs(a.v.lo);
   const double mb = std::fabs(b.v.hi) + std::fabs(b.v.lo);
   return {v,
@@ -150,14 +155,104 @@ inline Sign dwSign(const DwEt<kFma>& d) {
   return Sign::kUnknown;
 }
 
+// The double-word frame point in lanes (x, y, z of the point in the lanes
+// of one AVX register; a spare fourth lane), for the FMA copies on x86-64:
+// lane j runs exactly dwLocal's operations for coordinate j below, in its
+// order, the TwoProduct by FMA (exact, as Dekker's), so the same bits as
+// the scalar loop (tests/per_sign_test.cpp compares the two paths). Row k
+// of R, (R_k0, R_k1, R_k2), is contiguous in Pose; the load of its fourth
+// lane reads the next double of the Pose (R_{k+1,0}, or t.x for k = 2),
+// whose lane is discarded.
+#if (defined(__x86_64__) || defined(__i386__)) && \
+    (defined(__GNUC__) || defined(__clang__)) &&  \
+    !defined(TRICYL_PORTABLE_PROLOGUE) &&         \
+    (TRICYL_FMA_DISPATCH || (defined(__FMA__) && defined(__AVX__)))
+#define TRICYL_DW_LANES 1
+#if TRICYL_FMA_DISPATCH
+#define TRICYL_DW_LANES_FN __attribute__((target("fma")))
+#else
+#define TRICYL_DW_LANES_FN
+#endif
+// (GCC's and clang's vector operators on __m256d: one IEEE operation per
+// lane, as written.)
+TRICYL_DW_LANES_FN inline void twoSumLanes(__m256d a, __m256d b, __m256d& s,
+                                           __m256d& e) {
+  s = a + b;
+  const __m256d bb = s - a;
+  e = (a - (s - bb)) + (b - bb);
+}
+template <bool kBound>
+TRICYL_DW_LANES_FN inline void dwLocalLanes(const Pose<double>& pose,
+                                            const Vec3<double>& origin,
+                                            const Vec3<double>& p, DW v[3],
+                                            double e_out[3]) {
+  static_assert(sizeof(Pose<double>) == 12 * sizeof(double),
+                "R's rows and t contiguous");
+  const double pp[3] = {p.x, p.y, p.z};
+  const double tt[3] = {origin.x, origin.y, origin.z};
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d abs =
+      _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffLL));
+  __m256d P[3], e[3], q[3], m = zero;
+  __m256d nonzero = _mm256_castsi256_pd(_mm256_setzero_si256());
+  for (int k = 0; k < 3; ++k) {
+    double Dk, lk;
+    twoSum(pp[k], -tt[k], Dk, lk);
+    const __m256d R = _mm256_loadu_pd(&pose.R[k][0]);
+    const __m256d D = _mm256_set1_pd(Dk);
+    P[k] = _mm256_mul_pd(R, D);
+    e[k] = _mm256_fmsub_pd(R, D, P[k]);
+    q[k] = _mm256_mul_pd(R, _mm256_set1_pd(lk));
+    if constexpr (kBound) {
+      m = _mm256_add_pd(m, _mm256_mul_pd(_mm256_and_pd(R, abs),
+                                         _mm256_set1_pd(std::fabs(Dk))));
+      // Term k is not a zero product: R_kj != 0 and D_k != 0.
+      if (Dk != 0)
+        nonzero = _mm256_or_pd(nonzero, _mm256_cmp_pd(R, zero, _CMP_NEQ_UQ));
+    }
+  }
+  __m256d s1, f1, s, f2, hi, lo;
+  twoSumLanes(P[0], P[1], s1, f1);
+  twoSumLanes(s1, P[2], s, f2);
+  const __m256d low =
+      ((((f1 + f2) + (e[0] + e[1])) + e[2]) + (q[0] + q[1])) + q[2];
+  twoSumLanes(s, low, hi, lo);
+  alignas(32) double H[4], L[4];
+  _mm256_store_pd(H, hi);
+  _mm256_store_pd(L, lo);
+  v[0] = {H[0], L[0]};
+  v[1] = {H[1], L[1]};
+  v[2] = {H[2] * 2, L[2] * 2};  // exact
+  if constexpr (kBound) {
+    const __m256d err = _mm256_and_pd(
+        nonzero, _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(0x1p-100), m),
+                               _mm256_set1_pd(kDwTiny)));
+    alignas(32) double E[4];
+    _mm256_store_pd(E, err);
+    e_out[0] = E[0];
+    e_out[1] = E[1];
+    e_out[2] = E[2] * 2;
+  }
+}
+#else
+#define TRICYL_DW_LANES 0
+#endif
+
 /// The double-word local coordinates of DwArith (and DwPrioriArith, which
 /// takes the values only: kBound false, no bookkeeping), Z doubled: v[j]
 /// and, with kBound, its bound e[j] (derivation at DwArith::local).
 /// `origin` stands for pose.t (the segment's and line's direction
-/// R^T (q - p) takes p).
+/// R^T (q - p) takes p). The FMA copies on x86-64 take dwLocalLanes (the
+/// same bits).
 template <bool kFma, bool kBound>
 inline void dwLocal(const Pose<double>& pose, const Vec3<double>& origin,
                     const Vec3<double>& p, DW v[3], double e_out[3]) {
+#if TRICYL_DW_LANES
+  if constexpr (kFma) {
+    dwLocalLanes<kBound>(pose, origin, p, v, e_out);
+    return;
+  }
+#endif
   const double pp[3] = {p.x, p.y, p.z};
   const double tt[3] = {origin.x, origin.y, origin.z};
   double D[3], l[3];
@@ -260,11 +355,21 @@ inline DwPt<kFma> operator-(const DwPt<kFma>& a, const DwPt<kFma>& b) {
 }
 template <bool kFma>
 inline DwPt<kFma> operator*(const DwPt<kFma>& a, const DwPt<kFma>& b) {
-  return {dwMulT<kFma>(a.v, b.v)};
+  return {dwMulFastT<kFma>(a.v, b.v)};
 }
 template <bool kFma>
 inline DwPt<kFma> absolute(const DwPt<kFma>& a) {
   return a.v.hi < 0 ? -a : a;
+}
+/// 4 x (times4 of src/cylinder_queries_impl.h, (x + x) + (x + x)): both
+/// words scaled by 4, exact (no overflow under the range gate; a subnormal
+/// low word scales exactly). The same double word as the two double-word
+/// additions, which double hi and lo exactly (hi = fl(hi + lo), so
+/// fl(2 hi + 2 lo) = 2 hi), up to the sign of a zero low word; and no
+/// error term where the a-priori bound below counts one per addition.
+template <bool kFma>
+inline DwPt<kFma> times4(const DwPt<kFma>& a) {
+  return {{a.v.hi * 4, a.v.lo * 4}};
 }
 /// The certified sign of an a-priori double-word value whose predicate has
 /// the double filter's magnitude m (see above), or kUnknown.
@@ -302,27 +407,41 @@ struct DwPrioriArith {
 // an exact 0 factor. If every operation was exact, the double value is the
 // exact value (the adaptive kernel's exactInDouble, src/adaptive.cpp, does
 // the same on its tape).
-struct Xd {
+// kFma: the TwoProduct by a fused multiply-add (the FMA copy, chosen at run
+// time as the double word's, TRICYL_FMA_DISPATCH) or by Dekker's splits:
+// exact either way, so the same values and the same verdicts.
+template <bool kFma>
+struct XdT {
   double v;
   bool exact;
 };
-inline Xd operator+(const Xd& a, const Xd& b) {
+using Xd = XdT<TRICYL_HAVE_FMA != 0>;
+template <bool kFma>
+inline XdT<kFma> operator+(const XdT<kFma>& a, const XdT<kFma>& b) {
   double s, e;
   twoSum(a.v, b.v, s, e);
   return {s, a.exact && b.exact && e == 0 && std::isfinite(s)};
 }
-inline Xd operator-(const Xd& a) { return {-a.v, a.exact}; }
-inline Xd operator-(const Xd& a, const Xd& b) { return a + (-b); }
-inline Xd operator*(const Xd& a, const Xd& b) {
+template <bool kFma>
+inline XdT<kFma> operator-(const XdT<kFma>& a) {
+  return {-a.v, a.exact};
+}
+template <bool kFma>
+inline XdT<kFma> operator-(const XdT<kFma>& a, const XdT<kFma>& b) {
+  return a + (-b);
+}
+template <bool kFma>
+inline XdT<kFma> operator*(const XdT<kFma>& a, const XdT<kFma>& b) {
   if ((a.exact && a.v == 0) || (b.exact && b.v == 0)) return {0.0, true};
   double p, e;
-  twoProd(a.v, b.v, p, e);
+  twoProdT<kFma>(a.v, b.v, p, e);
   return {p, a.exact && b.exact && e == 0 && std::fabs(p) >= kProdExactMin &&
                  std::isfinite(p)};
 }
 
-struct ExactDoubleArith {
-  using Num = Xd;
+template <bool kFma>
+struct ExactDoubleArithT {
+  using Num = XdT<kFma>;
   static constexpr bool kExact = false;
   static Num lift(double x) { return {x, true}; }
   static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
@@ -331,16 +450,18 @@ struct ExactDoubleArith {
   }
   static Pt<Num> localFrom(const Pose<double>& pose, const Vec3<double>& origin,
                            const Vec3<double>& p, double /*rho*/) {
-    const Xd d[3] = {Xd{p.x, true} - Xd{origin.x, true},
-                     Xd{p.y, true} - Xd{origin.y, true},
-                     Xd{p.z, true} - Xd{origin.z, true}};
-    Xd out[3];
+    const Num d[3] = {Num{p.x, true} - Num{origin.x, true},
+                      Num{p.y, true} - Num{origin.y, true},
+                      Num{p.z, true} - Num{origin.z, true}};
+    Num out[3];
     for (int j = 0; j < 3; ++j)
-      out[j] = (Xd{pose.R[0][j], true} * d[0] + Xd{pose.R[1][j], true} * d[1]) +
-               Xd{pose.R[2][j], true} * d[2];
+      out[j] =
+          (Num{pose.R[0][j], true} * d[0] + Num{pose.R[1][j], true} * d[1]) +
+          Num{pose.R[2][j], true} * d[2];
     return {out[0], out[1], out[2] + out[2]};
   }
 };
+using ExactDoubleArith = ExactDoubleArithT<TRICYL_HAVE_FMA != 0>;
 
 // ---------------------------------------------------------------------------
 // Stage 2: exact stack expansions; stage 3: GMP.
@@ -367,7 +488,10 @@ struct ExpansionArith {
 /// (||a| - |b|| <= |a - b|).
 inline Fd absolute(const Fd& a) { return {std::fabs(a.v), a.m}; }
 inline Rd absolute(const Rd& a) { return {std::fabs(a.v), a.e}; }
-inline Xd absolute(const Xd& a) { return {std::fabs(a.v), a.exact}; }
+template <bool kFma>
+inline XdT<kFma> absolute(const XdT<kFma>& a) {
+  return {std::fabs(a.v), a.exact};
+}
 inline Expansion absolute(const Expansion& a) { return a.sign() < 0 ? -a : a; }
 inline Dyadic absolute(const Dyadic& a) { return sgn(a.m) < 0 ? -a : a; }
 
@@ -694,11 +818,14 @@ class PerSign {
       // A double value that is exactly 0 is most often a true tie (exact
       // data in an exact pose), which no bound certifies: was the double
       // evaluation exact?
-      if (!xd_) build(xd_);
-      const Xd x = pred(*xd_);
-      if (x.exact) {
+#if TRICYL_FMA_DISPATCH
+      s = fmaAtRunTime() ? exactInDoubleFma(pred) : exactInDouble(pred, xd_);
+#else
+      s = exactInDouble(pred, xd_);
+#endif
+      if (s != Sign::kUnknown) {
         if (level_ < 2) level_ = 2;
-        return x.v > 0 ? Sign::kPos : (x.v < 0 ? Sign::kNeg : Sign::kZero);
+        return s;
       }
     }
     // Double word, first with the a-priori bound from the filter's
@@ -733,6 +860,31 @@ class PerSign {
     return ExactKernel::sign(pred(*gmp_));
   }
 
+  /// The exact sign of pred if its double evaluation, every operation
+  /// checked, was exact (with FMA or not), else kUnknown; on a frame built
+  /// when first needed.
+  template <bool kFma, class P>
+  static Sign exactInDoubleSign(const XdT<kFma>& x) {
+    if (!x.exact) return Sign::kUnknown;
+    return x.v > 0 ? Sign::kPos : (x.v < 0 ? Sign::kNeg : Sign::kZero);
+  }
+  template <class P>
+  Sign exactInDouble(const P& pred,
+                     std::optional<Frame<ExactDoubleArith>>& frame) {
+    if (!frame) build(frame);
+    return exactInDoubleSign<TRICYL_HAVE_FMA != 0, P>(pred(*frame));
+  }
+#if TRICYL_FMA_DISPATCH
+  template <class P>
+  TRICYL_TARGET_FMA Sign exactInDoubleFma(const P& pred) {
+    if (!xdf_) buildXdFma();
+    return exactInDoubleSign<true, P>(pred(*xdf_));
+  }
+  TRICYL_TARGET_FMA TRICYL_PER_SIGN_NOINLINE void buildXdFma() {
+    xdf_.emplace(q_);
+  }
+  std::optional<Frame<ExactDoubleArithT<true>>> xdf_;
+#endif
   /// The double-word stage with the a-priori bound (with FMA or not), on a
   /// frame built when first needed; m: the filter's magnitude of pred.
   template <bool kFma, class P>
