@@ -543,6 +543,10 @@ bool quadraticPositiveOnUnit(const mpz_class& a0, const mpz_class& a1,
 ///    in closed form, no gcd; exact subdivision of the Bernstein form was
 ///    tried before it and dropped: on the wide inputs whose edges reach
 ///    this point it needed thousands of pieces).
+/// The coefficient size (bits) above which edgeExact tries the local
+/// certificate before the Sturm count.
+constexpr std::size_t kWideQuarticBits = 2048;
+
 bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
   const mpz_class ex = t.X[b] - t.X[a], ey = t.Y[b] - t.Y[a],
                   ez = t.Z[b] - t.Z[a];
@@ -570,6 +574,19 @@ bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
   if (sgn(q0 + 3 * q[1]) > 0 && sgn(q0 + 6 * q[1] + 2 * q[2]) > 0 &&
       sgn(q0 + 9 * q[1] + 6 * q[2] + 3 * q[3]) > 0)
     return false;
+  // Wide quartics: the local certificate at an approximate minimiser
+  // first (quarticSignOnUnit, src/margin_sturm.h), the Sturm count where it
+  // cannot decide. Narrow ones go to the Sturm count directly, which is
+  // cheap there.
+  std::size_t bits = 0;
+  for (const mpz_class& c : q)
+    bits = std::max(bits, mpz_sizeinbase(c.get_mpz_t(), 2));
+  if (bits > kWideQuarticBits) {
+    const mpz_class pq[3] = {p0, p1, p2};
+    const int s =
+        detail::sturm::torusEdgeCertificate(q, l, pq, t.R, t.M, long(bits));
+    if (s >= 0) return s == 1;
+  }
   return detail::sturm::rootsInUnitTorus(q, l[1], l[2]) > 0;
 }
 
