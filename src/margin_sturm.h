@@ -352,7 +352,7 @@ inline void minimaInHalf(const mpz_class* p, unsigned prec,
 
 /// Approximate local minima of T (mpf coefficients t[0..4], t[4] > 0) in
 /// (lo, hi), features of order 1 (the window below): as minimaInHalf, with
-/// arithmetic bisection, to about 2^-50.
+/// arithmetic bisection, to about 2^-32 (Newton refines it).
 inline void minimaIn(const mpf_class* t, const mpf_class& lo,
                      const mpf_class& hi, unsigned prec,
                      std::vector<mpf_class>* out) {
@@ -387,7 +387,7 @@ inline void minimaIn(const mpf_class* t, const mpf_class& lo,
       if (sgn(f) == 0) break;
       (sgn(f) < 0 ? a : b) = x;
       mpf_class w(1, prec);
-      mpf_div_2exp(w.get_mpf_t(), w.get_mpf_t(), 50);
+      mpf_div_2exp(w.get_mpf_t(), w.get_mpf_t(), 32);
       if (b - a <= w) break;
       const mpf_class fp = eval(e, 3, x);
       const mpf_class eighth_prev(abs(prev) / 8, prec);
@@ -594,7 +594,7 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
     // more).
     long k = std::max(96 + lead, g + 96);
     int tries = 0;
-    bool resolved = false, have_prev_v = false;
+    bool resolved = false, have_prev_v = false, expect_hit = false;
     mpf_class prev_v(0, 64);
     while (k <= max_k && !moved) {
       // Newton on F' = L' - R P' / rho, F'' = L'' - R (P'' / rho -
@@ -663,6 +663,7 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
           continue;
         }
         resolved = true;
+        expect_hit = sgn(v) < 0;
         const long kn = (cert::ilog2(f2) - cert::ilog2(v)) / 2 + 8;
         if (kn > k) {
           k = kn;
@@ -672,26 +673,40 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
       mpf_class scaled(x, mp_bitcnt_t(prec));
       mpf_mul_2exp(scaled.get_mpf_t(), scaled.get_mpf_t(), mp_bitcnt_t(k));
       const mpz_class m(scaled);  // 0 <= m <= 2^(k-1)
-      // Hit: 2^(4k) Q(s0) = Ls^2 - 4 R^2 Ps 2^(2k), Ls = 2^(2k) L(s0)
-      // (> 0), Ps = 2^(2k) P(s0).
-      mpz_class two_k = 1;
-      mpz_mul_2exp(two_k.get_mpz_t(), two_k.get_mpz_t(), mp_bitcnt_t(k));
-      const mpz_class ls = (L[0] * two_k + L[1] * m) * two_k + L[2] * m * m;
-      const mpz_class ps = (P[0] * two_k + P[1] * m) * two_k + P[2] * m * m;
-      if (ls * ls <= 4 * R2 * ps * two_k * two_k) return 1;
+      // The estimate's sign picks the certificate to try (both exact; the
+      // other one only on the last try).
+      const bool last = tries == 2;
+      if (expect_hit || last) {
+        // Hit: 2^(4k) Q(s0) = Ls^2 - 4 R^2 Ps 2^(2k), Ls = 2^(2k) L(s0)
+        // (> 0), Ps = 2^(2k) P(s0) (Horner with shifts).
+        auto at = [&m, k](const mpz_class* c) {
+          mpz_class v = c[2] * m;
+          mpz_class t = c[1];
+          mpz_mul_2exp(t.get_mpz_t(), t.get_mpz_t(), mp_bitcnt_t(k));
+          v += t;
+          v *= m;
+          t = c[0];
+          mpz_mul_2exp(t.get_mpz_t(), t.get_mpz_t(), mp_bitcnt_t(2 * k));
+          return mpz_class(v + t);
+        };
+        const mpz_class ls = at(L);
+        mpz_class rhs = 4 * R2 * at(P);
+        mpz_mul_2exp(rhs.get_mpz_t(), rhs.get_mpz_t(), mp_bitcnt_t(2 * k));
+        if (ls * ls <= rhs) return 1;
+      }
       // Miss: the AM-GM bound (integers of L's size), else the quartic's.
       x.set_prec(mp_bitcnt_t(prec));
       const mpf_class pv = cert::evalAt(P, 3, x);
-      if (sgn(pv) > 0) {
+      if ((!expect_hit || last) && sgn(pv) > 0) {
         const mpf_class lam(R / sqrt(pv), mp_bitcnt_t(prec));
         if (cert::amgmCertificate(L, P, R2, lam, k + 32)) return 0;
       }
       // The quartic's bound costs more (Q's integers, shifted): where
       // Newton runs on F (AM-GM's domain) only on the last try.
-      const bool last = tries == 2;
       mpf_class other;
-      const int t =
-          on_f && !last ? -1 : cert::taylorCertificate(Q, m, k, &other);
+      const int t = (on_f && !last) || (expect_hit && !last)
+                        ? -1
+                        : cert::taylorCertificate(Q, m, k, &other);
       if (t == 0) return 0;
       // A vertex within about 2^-k of s0 is C0 and C1's doing (s0 not yet
       // close enough), not another root region.
