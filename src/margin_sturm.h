@@ -350,49 +350,44 @@ inline void minimaInHalf(const mpz_class* p, unsigned prec,
   }
 }
 
-/// Approximate local minima of T (mpf coefficients t[0..4], t[4] > 0) in
-/// (lo, hi), features of order 1 (the window below): as minimaInHalf, with
-/// arithmetic bisection, to about 2^-32 (Newton refines it).
-inline void minimaIn(const mpf_class* t, const mpf_class& lo,
-                     const mpf_class& hi, unsigned prec,
-                     std::vector<mpf_class>* out) {
-  const mpf_class d[4] = {t[1], 2 * t[2], 3 * t[3], 4 * t[4]};
-  const mpf_class e[3] = {d[1], 2 * d[2], 3 * d[3]};
-  auto eval = [prec](const mpf_class* c, int n, const mpf_class& x) {
-    mpf_class v(0, prec);
+/// Approximate local minima of T (t[0..4], t[4] > 0, as doubles after a
+/// common power-of-two scale) in (lo, hi), features of order 1 (the window
+/// below): as minimaInHalf, in doubles with arithmetic bisection, to about
+/// 2^-40 (Newton in GMP floats refines it).
+inline void minimaIn(const double* t, double lo, double hi,
+                     std::vector<double>* out) {
+  const double d[4] = {t[1], 2 * t[2], 3 * t[3], 4 * t[4]};
+  const double e[3] = {d[1], 2 * d[2], 3 * d[3]};
+  auto eval = [](const double* c, int n, double x) {
+    double v = 0;
     for (int i = n; i-- > 0;) v = v * x + c[i];
     return v;
   };
-  std::vector<mpf_class> pts{lo};
-  const mpf_class disc(e[1] * e[1] - 4 * e[0] * e[2], prec);
-  if (sgn(disc) > 0) {
-    const mpf_class sq(sqrt(disc), prec);
-    const mpf_class qq(sgn(e[1]) >= 0 ? mpf_class(-(e[1] + sq) / 2, prec)
-                                      : mpf_class((sq - e[1]) / 2, prec));
-    if (sgn(qq) != 0) {
-      mpf_class r1(qq / e[2], prec), r2(e[0] / qq, prec);
+  std::vector<double> pts{lo};
+  const double disc = e[1] * e[1] - 4 * e[0] * e[2];
+  if (disc > 0 && e[2] != 0) {
+    const double sq = std::sqrt(disc);
+    const double qq = e[1] >= 0 ? -(e[1] + sq) / 2 : (sq - e[1]) / 2;
+    if (qq != 0) {
+      double r1 = qq / e[2], r2 = e[0] / qq;
       if (r1 > r2) std::swap(r1, r2);
-      for (const mpf_class& r : {r1, r2})
+      for (double r : {r1, r2})
         if (r > lo && r < hi) pts.push_back(r);
     }
   }
   pts.push_back(hi);
   for (size_t i = 0; i + 1 < pts.size(); ++i) {
-    mpf_class a(pts[i], prec), b(pts[i + 1], prec);
-    if (!(sgn(eval(d, 4, a)) < 0 && sgn(eval(d, 4, b)) > 0)) continue;
-    mpf_class x((a + b) / 2, prec), prev(0, prec);
+    double a = pts[i], b = pts[i + 1];
+    if (!(eval(d, 4, a) < 0 && eval(d, 4, b) > 0)) continue;
+    double x = (a + b) / 2, prev = 0;
     bool have_prev = false;
-    for (int it = 0; it < 120; ++it) {
-      const mpf_class f = eval(d, 4, x);
-      if (sgn(f) == 0) break;
-      (sgn(f) < 0 ? a : b) = x;
-      mpf_class w(1, prec);
-      mpf_div_2exp(w.get_mpf_t(), w.get_mpf_t(), 32);
-      if (b - a <= w) break;
-      const mpf_class fp = eval(e, 3, x);
-      const mpf_class eighth_prev(abs(prev) / 8, prec);
-      if (sgn(fp) > 0 && (!have_prev || abs(f) <= eighth_prev)) {
-        const mpf_class xn(x - f / fp, prec);
+    for (int it = 0; it < 120 && b - a > 0x1p-40; ++it) {
+      const double f = eval(d, 4, x);
+      if (f == 0) break;
+      (f < 0 ? a : b) = x;
+      const double fp = eval(e, 3, x);
+      if (fp > 0 && (!have_prev || std::fabs(f) <= std::fabs(prev) / 8)) {
+        const double xn = x - f / fp;
         prev = f;
         have_prev = true;
         if (xn > a && xn < b) {
@@ -531,20 +526,23 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
     }
     for (int i = 0; i < 4; ++i)
       for (int j = 3; j >= i; --j) t[j] += sc * t[j + 1];
-    mpf_class tl[5];
+    // T's coefficients as doubles, scaled by a common power of two.
+    long top_t = std::numeric_limits<long>::min();
     for (int i = 0; i < 5; ++i) {
-      tl[i].set_prec(128);
       mpf_div_2exp(t[i].get_mpf_t(), t[i].get_mpf_t(), mp_bitcnt_t(g * i));
-      tl[i] = t[i];
+      if (sgn(t[i]) != 0) top_t = std::max(top_t, cert::ilog2(t[i]));
     }
-    std::vector<mpf_class> us;
-    cert::minimaIn(tl, mpf_class(-2, 128), mpf_class(2, 128), 128, &us);
-    for (const mpf_class& u : us) {
-      const mpf_class v = [&] {
-        mpf_class r(0, 128);
-        for (int i = 5; i-- > 0;) r = r * u + tl[i];
-        return r;
-      }();
+    double tl[5];
+    for (int i = 0; i < 5; ++i) {
+      long ex = 0;
+      const double f = mpf_get_d_2exp(&ex, t[i].get_mpf_t());
+      tl[i] = ex - 1 - top_t < -1000 ? 0.0 : std::ldexp(f, int(ex - top_t));
+    }
+    std::vector<double> us;
+    if (tl[4] > 0) cert::minimaIn(tl, -2, 2, &us);
+    for (double u : us) {
+      double v = 0;
+      for (int i = 5; i-- > 0;) v = v * u + tl[i];
       mpf_class sv(u, hp);
       mpf_div_2exp(sv.get_mpf_t(), sv.get_mpf_t(), mp_bitcnt_t(g));
       sv += sc;
