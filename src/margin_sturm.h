@@ -591,6 +591,9 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
     // two retries at more bits (the Taylor bound may need log2(C2 / h) / 2
     // more).
     long k = std::max(96 + lead, g + 96);
+    // A miss needs two levels (above); if the second would pass max_k,
+    // the floats cost about what the count does: leave it to the count.
+    if (2 * k - lead > max_k) return -1;
     int tries = 0;
     bool resolved = false, have_prev_v = false, expect_hit = false;
     mpf_class prev_v(0, 64);
@@ -653,8 +656,10 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
         const bool same =
             have_prev_v && sgn(v) == sgn(prev_v) &&
             cert::ilog2(mpf_class(v - prev_v, 64)) < cert::ilog2(v) - 8;
+        // A negative value needs no second level: F(x) < 0 already
+        // (x's error only raises F above its minimum).
         if (sgn(v) == 0 || cert::ilog2(v) < cert::ilog2(size) - prec + 40 ||
-            !same) {
+            (!same && sgn(v) > 0)) {
           prev_v = v;
           have_prev_v = sgn(v) != 0;
           k = 2 * k - lead;  // not resolved yet

@@ -537,7 +537,7 @@ using detail::sturm::cert::quadraticPositive;
 ///    this point it needed thousands of pieces).
 /// The coefficient size (bits) above which edgeExact tries the local
 /// certificate before the Sturm count.
-constexpr std::size_t kWideQuarticBits = 9000;
+constexpr std::size_t kWideQuarticBits = 10000;
 
 bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
   const mpz_class ex = t.X[b] - t.X[a], ey = t.Y[b] - t.Y[a],
