@@ -281,6 +281,41 @@ inline mpf_class pow2(long e, unsigned prec) {
   return x;
 }
 
+inline int sgn(double v) { return (v > 0) - (v < 0); }
+
+/// The bracketed search of both minima finders: a root of P' (increasing
+/// on [a, b], P'(a) < 0 < P'(b)); Newton while |P'| drops eightfold a step
+/// (its quadratic phase), else bisect with mid(a, b): far from the roots,
+/// or near a cluster of them, Newton's steps shrink x by a constant ratio
+/// only. `eval(c, n, x)` evaluates n coefficients at x, `num(v)` makes a
+/// number of the working precision, `done(a, b)` ends the search.
+template <class T, class C, class Eval, class Num, class Mid, class Done>
+T bracketedRoot(const C* d, const C* e, T a, T b, Eval eval, Num num, Mid mid,
+                Done done, int max_it) {
+  using std::abs;
+  T x = mid(a, b), prev = num(0);
+  bool have_prev = false;
+  for (int it = 0; it < max_it; ++it) {
+    const T f = eval(d, 4, x);
+    if (sgn(f) == 0) break;
+    (sgn(f) < 0 ? a : b) = x;
+    if (done(a, b)) break;
+    const T fp = eval(e, 3, x);
+    if (sgn(fp) > 0 && (!have_prev || abs(f) <= num(abs(prev) / 8))) {
+      const T xn = num(x - f / fp);
+      prev = f;
+      have_prev = true;
+      if (xn > a && xn < b) {
+        x = xn;
+        continue;
+      }
+    }
+    have_prev = false;
+    x = mid(a, b);
+  }
+  return x;
+}
+
 /// Approximate local minima of P (degree 4, P4 > 0) in (0, 1/2): the
 /// roots of P' where it changes sign from - to +, between consecutive
 /// roots of P'' (P' is monotone between them). Bracketed Newton with
@@ -315,37 +350,19 @@ inline void minimaInHalf(const mpz_class* p, unsigned prec,
   for (size_t i = 0; i + 1 < pts.size(); ++i) {
     mpf_class a(pts[i], prec), b(pts[i + 1], prec);
     if (!(sgn(evalAt(d, 4, a)) < 0 && sgn(evalAt(d, 4, b)) > 0)) continue;
-    auto mid = [&]() {
-      const long eb = ilog2(b), ea = sgn(a) == 0 ? floor_e : ilog2(a);
+    auto mid = [&](const mpf_class& lo, const mpf_class& hi) {
+      const long eb = ilog2(hi), ea = sgn(lo) == 0 ? floor_e : ilog2(lo);
       if (eb - ea > 2) return pow2((ea + eb) / 2, prec);
-      return mpf_class((a + b) / 2, prec);
+      return mpf_class((lo + hi) / 2, prec);
     };
-    mpf_class x = mid(), f(0, prec), fp(0, prec), prev(0, prec);
-    bool have_prev = false;
-    for (int it = 0; it < 200; ++it) {
-      f = evalAt(d, 4, x);
-      if (sgn(f) == 0) break;
-      (sgn(f) < 0 ? a : b) = x;
-      mpf_class w(b, prec);
-      mpf_div_2exp(w.get_mpf_t(), w.get_mpf_t(), 40);
-      if (b - a <= w) break;
-      fp = evalAt(e, 3, x);
-      // Newton while |P'| drops eightfold a step (its quadratic phase);
-      // else bisect: far from the roots, or near a cluster of them, its
-      // steps shrink x by a constant ratio only.
-      const mpf_class eighth_prev(abs(prev) / 8, prec);
-      if (sgn(fp) > 0 && (!have_prev || abs(f) <= eighth_prev)) {
-        const mpf_class xn(x - f / fp, prec);
-        prev = f;
-        have_prev = true;
-        if (xn > a && xn < b) {
-          x = xn;
-          continue;
-        }
-      }
-      have_prev = false;
-      x = mid();
-    }
+    const mpf_class x = bracketedRoot(
+        d, e, a, b, evalAt, [prec](auto v) { return mpf_class(v, prec); }, mid,
+        [prec](const mpf_class& lo, const mpf_class& hi) {
+          mpf_class w(hi, prec);
+          mpf_div_2exp(w.get_mpf_t(), w.get_mpf_t(), 40);
+          return hi - lo <= w;
+        },
+        200);
     out->push_back(x);
   }
 }
@@ -379,25 +396,10 @@ inline void minimaIn(const double* t, double lo, double hi,
   for (size_t i = 0; i + 1 < pts.size(); ++i) {
     double a = pts[i], b = pts[i + 1];
     if (!(eval(d, 4, a) < 0 && eval(d, 4, b) > 0)) continue;
-    double x = (a + b) / 2, prev = 0;
-    bool have_prev = false;
-    for (int it = 0; it < 120 && b - a > 0x1p-40; ++it) {
-      const double f = eval(d, 4, x);
-      if (f == 0) break;
-      (f < 0 ? a : b) = x;
-      const double fp = eval(e, 3, x);
-      if (fp > 0 && (!have_prev || std::fabs(f) <= std::fabs(prev) / 8)) {
-        const double xn = x - f / fp;
-        prev = f;
-        have_prev = true;
-        if (xn > a && xn < b) {
-          x = xn;
-          continue;
-        }
-      }
-      have_prev = false;
-      x = (a + b) / 2;
-    }
+    const double x = bracketedRoot(
+        d, e, a, b, eval, [](double v) { return v; },
+        [](double lo, double hi) { return (lo + hi) / 2; },
+        [](double lo, double hi) { return hi - lo <= 0x1p-40; }, 120);
     out->push_back(x);
   }
 }
