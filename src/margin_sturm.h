@@ -398,8 +398,8 @@ inline void minimaIn(const double* t, double lo, double hi,
     if (!(eval(d, 4, a) < 0 && eval(d, 4, b) > 0)) continue;
     const double x = bracketedRoot(
         d, e, a, b, eval, [](double v) { return v; },
-        [](double lo, double hi) { return (lo + hi) / 2; },
-        [](double lo, double hi) { return hi - lo <= 0x1p-40; }, 120);
+        [](double u, double v) { return (u + v) / 2; },
+        [](double u, double v) { return v - u <= 0x1p-40; }, 120);
     out->push_back(x);
   }
 }
@@ -412,6 +412,26 @@ inline bool quadraticPositive(const mpz_class& a0, const mpz_class& a1,
   if (sgn(a2) > 0 && sgn(a1) < 0 && a1 + 2 * a2 > 0)
     return sgn(4 * a0 * a2 - a1 * a1) > 0;
   return true;
+}
+
+/// The hit test at s0 = m / 2^k: 2^(4k) Q(s0) = Ls^2 - 4 R^2 Ps 2^(2k)
+/// <= 0, Ls = 2^(2k) L(s0) (> 0 by the precondition), Ps = 2^(2k) P(s0)
+/// (Horner with shifts).
+inline bool hitAt(const mpz_class* L, const mpz_class* P, const mpz_class& R2,
+                  const mpz_class& m, long k) {
+  auto at = [&m, k](const mpz_class* c) {
+    mpz_class v = c[2] * m, t = c[1];
+    mpz_mul_2exp(t.get_mpz_t(), t.get_mpz_t(), mp_bitcnt_t(k));
+    v += t;
+    v *= m;
+    t = c[0];
+    mpz_mul_2exp(t.get_mpz_t(), t.get_mpz_t(), mp_bitcnt_t(2 * k));
+    return mpz_class(v + t);
+  };
+  const mpz_class ls = at(L);
+  mpz_class rhs = 4 * R2 * at(P);
+  mpz_mul_2exp(rhs.get_mpz_t(), rhs.get_mpz_t(), mp_bitcnt_t(2 * k));
+  return ls * ls <= rhs;
 }
 
 /// The AM-GM certificate with lambda = a / 2^j, a the leading `bits` bits
@@ -682,22 +702,7 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
       // other one only on the last try).
       const bool last = tries == 2;
       if (expect_hit || last) {
-        // Hit: 2^(4k) Q(s0) = Ls^2 - 4 R^2 Ps 2^(2k), Ls = 2^(2k) L(s0)
-        // (> 0), Ps = 2^(2k) P(s0) (Horner with shifts).
-        auto at = [&m, k](const mpz_class* c) {
-          mpz_class v = c[2] * m;
-          mpz_class t = c[1];
-          mpz_mul_2exp(t.get_mpz_t(), t.get_mpz_t(), mp_bitcnt_t(k));
-          v += t;
-          v *= m;
-          t = c[0];
-          mpz_mul_2exp(t.get_mpz_t(), t.get_mpz_t(), mp_bitcnt_t(2 * k));
-          return mpz_class(v + t);
-        };
-        const mpz_class ls = at(L);
-        mpz_class rhs = 4 * R2 * at(P);
-        mpz_mul_2exp(rhs.get_mpz_t(), rhs.get_mpz_t(), mp_bitcnt_t(2 * k));
-        if (ls * ls <= rhs) return 1;
+        if (cert::hitAt(L, P, R2, m, k)) return 1;
       }
       // Miss: the AM-GM bound (integers of L's size), else the quartic's.
       x.set_prec(mp_bitcnt_t(prec));

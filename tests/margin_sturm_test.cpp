@@ -202,6 +202,40 @@ TEST(MarginSturm, TorusChainAgreesWithRationalSturm) {
   EXPECT_GT(with_roots, compared / 20);
 }
 
+// The three exact tests of torusEdgeCertificate on the exactly tangent edge
+// of TorusChainAgreesWithRationalSturm (R = 5k, the edge (8k, -2k + 4k s,
+// 4k), M^2 = 25k^2 + dm): at s0 = 1/2, F = L - 2 R rho = -dm, rho = 8k, so
+// lambda = R / rho = 5/8 makes the AM-GM quadratic (3/8) P - 24k^2 - dm,
+// whose least value is -dm: it certifies the miss (dm = -1) and must not
+// certify the hit (dm = +1); Q(1/2) <= 0 exactly for the hit; the shifted
+// quartic must not contradict either.
+TEST(MarginSturm, CertificatesOnTheExactTangent) {
+  for (const mpz_class& k :
+       {mpz_class(1), mpz_class(10), mpz_class(mpz_class(1) << 100)}) {
+    const mpz_class k2 = k * k, R = 5 * k;
+    const Poly pp{68 * k2, -16 * k2, 16 * k2};
+    for (int dm : {-1, 1}) {
+      const Poly l{pp[0] + 16 * k2 - dm, pp[1], pp[2]};
+      const Poly q = torusQuartic(l, pp, R);
+      const mpf_class lam(0.625, 64);
+      EXPECT_EQ(detail::sturm::cert::amgmCertificate(l.data(), pp.data(), R * R,
+                                                     lam, 8),
+                dm < 0)
+          << "dm " << dm << " k " << k.get_str();
+      for (long bits : {1L, 40L}) {  // s0 = 1/2 as 1/2 and as 2^39 / 2^40
+        const mpz_class m = mpz_class(1) << (bits - 1);
+        EXPECT_EQ(
+            detail::sturm::cert::hitAt(l.data(), pp.data(), R * R, m, bits),
+            dm > 0);
+        mpf_class other;
+        const int t =
+            detail::sturm::cert::taylorCertificate(q.data(), m, bits, &other);
+        EXPECT_NE(t, dm > 0 ? 0 : 1) << "dm " << dm << " bits " << bits;
+      }
+    }
+  }
+}
+
 // torusEdgeCertificate (the local certificate in front of the Sturm count
 // on wide torus edges) against rootsInUnitTorus: whenever it decides, its
 // answer must be the count's. Edges of 2^(300 .. 1500) times the rim
