@@ -42,7 +42,10 @@
 //   --only ties|outside|inside|thresholds|tangents: run one section (for
 //   a profiler);
 //   --count N: N hostile queries per set (default 20,000; the thresholds
-//   take the first N / 50 queries of the set outside the gate).
+//   take the first N / 50 queries of the set outside the gate);
+//   --replay FILE: time the queries of FILE instead (lines in the --dump
+//   format, "<time> us:" prefix optional, '#' comments; the regression
+//   list bench/data/margin_worst.txt holds the slowest of past runs).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -269,11 +272,46 @@ void tangentReport(int n, int dump) {
       v, dump);
 }
 
+/// The queries of a --dump listing (24 hex floats a line after an optional
+/// "<time> us:" prefix; blank lines and '#' comments skipped).
+std::vector<Hostile> readReplay(const char* path) {
+  std::vector<Hostile> v;
+  std::FILE* f = std::fopen(path, "r");
+  if (f == nullptr) {
+    std::fprintf(stderr, "cannot open %s\n", path);
+    return v;
+  }
+  char line[4096];
+  while (std::fgets(line, sizeof line, f) != nullptr) {
+    const char* p = line;
+    if (const char* colon = std::strchr(line, ':')) p = colon + 1;
+    double x[24];
+    int n = 0;
+    char* end = nullptr;
+    while (n < 24) {
+      x[n] = std::strtod(p, &end);
+      if (end == p) break;
+      p = end;
+      ++n;
+    }
+    if (line[0] == '#' || n != 24) continue;
+    Hostile h{{x[0], x[1]}, tricyl::identityPose<double>(), {}, x[23]};
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) h.pose.R[j][k] = x[2 + 3 * j + k];
+    h.pose.t = {x[11], x[12], x[13]};
+    h.tri = {
+        {x[14], x[15], x[16]}, {x[17], x[18], x[19]}, {x[20], x[21], x[22]}};
+    v.push_back(h);
+  }
+  std::fclose(f);
+  return v;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   int passes = 10, dump = 0, count = 20000;
-  std::string only;
+  std::string only, replay;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--dump") == 0 && i + 1 < argc)
       dump = std::atoi(argv[++i]);
@@ -281,10 +319,17 @@ int main(int argc, char** argv) {
       count = std::max(1, std::atoi(argv[++i]));
     else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc)
       only = argv[++i];
+    else if (std::strcmp(argv[i], "--replay") == 0 && i + 1 < argc)
+      replay = argv[++i];
     else
       passes = std::max(1, std::atoi(argv[i]));
   }
   const double clock_ns = tricyl::bench::clockOverheadNs();
+  if (!replay.empty()) {
+    const std::vector<Hostile> v = readReplay(replay.c_str());
+    for (int p = 0; p < passes; ++p) hostileReport(replay.c_str(), v, dump);
+    return 0;
+  }
   auto runs = [&only](const char* s) { return only.empty() || only == s; };
   if (runs("ties")) {
     std::printf(

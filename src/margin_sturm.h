@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -207,6 +208,536 @@ inline int rootsInUnitTorus(const mpz_class* q, const mpz_class& l1,
     return n;
   };
   return variations(at0) - variations(at1);
+}
+
+// ---- A local certificate for wide torus edges -----------------------------
+//
+// On wide inputs (coordinates spanning thousands of binary orders) Q's
+// coefficients have 10,000 - 15,000 bits and its Sturm sequence's last
+// constant (Q's discriminant, near zero at a near-tangency) 60,000 or more:
+// milliseconds. torusEdgeCertificate decides most of those edges from one
+// point instead. With L > 0 on [0, 1] (edgeExact's step 1) and rho =
+// sqrt(P) >= 0, Q = (L - 2 R rho)(L + 2 R rho) and L + 2 R rho > 0, so
+// Q <= 0 somewhere iff F = L - 2 R rho (the squared distance to the rim
+// circle minus M^2, in the edge's parameter) is <= 0 somewhere:
+//  - a hit: Q(s0) <= 0 at a dyadic s0 = m / 2^k in [0, 1], exactly;
+//  - a miss: for any lambda > 0, 2 R rho <= lambda rho^2 + R^2 / lambda
+//    (AM-GM), so lambda L - lambda^2 P - R^2 > 0 on [0, 1], a quadratic
+//    in s (integer coefficients for a dyadic lambda = a / 2^j after a
+//    factor 2^(2j)), gives L > 2 R rho: Q > 0 on [0, 1].
+// The bound loses lambda (rho - R / lambda)^2, zero where rho = R / lambda:
+// lambda = R / rho(s*) at F's minimiser s* makes the quadratic touch F from
+// below there (its curvature exceeds F_lambda's where rho > R |E_xy|^2 /
+// |E|^2, which covers edges outside the rim radius). s* is found in GMP
+// floats (minima of Q at 128 bits to choose the branch, then Newton on F',
+// whose minimum is simple where Q's may be a cluster: Q = F (F + 4 R rho)
+// has three nearby critical points when R rho is small), at 2^-k with k
+// doubling until a certificate holds; the floats only choose s0 and lambda,
+// every decision is exact. An exact tangency (min F = 0), two near-zero
+// minima, or an edge inside the rim radius where the bound is too loose is
+// left to the Sturm count (-1), which decides every case.
+
+namespace cert {
+
+/// floor(log2 |x|) (a large negative value for 0).
+inline long ilog2(const mpz_class& x) {
+  return sgn(x) == 0 ? std::numeric_limits<long>::min() / 4
+                     : long(mpz_sizeinbase(x.get_mpz_t(), 2)) - 1;
+}
+inline long ilog2(const mpf_class& x) {
+  if (sgn(x) == 0) return std::numeric_limits<long>::min() / 4;
+  long e = 0;
+  mpf_get_d_2exp(&e, x.get_mpf_t());  // |x| = f 2^e, 0.5 <= |f| < 1
+  return e - 1;
+}
+
+/// Horner on integer coefficients (lowest first, n of them) at x, in x's
+/// precision.
+inline mpf_class evalAt(const mpz_class* c, int n, const mpf_class& x) {
+  mpf_class v(0, x.get_prec());
+  for (int i = n; i-- > 0;) {
+    v *= x;
+    v += mpf_class(c[i], x.get_prec());
+  }
+  return v;
+}
+
+/// The coefficients of f(1 - s) for f of degree n - 1 (the edge walked from
+/// its other end): a Taylor shift by 1, then odd coefficients negated.
+inline void reversed(const mpz_class* f, int n, mpz_class* r) {
+  for (int i = 0; i < n; ++i) r[i] = f[i];
+  for (int i = 0; i + 1 < n; ++i)
+    for (int j = n - 2; j >= i; --j) r[j] += r[j + 1];
+  for (int i = 1; i < n; i += 2) r[i] = -r[i];
+}
+
+/// 2^x as a GMP float.
+inline mpf_class pow2(long e, unsigned prec) {
+  mpf_class x(1, prec);
+  if (e >= 0)
+    mpf_mul_2exp(x.get_mpf_t(), x.get_mpf_t(), mp_bitcnt_t(e));
+  else
+    mpf_div_2exp(x.get_mpf_t(), x.get_mpf_t(), mp_bitcnt_t(-e));
+  return x;
+}
+
+inline int sgn(double v) { return (v > 0) - (v < 0); }
+
+/// The bracketed search of both minima finders: a root of P' (increasing
+/// on [a, b], P'(a) < 0 < P'(b)); Newton while |P'| drops eightfold a step
+/// (its quadratic phase), else bisect with mid(a, b): far from the roots,
+/// or near a cluster of them, Newton's steps shrink x by a constant ratio
+/// only. `eval(c, n, x)` evaluates n coefficients at x, `num(v)` makes a
+/// number of the working precision, `done(a, b)` ends the search.
+template <class T, class C, class Eval, class Num, class Mid, class Done>
+T bracketedRoot(const C* d, const C* e, T a, T b, Eval eval, Num num, Mid mid,
+                Done done, int max_it) {
+  using std::abs;
+  T x = mid(a, b), prev = num(0);
+  bool have_prev = false;
+  for (int it = 0; it < max_it; ++it) {
+    const T f = eval(d, 4, x);
+    if (sgn(f) == 0) break;
+    (sgn(f) < 0 ? a : b) = x;
+    if (done(a, b)) break;
+    const T fp = eval(e, 3, x);
+    if (sgn(fp) > 0 && (!have_prev || abs(f) <= num(abs(prev) / 8))) {
+      const T xn = num(x - f / fp);
+      prev = f;
+      have_prev = true;
+      if (xn > a && xn < b) {
+        x = xn;
+        continue;
+      }
+    }
+    have_prev = false;
+    x = mid(a, b);
+  }
+  return x;
+}
+
+/// Approximate local minima of P (degree 4, P4 > 0) in (0, 1/2): the
+/// roots of P' where it changes sign from - to +, between consecutive
+/// roots of P'' (P' is monotone between them). Bracketed Newton with
+/// bisection (geometric across binary orders: features near 0 may sit at
+/// 2^-1000 of the edge), in `prec`-bit GMP floats, to about 2^-40 of x.
+/// Heuristic by design: only the choice of s0 depends on it.
+inline void minimaInHalf(const mpz_class* p, unsigned prec,
+                         std::vector<mpf_class>* out) {
+  const mpz_class d[4] = {p[1], 2 * p[2], 3 * p[3], 4 * p[4]};
+  const mpz_class e[3] = {d[1], 2 * d[2], 3 * d[3]};
+  std::vector<mpf_class> pts{mpf_class(0, prec)};
+  const mpz_class disc = e[1] * e[1] - 4 * e[0] * e[2];
+  if (sgn(disc) > 0 && sgn(e[2]) != 0) {
+    mpf_class sq(disc, prec);
+    sq = sqrt(sq);
+    mpf_class qq(e[1], prec);
+    qq = sgn(e[1]) >= 0 ? mpf_class(-(qq + sq) / 2, prec)
+                        : mpf_class((sq - qq) / 2, prec);
+    if (sgn(qq) != 0) {
+      mpf_class r1(qq / mpf_class(e[2], prec), prec),
+          r2(mpf_class(e[0], prec) / qq, prec);
+      if (r1 > r2) std::swap(r1, r2);
+      for (const mpf_class& r : {r1, r2})
+        if (sgn(r) > 0 && r < 0.5) pts.push_back(r);
+    }
+  }
+  pts.push_back(mpf_class(0.5, prec));
+  long top = ilog2(d[0]);
+  for (int i = 1; i < 4; ++i) top = std::max(top, ilog2(d[i]));
+  // Positive roots of P' are >= |d0| / (|d0| + max |d_i|) (Cauchy).
+  const long floor_e = ilog2(d[0]) - top - 3;
+  for (size_t i = 0; i + 1 < pts.size(); ++i) {
+    mpf_class a(pts[i], prec), b(pts[i + 1], prec);
+    if (!(sgn(evalAt(d, 4, a)) < 0 && sgn(evalAt(d, 4, b)) > 0)) continue;
+    auto mid = [&](const mpf_class& lo, const mpf_class& hi) {
+      const long eb = ilog2(hi), ea = sgn(lo) == 0 ? floor_e : ilog2(lo);
+      if (eb - ea > 2) return pow2((ea + eb) / 2, prec);
+      return mpf_class((lo + hi) / 2, prec);
+    };
+    const mpf_class x = bracketedRoot(
+        d, e, a, b, evalAt, [prec](auto v) { return mpf_class(v, prec); }, mid,
+        [prec](const mpf_class& lo, const mpf_class& hi) {
+          mpf_class w(hi, prec);
+          mpf_div_2exp(w.get_mpf_t(), w.get_mpf_t(), 40);
+          return hi - lo <= w;
+        },
+        200);
+    out->push_back(x);
+  }
+}
+
+/// Approximate local minima of T (t[0..4], t[4] > 0, as doubles after a
+/// common power-of-two scale) in (lo, hi), features of order 1 (the window
+/// below): as minimaInHalf, in doubles with arithmetic bisection, to about
+/// 2^-40 (Newton in GMP floats refines it).
+inline void minimaIn(const double* t, double lo, double hi,
+                     std::vector<double>* out) {
+  const double d[4] = {t[1], 2 * t[2], 3 * t[3], 4 * t[4]};
+  const double e[3] = {d[1], 2 * d[2], 3 * d[3]};
+  auto eval = [](const double* c, int n, double x) {
+    double v = 0;
+    for (int i = n; i-- > 0;) v = v * x + c[i];
+    return v;
+  };
+  std::vector<double> pts{lo};
+  const double disc = e[1] * e[1] - 4 * e[0] * e[2];
+  if (disc > 0 && e[2] != 0) {
+    const double sq = std::sqrt(disc);
+    const double qq = e[1] >= 0 ? -(e[1] + sq) / 2 : (sq - e[1]) / 2;
+    if (qq != 0) {
+      double r1 = qq / e[2], r2 = e[0] / qq;
+      if (r1 > r2) std::swap(r1, r2);
+      for (double r : {r1, r2})
+        if (r > lo && r < hi) pts.push_back(r);
+    }
+  }
+  pts.push_back(hi);
+  for (size_t i = 0; i + 1 < pts.size(); ++i) {
+    double a = pts[i], b = pts[i + 1];
+    if (!(eval(d, 4, a) < 0 && eval(d, 4, b) > 0)) continue;
+    const double x = bracketedRoot(
+        d, e, a, b, eval, [](double v) { return v; },
+        [](double u, double v) { return (u + v) / 2; },
+        [](double u, double v) { return v - u <= 0x1p-40; }, 120);
+    out->push_back(x);
+  }
+}
+
+/// Is a0 + a1 s + a2 s^2 > 0 on [0, 1]? (At the ends, and at the vertex
+/// -a1 / (2 a2) of a convex parabola when inside.)
+inline bool quadraticPositive(const mpz_class& a0, const mpz_class& a1,
+                              const mpz_class& a2) {
+  if (sgn(a0) <= 0 || sgn(a0 + a1 + a2) <= 0) return false;
+  if (sgn(a2) > 0 && sgn(a1) < 0 && a1 + 2 * a2 > 0)
+    return sgn(4 * a0 * a2 - a1 * a1) > 0;
+  return true;
+}
+
+/// The hit test at s0 = m / 2^k: 2^(4k) Q(s0) = Ls^2 - 4 R^2 Ps 2^(2k)
+/// <= 0, Ls = 2^(2k) L(s0) (> 0 by the precondition), Ps = 2^(2k) P(s0)
+/// (Horner with shifts).
+inline bool hitAt(const mpz_class* L, const mpz_class* P, const mpz_class& R2,
+                  const mpz_class& m, long k) {
+  auto at = [&m, k](const mpz_class* c) {
+    mpz_class v = c[2] * m, t = c[1];
+    mpz_mul_2exp(t.get_mpz_t(), t.get_mpz_t(), mp_bitcnt_t(k));
+    v += t;
+    v *= m;
+    t = c[0];
+    mpz_mul_2exp(t.get_mpz_t(), t.get_mpz_t(), mp_bitcnt_t(2 * k));
+    return mpz_class(v + t);
+  };
+  const mpz_class ls = at(L);
+  mpz_class rhs = 4 * R2 * at(P);
+  mpz_mul_2exp(rhs.get_mpz_t(), rhs.get_mpz_t(), mp_bitcnt_t(2 * k));
+  return ls * ls <= rhs;
+}
+
+/// The AM-GM certificate with lambda = a / 2^j, a the leading `bits` bits
+/// of `lam` (> 0): lambda L - lambda^2 P - R^2 > 0 on [0, 1], times
+/// 2^(2j): a 2^j L - a^2 P - R^2 2^(2j), a quadratic with integer
+/// coefficients. True: Q > 0 on [0, 1].
+inline bool amgmCertificate(const mpz_class* L, const mpz_class* P,
+                            const mpz_class& R2, const mpf_class& lam,
+                            long bits) {
+  long j = bits - ilog2(lam);
+  mpf_class lam_s(lam, lam.get_prec());
+  if (j >= 0)
+    mpf_mul_2exp(lam_s.get_mpf_t(), lam_s.get_mpf_t(), mp_bitcnt_t(j));
+  else
+    mpf_div_2exp(lam_s.get_mpf_t(), lam_s.get_mpf_t(), mp_bitcnt_t(-j));
+  mpz_class a(lam_s);
+  if (sgn(a) <= 0) return false;
+  if (j < 0) {
+    mpz_mul_2exp(a.get_mpz_t(), a.get_mpz_t(), mp_bitcnt_t(-j));
+    j = 0;
+  }
+  mpz_class a2j = a;  // a 2^j
+  mpz_mul_2exp(a2j.get_mpz_t(), a2j.get_mpz_t(), mp_bitcnt_t(j));
+  mpz_class r2j = R2;  // R^2 2^(2j)
+  mpz_mul_2exp(r2j.get_mpz_t(), r2j.get_mpz_t(), mp_bitcnt_t(2 * j));
+  const mpz_class aa = a * a;
+  return quadraticPositive(a2j * L[0] - aa * P[0] - r2j, a2j * L[1] - aa * P[1],
+                           a2j * L[2] - aa * P[2]);
+}
+
+/// The quartic certificate at s0 = m / 2^k: with P(tau) = 2^(4k)
+/// Q((m + tau) / 2^k) = C0 + C1 tau + tau^2 H(tau), H = C2 + C3 tau +
+/// C4 tau^2 (the Taylor shift of Q's scaled coefficients, integers), tau in
+/// [lo, hi] = [-m, 2^k - m] (s in [0, 1]): H's least value there, h, is at
+/// an end or at the vertex -C3 / (2 C4) (value (4 C2 C4 - C3^2) / (4 C4),
+/// C4 = q4 > 0); h > 0 and C1^2 < 4 C0 h give P >= C0 + C1 tau + h tau^2
+/// > 0. Returns 0 (Q > 0 on [0, 1]), 1 (C0 <= 0: Q(s0) <= 0), -1, or 2
+/// when H < 0 at its vertex inside: Q has two more real roots near it,
+/// whose position (in s) is put in *other.
+/// Tight where Q's minimum is a cluster of critical points (the AM-GM
+/// bound's blind spot, edges through the hole), loose only where Q has
+/// another root region in [0, 1].
+inline int taylorCertificate(const mpz_class* q, const mpz_class& m, long k,
+                             mpf_class* other) {
+  mpz_class c[5];
+  for (int i = 0; i < 5; ++i)
+    mpz_mul_2exp(c[i].get_mpz_t(), q[i].get_mpz_t(), mp_bitcnt_t(k) * (4 - i));
+  for (int i = 0; i < 4; ++i)
+    for (int j = 3; j >= i; --j) c[j] += m * c[j + 1];
+  if (sgn(c[0]) <= 0) return 1;
+  mpz_class lo = -m, hi = 1;
+  mpz_mul_2exp(hi.get_mpz_t(), hi.get_mpz_t(), mp_bitcnt_t(k));
+  hi -= m;
+  const mpz_class c1sq = c[1] * c[1];
+  for (const mpz_class* t : {&lo, &hi}) {
+    const mpz_class h = c[2] + *t * (c[3] + c[4] * *t);
+    if (sgn(h) <= 0 || c1sq >= 4 * c[0] * h) return -1;
+  }
+  const mpz_class v2 = -c[3];  // the vertex times 2 C4
+  if (v2 > 2 * c[4] * lo && v2 < 2 * c[4] * hi) {
+    const mpz_class hv = 4 * c[2] * c[4] - c[3] * c[3];  // 4 C4 h
+    if (sgn(hv) <= 0) {
+      // H ~ C4 (tau - r3)(tau - r4) for Q's other two roots: they are
+      // real, near the vertex. It is where to look next.
+      mpf_class t(v2, mp_bitcnt_t(k + 64));
+      t /= mpf_class(2 * c[4], mp_bitcnt_t(k + 64));
+      t += mpf_class(m, mp_bitcnt_t(k + 64));
+      mpf_div_2exp(t.get_mpf_t(), t.get_mpf_t(), mp_bitcnt_t(k));
+      *other = t;
+      return 2;
+    }
+    if (c1sq * c[4] >= c[0] * hv) return -1;
+  }
+  return 0;
+}
+
+}  // namespace cert
+
+/// The torus edge with L = l0 + l1 s + l2 s^2 > 0 on [0, 1], rho^2 = P =
+/// p0 + p1 s + p2 s^2 (>= 0), rim radius R >= 0, tube radius M >= 0 and
+/// Q = L^2 - 4 R^2 P (q,
+/// lowest first, q[4] > 0): 1 if Q <= 0 somewhere on [0, 1], 0 if not, -1
+/// if not decided here (see above). `max_k` bounds the bits of s0.
+inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
+                                const mpz_class* p, const mpz_class& R,
+                                const mpz_class& M, long max_k) {
+  if (sgn(R) == 0) return 0;  // Q = L^2 > 0
+  if (sgn(q[4]) <= 0) return -1;
+  mpz_class qr[5], lr[3], pr[3];
+  cert::reversed(q, 5, qr);
+  cert::reversed(l, 3, lr);
+  cert::reversed(p, 3, pr);
+  const mpz_class* qs[2] = {q, qr};
+  // The candidate with the least value of Q chooses the direction. Q <= 0
+  // only inside the ball |p - o| <= R + M, i.e. within (R + M) / |E| of
+  // L's vertex s_c = -l1 / (2 l2) (L = |p - o|^2 + R^2 - M^2): where that
+  // window is narrow (g binary orders below the edge), Q is searched in
+  // it, as T(u) = Q(s_c + u 2^-g) on |u| <= 2 (features of order 1; its
+  // coefficients formed once at the precision the cancellation needs),
+  // else on [0, 1/2] from either end.
+  int dir = -1;
+  mpf_class x(0, 128), best_v(0, 128);
+  const long g =
+      (cert::ilog2(l[2]) - 1) / 2 - cert::ilog2(mpz_class(R + M)) - 2;
+  if (g > 16) {
+    const unsigned hp = unsigned(
+        4 * g + 192 +
+        std::max(0L, -cert::ilog2(mpf_class(l[1], 64) / mpf_class(l[2], 64))));
+    const mpf_class sc(-mpf_class(l[1], hp) / (2 * mpf_class(l[2], hp)), hp);
+    mpf_class t[5];
+    for (int i = 0; i < 5; ++i) {
+      t[i].set_prec(hp);
+      t[i] = q[i];
+    }
+    for (int i = 0; i < 4; ++i)
+      for (int j = 3; j >= i; --j) t[j] += sc * t[j + 1];
+    // T's coefficients as doubles, scaled by a common power of two.
+    long top_t = std::numeric_limits<long>::min();
+    for (int i = 0; i < 5; ++i) {
+      mpf_div_2exp(t[i].get_mpf_t(), t[i].get_mpf_t(), mp_bitcnt_t(g * i));
+      if (sgn(t[i]) != 0) top_t = std::max(top_t, cert::ilog2(t[i]));
+    }
+    double tl[5];
+    for (int i = 0; i < 5; ++i) {
+      long ex = 0;
+      const double f = mpf_get_d_2exp(&ex, t[i].get_mpf_t());
+      tl[i] = ex - 1 - top_t < -1000 ? 0.0 : std::ldexp(f, int(ex - top_t));
+    }
+    std::vector<double> us;
+    if (tl[4] > 0) cert::minimaIn(tl, -2, 2, &us);
+    for (double u : us) {
+      double v = 0;
+      for (int i = 5; i-- > 0;) v = v * u + tl[i];
+      mpf_class sv(u, hp);
+      mpf_div_2exp(sv.get_mpf_t(), sv.get_mpf_t(), mp_bitcnt_t(g));
+      sv += sc;
+      if (sgn(sv) < 0 || sv > 1) continue;
+      if (dir < 0 || v < best_v) {
+        dir = sv > 0.5 ? 1 : 0;
+        x.set_prec(hp);
+        x = dir == 0 ? sv : mpf_class(1 - sv, hp);
+        best_v = v;
+      }
+    }
+  } else {
+    for (int w = 0; w < 2; ++w) {
+      std::vector<mpf_class> xs;
+      cert::minimaInHalf(qs[w], 128, &xs);
+      for (const mpf_class& xc : xs) {
+        const mpf_class v = cert::evalAt(qs[w], 5, xc);
+        if (dir < 0 || v < best_v) {
+          dir = w;
+          x = xc;
+          best_v = v;
+        }
+      }
+    }
+  }
+  if (dir < 0) return -1;
+  const mpz_class R2 = R * R;
+  // At most two moves to another root region that the Taylor certificate
+  // points at (the 128-bit search can miss a minimum inside a cluster).
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    const mpz_class* L = dir == 0 ? l : lr;
+    const mpz_class* P = dir == 0 ? p : pr;
+    const mpz_class* Q = qs[dir];
+    const mpz_class dL[2] = {L[1], 2 * L[2]}, dP[2] = {P[1], 2 * P[2]};
+    const mpz_class dQ[4] = {Q[1], 2 * Q[2], 3 * Q[3], 4 * Q[4]};
+    const mpz_class eQ[3] = {dQ[1], 2 * dQ[2], 3 * dQ[3]};
+    const long top_l = std::max(cert::ilog2(L[1]), cert::ilog2(L[2]) + 1);
+    long top_q = cert::ilog2(dQ[0]);
+    for (int i = 1; i < 4; ++i) top_q = std::max(top_q, cert::ilog2(dQ[i]));
+    bool on_f = true, moved = false;
+    const long lead = std::max(0L, -cert::ilog2(x));
+    // k: the bits of s0 (absolute). Doubled (in floats only) until the
+    // minimum's value v = F(s*) (Q(s*) where Newton runs on Q) is resolved
+    // at the working precision; then k is set so that the curvature times
+    // 2^-2k is about 2^-16 |v|, and the exact certificates run, with up to
+    // two retries at more bits (the Taylor bound may need log2(C2 / h) / 2
+    // more).
+    long k = std::max(96 + lead, g + 96);
+    // A miss needs two levels (above); if the second would pass max_k,
+    // the floats cost about what the count does: leave it to the count.
+    if (2 * k - lead > max_k) return -1;
+    int tries = 0;
+    bool resolved = false, have_prev_v = false, expect_hit = false;
+    mpf_class prev_v(0, 64);
+    while (k <= max_k && !moved) {
+      // Newton on F' = L' - R P' / rho, F'' = L'' - R (P'' / rho -
+      // P'^2 / (2 rho^3)), at a precision that resolves 2^-k in s after
+      // the cancellation of F' 's terms (up to about 2^top_l). Where
+      // F'' <= 0 (near the axis, where rho has a kink) on Q' instead.
+      // Inside the window (g > 0) L and P cancel about 2g bits, Q 4g.
+      const long gw = std::max(0L, g);
+      long prec = k + 2 * gw + 64;
+      mpf_class f2(0, mp_bitcnt_t(prec));
+      for (int it = 0; it < 12; ++it) {
+        x.set_prec(mp_bitcnt_t(prec));
+        mpf_class f1(0, mp_bitcnt_t(prec));
+        f2.set_prec(mp_bitcnt_t(prec));
+        f2 = 0;
+        long top = top_l;
+        const mpf_class pv = cert::evalAt(P, 3, x);
+        if (on_f && sgn(pv) > 0) {
+          const mpf_class rho(sqrt(pv), mp_bitcnt_t(prec));
+          const mpf_class pd = cert::evalAt(dP, 2, x);
+          f1 = cert::evalAt(dL, 2, x) - R * pd / rho;
+          f2 = mpf_class(2 * L[2], mp_bitcnt_t(prec)) -
+               R * (2 * P[2] / rho - pd * pd / (2 * rho * rho * rho));
+        }
+        if (on_f && sgn(f2) <= 0) on_f = false;
+        if (!on_f) {
+          f1 = cert::evalAt(dQ, 4, x);
+          f2 = cert::evalAt(eQ, 3, x);
+          top = top_q;
+          if (sgn(f2) <= 0) break;
+        }
+        const long want =
+            k + std::max(0L, top - cert::ilog2(f2)) + (on_f ? 2 : 4) * gw + 64;
+        if (want > prec + 8) {  // redo this step at the needed precision
+          prec = want;
+          continue;
+        }
+        const mpf_class step(f1 / f2, mp_bitcnt_t(prec));
+        x -= step;
+        if (sgn(step) == 0 || cert::ilog2(step) < -k - 2) break;
+      }
+      if (sgn(x) < 0) x = 0;
+      if (x > 0.5) x = 0.5;
+      if (sgn(f2) <= 0) return -1;
+      if (!resolved) {
+        // v and the size of the terms it cancels from, in floats.
+        const mpf_class lv = cert::evalAt(L, 3, x), pv = cert::evalAt(P, 3, x);
+        const mpf_class r2rho(2 * R * sqrt(abs(pv)), mp_bitcnt_t(prec));
+        mpf_class v(lv - r2rho, mp_bitcnt_t(prec));
+        mpf_class size(abs(lv) + r2rho, mp_bitcnt_t(prec));
+        if (!on_f || sgn(pv) <= 0) {
+          v = cert::evalAt(Q, 5, x);
+          size = size * size;
+        }
+        // Resolved: above the rounding of its terms and equal (to 2^-8)
+        // to the previous level's value (else x's own error, or rounding
+        // the estimate misses, still dominates it).
+        const bool same =
+            have_prev_v && sgn(v) == sgn(prev_v) &&
+            cert::ilog2(mpf_class(v - prev_v, 64)) < cert::ilog2(v) - 8;
+        // A negative value needs no second level: F(x) < 0 already
+        // (x's error only raises F above its minimum).
+        if (sgn(v) == 0 || cert::ilog2(v) < cert::ilog2(size) - prec + 40 ||
+            (!same && sgn(v) > 0)) {
+          prev_v = v;
+          have_prev_v = sgn(v) != 0;
+          k = 2 * k - lead;  // not resolved yet
+          continue;
+        }
+        resolved = true;
+        expect_hit = sgn(v) < 0;
+        const long kn = (cert::ilog2(f2) - cert::ilog2(v)) / 2 + 8;
+        if (kn > k) {
+          k = kn;
+          continue;
+        }
+      }
+      mpf_class scaled(x, mp_bitcnt_t(prec));
+      mpf_mul_2exp(scaled.get_mpf_t(), scaled.get_mpf_t(), mp_bitcnt_t(k));
+      const mpz_class m(scaled);  // 0 <= m <= 2^(k-1)
+      // The estimate's sign picks the certificate to try (both exact; the
+      // other one only on the last try).
+      const bool last = tries == 2;
+      if (expect_hit || last) {
+        if (cert::hitAt(L, P, R2, m, k)) return 1;
+      }
+      // Miss: the AM-GM bound (integers of L's size), else the quartic's.
+      x.set_prec(mp_bitcnt_t(prec));
+      const mpf_class pv = cert::evalAt(P, 3, x);
+      if ((!expect_hit || last) && sgn(pv) > 0) {
+        const mpf_class lam(R / sqrt(pv), mp_bitcnt_t(prec));
+        if (cert::amgmCertificate(L, P, R2, lam, k + 32)) return 0;
+      }
+      // The quartic's bound costs more (Q's integers, shifted): where
+      // Newton runs on F (AM-GM's domain) only on the last try.
+      mpf_class other;
+      const int t = (on_f && !last) || (expect_hit && !last)
+                        ? -1
+                        : cert::taylorCertificate(Q, m, k, &other);
+      if (t == 0) return 0;
+      // A vertex within about 2^-k of s0 is C0 and C1's doing (s0 not yet
+      // close enough), not another root region.
+      if (t == 2 &&
+          cert::ilog2(mpf_class(other - x, mp_bitcnt_t(prec))) > 16 - k) {
+        if (sgn(other) < 0 || other > 1) return -1;
+        if (other > 0.5) {
+          dir = 1 - dir;
+          other = 1 - other;
+        }
+        x = other;
+        moved = true;
+      } else if (++tries > 2) {
+        return -1;
+      } else {
+        k += 16 * tries + (k - lead) / 8;
+      }
+    }
+    if (!moved) return -1;
+  }
+  return -1;
 }
 
 }  // namespace tricyl::detail::sturm

@@ -505,16 +505,8 @@ Tri edgeFilter(const TorusInput<K>& t, int a, int b) {
 
 // ---- The exact stage: GMP integers, Sturm sequence ------------------------
 
-/// Is a0 + a1 s + a2 s^2 > 0 for every s in [0, 1]? At the ends, and at
-/// the interior vertex -a1 / (2 a2) of a convex parabola, where the value is
-/// (4 a0 a2 - a1^2) / (4 a2).
-bool quadraticPositiveOnUnit(const mpz_class& a0, const mpz_class& a1,
-                             const mpz_class& a2) {
-  if (sgn(a0) <= 0 || sgn(a0 + a1 + a2) <= 0) return false;
-  if (sgn(a2) > 0 && sgn(a1) < 0 && a1 + 2 * a2 > 0)
-    return sgn(4 * a0 * a2 - a1 * a1) > 0;
-  return true;
-}
+/// Is a0 + a1 s + a2 s^2 > 0 for every s in [0, 1]? (src/margin_sturm.h)
+using detail::sturm::cert::quadraticPositive;
 
 /// The exact stage of one edge (GMP integers). With p(s) = A + s E,
 /// rho^2 = p0 + p1 s + p2 s^2 and z - C = za + ez s, in this order:
@@ -543,6 +535,10 @@ bool quadraticPositiveOnUnit(const mpz_class& a0, const mpz_class& a1,
 ///    in closed form, no gcd; exact subdivision of the Bernstein form was
 ///    tried before it and dropped: on the wide inputs whose edges reach
 ///    this point it needed thousands of pieces).
+/// The coefficient size (bits) above which edgeExact tries the local
+/// certificate before the Sturm count.
+constexpr std::size_t kWideQuarticBits = 10000;
+
 bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
   const mpz_class ex = t.X[b] - t.X[a], ey = t.Y[b] - t.Y[a],
                   ez = t.Z[b] - t.Z[a];
@@ -553,11 +549,11 @@ bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
   const mpz_class R2 = t.R * t.R, M2 = t.M * t.M;
   const mpz_class l[3] = {p0 + za * za + (R2 - M2), p1 + 2 * za * ez,
                           p2 + ez * ez};
-  if (!quadraticPositiveOnUnit(l[0], l[1], l[2])) return true;  // 1.
+  if (!quadraticPositive(l[0], l[1], l[2])) return true;  // 1.
   if ((za > t.M && zb > t.M) || (za < -t.M && zb < -t.M)) return false;
   const mpz_class rm2 = (t.R + t.M) * (t.R + t.M);
-  if (quadraticPositiveOnUnit(p0 - rm2, p1, p2)) return false;
-  if (quadraticPositiveOnUnit(p0 + za * za - rm2, l[1], l[2])) return false;
+  if (quadraticPositive(p0 - rm2, p1, p2)) return false;
+  if (quadraticPositive(p0 + za * za - rm2, l[1], l[2])) return false;
   // 3. Q's coefficients in the power basis.
   const mpz_class R4 = 4 * R2;
   const mpz_class q[5] = {l[0] * l[0] - R4 * p0, 2 * l[0] * l[1] - R4 * p1,
@@ -570,6 +566,20 @@ bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
   if (sgn(q0 + 3 * q[1]) > 0 && sgn(q0 + 6 * q[1] + 2 * q[2]) > 0 &&
       sgn(q0 + 9 * q[1] + 6 * q[2] + 3 * q[3]) > 0)
     return false;
+  // Wide quartics: the local certificate at an approximate minimiser
+  // first (torusEdgeCertificate, src/margin_sturm.h), the Sturm count where
+  // it cannot decide (an exact tangency, for one). s0 gets at most a third
+  // of Q's bits: beyond that, its floats cost about what the count does.
+  // Narrow quartics go to the Sturm count directly, which is cheap there.
+  std::size_t bits = 0;
+  for (const mpz_class& c : q)
+    bits = std::max(bits, mpz_sizeinbase(c.get_mpz_t(), 2));
+  if (bits > kWideQuarticBits) {
+    const mpz_class pq[3] = {p0, p1, p2};
+    const int s =
+        detail::sturm::torusEdgeCertificate(q, l, pq, t.R, t.M, long(bits) / 3);
+    if (s >= 0) return s == 1;
+  }
   return detail::sturm::rootsInUnitTorus(q, l[1], l[2]) > 0;
 }
 

@@ -202,5 +202,139 @@ TEST(MarginSturm, TorusChainAgreesWithRationalSturm) {
   EXPECT_GT(with_roots, compared / 20);
 }
 
+// The three exact tests of torusEdgeCertificate on the exactly tangent edge
+// of TorusChainAgreesWithRationalSturm (R = 5k, the edge (8k, -2k + 4k s,
+// 4k), M^2 = 25k^2 + dm): at s0 = 1/2, F = L - 2 R rho = -dm, rho = 8k, so
+// lambda = R / rho = 5/8 makes the AM-GM quadratic (3/8) P - 24k^2 - dm,
+// whose least value is -dm: it certifies the miss (dm = -1) and must not
+// certify the hit (dm = +1); Q(1/2) <= 0 exactly for the hit; the shifted
+// quartic must not contradict either.
+TEST(MarginSturm, CertificatesOnTheExactTangent) {
+  for (const mpz_class& k :
+       {mpz_class(1), mpz_class(10), mpz_class(mpz_class(1) << 100)}) {
+    const mpz_class k2 = k * k, R = 5 * k;
+    const Poly pp{68 * k2, -16 * k2, 16 * k2};
+    for (int dm : {-1, 1}) {
+      const Poly l{pp[0] + 16 * k2 - dm, pp[1], pp[2]};
+      const Poly q = torusQuartic(l, pp, R);
+      const mpf_class lam(0.625, 64);
+      EXPECT_EQ(detail::sturm::cert::amgmCertificate(l.data(), pp.data(), R * R,
+                                                     lam, 8),
+                dm < 0)
+          << "dm " << dm << " k " << k.get_str();
+      for (long bits : {1L, 40L}) {  // s0 = 1/2 as 1/2 and as 2^39 / 2^40
+        const mpz_class m = mpz_class(1) << (bits - 1);
+        EXPECT_EQ(
+            detail::sturm::cert::hitAt(l.data(), pp.data(), R * R, m, bits),
+            dm > 0);
+        mpf_class other;
+        const int t =
+            detail::sturm::cert::taylorCertificate(q.data(), m, bits, &other);
+        EXPECT_NE(t, dm > 0 ? 0 : 1) << "dm " << dm << " bits " << bits;
+      }
+    }
+  }
+}
+
+// torusEdgeCertificate (the local certificate in front of the Sturm count
+// on wide torus edges) against rootsInUnitTorus: whenever it decides, its
+// answer must be the count's. Edges of 2^(300 .. 1500) times the rim
+// radius, passing the tube at random heights and offsets (over the hole,
+// outside the rim, near the axis), with the tube's squared radius M2 at the
+// exact threshold where the answer flips (bisection on M2, each step
+// decided by the count where the certificate abstains) and one either
+// side, and at random values; also how often it decides (it must, on most
+// near-threshold edges: that is what it is for).
+TEST(MarginSturm, TorusEdgeCertificateAgreesWithSturm) {
+  const std::uint64_t seed = test::baseSeed();
+  SCOPED_TRACE(test::seedTrace(seed));
+  scenes::Rng g(seed ^ 0x63657274u);
+  auto big = [&g](int bits) {  // a random integer of about `bits` bits
+    mpz_class z = 1;
+    for (int b = 0; b < bits; b += 30) z = (z << 30) + g.integer(1 << 30);
+    return mpz_class(z >> (z.get_str(2).size() - std::size_t(bits)));
+  };
+  struct Edge {
+    Poly pp, lz;  // rho^2, and (z - C)^2 + rho^2 (L without R^2 - M2)
+    mpz_class R;
+  };
+  // Exact answer (the count), and the certificate's (-1: abstains).
+  auto answers = [](const Edge& e, const mpz_class& m2, int* cert) {
+    const Poly l{e.lz[0] + e.R * e.R - m2, e.lz[1], e.lz[2]};
+    *cert = -2;  // not asked: L <= 0 somewhere, or an end inside
+    if (!detail::sturm::cert::quadraticPositive(l[0], l[1], l[2])) return 1;
+    const Poly q = torusQuartic(l, e.pp, e.R);
+    mpz_class at1 = 0;
+    for (const auto& c : q) at1 += c;
+    if (sgn(q[0]) <= 0 || sgn(at1) <= 0) return 1;
+    mpz_class m = sqrt(m2) + 1;
+    long bits = 0;
+    for (const auto& c : q)
+      bits = std::max(bits, long(mpz_sizeinbase(c.get_mpz_t(), 2)));
+    *cert = detail::sturm::torusEdgeCertificate(q.data(), l.data(), e.pp.data(),
+                                                e.R, m, bits);
+    return detail::sturm::rootsInUnitTorus(q.data(), l[1], l[2]) > 0 ? 1 : 0;
+  };
+  const long n = test::scaled(10);
+  long asked = 0, decided = 0;
+  for (long i = 0; i < n; ++i) {
+    const int rb = 200 + g.integer(400);        // rim radius bits
+    const int wb = rb + 300 + g.integer(1200);  // edge half-length bits
+    const mpz_class R = big(rb);
+    // A = (x0, -W + y0, z0), E = (ex, 2W, ez): passes near (x0, 0, z0)
+    // at about s = 1/2; x0 from near the axis to outside the rim.
+    const int kind = g.integer(4);
+    const mpz_class x0 = kind == 0 ? mpz_class(big(rb - 40 - g.integer(100)))
+                         : kind == 1
+                             ? mpz_class(R - big(rb - 2 - g.integer(60)))
+                             : mpz_class(R + big(rb - 2 - g.integer(60)));
+    const mpz_class z0 = big(rb - 1 - g.integer(80)) * (g.integer(2) ? 1 : -1);
+    const mpz_class W = big(wb);
+    const mpz_class ex = big(rb - g.integer(rb)), ez = big(rb - g.integer(rb));
+    const mpz_class ax = x0 - ex / 2, ay = -W, az = z0 - ez / 2;
+    Edge e;
+    e.R = R;
+    e.pp = Poly{ax * ax + ay * ay, 2 * (ax * ex + ay * 2 * W),
+                ex * ex + 4 * W * W};
+    e.lz = Poly{e.pp[0] + az * az, e.pp[1] + 2 * az * ez, e.pp[2] + ez * ez};
+    // Bisection on M2 for the flip: 0 (a miss unless the edge crosses
+    // the circle) .. (R + |x0| + |z0|)^2 * 4 (a hit).
+    mpz_class lo = 0,
+              hi = 4 * (R + abs(x0) + abs(z0)) * (R + abs(x0) + abs(z0));
+    int c = 0;
+    if (answers(e, lo, &c) == 1) continue;
+    ASSERT_EQ(answers(e, hi, &c), 1);
+    while (hi - lo > 1) {
+      const mpz_class mid = (lo + hi) / 2;
+      int cm = 0;
+      const int want = answers(e, mid, &cm);
+      if (cm >= 0) {
+        ASSERT_EQ(cm, want) << "M2 " << mid.get_str() << " R " << R.get_str();
+        ++asked;
+        decided += 1;
+      } else if (cm == -1) {
+        ++asked;
+      }
+      (want == 1 ? hi : lo) = mid;
+    }
+    for (const mpz_class& m2 : {lo, hi, mpz_class(lo - 1), mpz_class(hi + 1)}) {
+      int cm = 0;
+      const int want = answers(e, m2, &cm);
+      if (cm == -1) ++asked;
+      if (cm >= 0) {
+        ++asked;
+        ++decided;
+        ASSERT_EQ(cm, want) << "M2 " << m2.get_str() << " R " << R.get_str()
+                            << " kind " << kind;
+      }
+    }
+  }
+  std::printf(
+      "[ stats ] %ld certificate calls on wide torus edges, %ld decided\n",
+      asked, decided);
+  EXPECT_GT(asked, 0);
+  EXPECT_GT(decided, asked / 2);
+}
+
 }  // namespace
 }  // namespace tricyl
