@@ -86,7 +86,7 @@ class LeafBlock {
   /// Decides the waiting leaves and records the hits in order. Returns true
   /// when the request is satisfied (the traversal stops).
   bool flush() {
-    if (n_ == 0) return request_.isSatisfied(result_);
+    if (n_ == 0) return satisfied();
     // World vertices exactly as the Solver sees them (fcl_solver.h, FRAMES).
     const fcl::Triangle* t[kSize];
     for (std::size_t i = 0; i < n_; ++i) t[i] = &tris_[id_[i]];
@@ -128,7 +128,7 @@ class LeafBlock {
       if (a == Answer::kDisjoint) continue;
       if (stats_ != nullptr) ++stats_->hits;
       record(i);
-      if (request_.isSatisfied(result_)) {
+      if (satisfied()) {
         done = true;
         break;
       }
@@ -141,10 +141,19 @@ class LeafBlock {
  private:
   static Vec3<double> vec(const V3& p) { return {p[0], p[1], p[2]}; }
 
+  /// request_.isSatisfied(result_) (FCL 0.7's definition: no cost asked,
+  /// which the caller checked, and at least one and at least
+  /// num_max_contacts contacts), from the count kept here: FCL's is a call
+  /// into libfcl for every triangle decided.
+  bool satisfied() const {
+    return contacts_ > 0 && request_.num_max_contacts <= contacts_;
+  }
+
   void record(std::size_t i) {
     if (!request_.enable_contact) {
       result_.addContact(fcl::Contact<double>(mesh_, cyl_geom_, id_[i],
                                               fcl::Contact<double>::NONE));
+      ++contacts_;
       return;
     }
     // The Solver's contact path (fcl_solver.cpp), and FCL's storage of it:
@@ -159,6 +168,7 @@ class LeafBlock {
         mesh_, cyl_geom_, id_[i], fcl::Contact<double>::NONE,
         V3(est.point.x, est.point.y, est.point.z),
         -V3(est.normal.x, est.normal.y, est.normal.z), est.depth));
+    ++contacts_;
   }
 
   /// A triangle within the margin that does not touch the cylinder: the
@@ -169,6 +179,7 @@ class LeafBlock {
     result_.addContact(fcl::Contact<double>(mesh_, cyl_geom_, id_[i],
                                             fcl::Contact<double>::NONE, c.pos,
                                             c.normal, c.depth));
+    ++contacts_;
   }
 
   const fcl::CollisionGeometry<double>* mesh_;
@@ -184,6 +195,7 @@ class LeafBlock {
   double margin_;
   TraversalStats* stats_;
   std::size_t n_ = 0;
+  std::size_t contacts_ = result_.numContacts();  // (record() counts)
   // First hits: small blocks first, so that a traversal that is about to
   // stop does not walk to and decide leaves past the hit; doubled at every
   // flush. The first block holds as many leaves as contacts are still

@@ -258,8 +258,7 @@ overlaps(const Box& x, const Local& k) {
   for (int i = 0; i < 3; ++i) {
     if constexpr (kAligned) {
       const double sb = e[i] + k.support[i];
-      if (gt(std::fabs(d[i]), sb) &&
-          gt(std::fabs(d[i]), sb + nodeMargin(x, k)))
+      if (gt(std::fabs(d[i]), sb) && gt(std::fabs(d[i]), sb + nodeMargin(x, k)))
         return false;
     } else {
       const double sb = e[i] + k.h * ua[i];
@@ -636,15 +635,16 @@ bool prepare(const fcl::BVHModel<BV>& model, const Tf& tf_mesh,
     if constexpr (!Boxer::kAligned) box_delta = gramDeparture(root.a);
   }
   // (The identity's departure is exactly 0.)
-  const double delta = std::max({identity ? 0.0 : nonOrthogonality(Rm),
-                                 nonOrthogonality(Rc), box_delta});
+  const double delta = std::max(
+      {identity ? 0.0 : nonOrthogonality(Rm), nonOrthogonality(Rc), box_delta});
   if (!std::islessequal(delta, kMaxNonOrthogonality)) return false;
 
   Local& k = out->k;
   // (For the identity, R_m^T x computes x exactly, up to the sign of a zero.)
-  const V3 c = identity ? V3(tf_cyl.translation())
-                        : V3(Rm.transpose() * (tf_cyl.translation() -
-                                               tf_mesh.translation()));
+  const V3 c =
+      identity
+          ? V3(tf_cyl.translation())
+          : V3(Rm.transpose() * (tf_cyl.translation() - tf_mesh.translation()));
   const V3 u = identity ? V3(Rc.col(2)) : V3(Rm.transpose() * Rc.col(2));
   for (int i = 0; i < 3; ++i) {
     k.c[i] = c[i];
