@@ -39,7 +39,16 @@ using namespace traversal;  // NOLINT: this file's own internal helpers
 // 2 (rob first hit the most: its large triangles leave the kernel's early
 // outs more often than a leaf's box test does). A leaf's box is in the node
 // the walk reads for the triangle's index anyway. Only speed depends on it.
+// Measured again with the first block of one leaf and the AVX2 node test
+// (bench/results/2026-11-26-mesh-walks-c.md), 0 against 2: first hit env
+// 10,913 -> 10,276, bunny 6,874 -> 6,724, rob 5,913 -> 5,596 instructions a
+// call (every leaf tested: a query about to stop reaches its hit through
+// fewer kernel calls), exhaustive 55,953 -> 58,504, 18,448 -> 18,934,
+// 19,694 -> 19,716; 4: more on all but env exhaustive (56,200). So a query
+// that can stop early (ORDER, below) tests every node (first hit 10,202 /
+// 6,683 / 5,574), the others send subtrees of at most 2 triangles untested.
 constexpr int kUntestedSubtree = 2;
+constexpr int kUntestedSubtreeEarlyStop = 0;
 /// Leaves waiting for the kernel, in traversal order.
 ///
 /// Each is decided by the scalar kernel (tryIntersect), not by the batch
@@ -273,6 +282,8 @@ traverseBody(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
   // ORDER: only a walk that can stop early orders its children.
   const bool nearer_first = request.num_max_contacts - result.numContacts() <
                             std::size_t(std::max(model.num_tris, 0));
+  const int untested_subtree =
+      nearer_first ? kUntestedSubtreeEarlyStop : kUntestedSubtree;
   NodeStack stack;
   stack.push(0);
   Box box;
@@ -299,7 +310,7 @@ traverseBody(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
       const int left = leftChild(node), right = rightChild(node);
       prefetchNode(model.getBV(left));
       prefetchNode(model.getBV(right));
-      if (untested || node.num_primitives <= kUntestedSubtree) {
+      if (untested || node.num_primitives <= untested_subtree) {
         stack.push(~right);
         stack.push(~left);
         continue;
