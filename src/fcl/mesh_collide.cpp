@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <type_traits>
 #include <vector>
@@ -38,7 +39,16 @@ using namespace traversal;  // NOLINT: this file's own internal helpers
 // 2 (rob first hit the most: its large triangles leave the kernel's early
 // outs more often than a leaf's box test does). A leaf's box is in the node
 // the walk reads for the triangle's index anyway. Only speed depends on it.
+// Measured again with the first block of one leaf and the AVX2 node test
+// (bench/results/2026-11-26-mesh-walks-c.md), 0 against 2: first hit env
+// 10,913 -> 10,276, bunny 6,874 -> 6,724, rob 5,913 -> 5,596 instructions a
+// call (every leaf tested: a query about to stop reaches its hit through
+// fewer kernel calls), exhaustive 55,953 -> 58,504, 18,448 -> 18,934,
+// 19,694 -> 19,716; 4: more on all but env exhaustive (56,200). So a query
+// that can stop early (ORDER, below) tests every node (first hit 10,202 /
+// 6,683 / 5,574), the others send subtrees of at most 2 triangles untested.
 constexpr int kUntestedSubtree = 2;
+constexpr int kUntestedSubtreeEarlyStop = 0;
 /// Leaves waiting for the kernel, in traversal order.
 ///
 /// Each is decided by the scalar kernel (tryIntersect), not by the batch
@@ -86,7 +96,7 @@ class LeafBlock {
   /// Decides the waiting leaves and records the hits in order. Returns true
   /// when the request is satisfied (the traversal stops).
   bool flush() {
-    if (n_ == 0) return request_.isSatisfied(result_);
+    if (n_ == 0) return satisfied();
     // World vertices exactly as the Solver sees them (fcl_solver.h, FRAMES).
     const fcl::Triangle* t[kSize];
     for (std::size_t i = 0; i < n_; ++i) t[i] = &tris_[id_[i]];
@@ -128,7 +138,7 @@ class LeafBlock {
       if (a == Answer::kDisjoint) continue;
       if (stats_ != nullptr) ++stats_->hits;
       record(i);
-      if (request_.isSatisfied(result_)) {
+      if (satisfied()) {
         done = true;
         break;
       }
@@ -141,10 +151,19 @@ class LeafBlock {
  private:
   static Vec3<double> vec(const V3& p) { return {p[0], p[1], p[2]}; }
 
+  /// request_.isSatisfied(result_) (FCL 0.7's definition: no cost asked,
+  /// which the caller checked, and at least one and at least
+  /// num_max_contacts contacts), from the count kept here: FCL's is a call
+  /// into libfcl for every triangle decided.
+  bool satisfied() const {
+    return contacts_ > 0 && request_.num_max_contacts <= contacts_;
+  }
+
   void record(std::size_t i) {
     if (!request_.enable_contact) {
       result_.addContact(fcl::Contact<double>(mesh_, cyl_geom_, id_[i],
                                               fcl::Contact<double>::NONE));
+      ++contacts_;
       return;
     }
     // The Solver's contact path (fcl_solver.cpp), and FCL's storage of it:
@@ -159,6 +178,7 @@ class LeafBlock {
         mesh_, cyl_geom_, id_[i], fcl::Contact<double>::NONE,
         V3(est.point.x, est.point.y, est.point.z),
         -V3(est.normal.x, est.normal.y, est.normal.z), est.depth));
+    ++contacts_;
   }
 
   /// A triangle within the margin that does not touch the cylinder: the
@@ -169,6 +189,7 @@ class LeafBlock {
     result_.addContact(fcl::Contact<double>(mesh_, cyl_geom_, id_[i],
                                             fcl::Contact<double>::NONE, c.pos,
                                             c.normal, c.depth));
+    ++contacts_;
   }
 
   const fcl::CollisionGeometry<double>* mesh_;
@@ -184,12 +205,20 @@ class LeafBlock {
   double margin_;
   TraversalStats* stats_;
   std::size_t n_ = 0;
+  std::size_t contacts_ = result_.numContacts();  // (record() counts)
   // First hits: small blocks first, so that a traversal that is about to
-  // stop does not decide 64 leaves past the hit; doubled at every flush.
+  // stop does not walk to and decide leaves past the hit; doubled at every
+  // flush. The first block holds as many leaves as contacts are still
+  // wanted (one for a first-hit query: decided as soon as the walk reaches
+  // it; the nearer-child ORDER makes it a hit more often than not). On the
+  // grazing scenes of bench_fcl_collide, first hit, against a first block
+  // of at least 4 (bench/results/2026-11-26-mesh-walks-c.md): node tests
+  // per call env 46.4 -> 41.1, bunny 24.8 -> 21.3, rob 17.9 -> 15.5,
+  // instructions 7-10 % fewer; a first block of 2 read 2-4 % more nodes.
   std::size_t capacity_ = std::clamp<std::size_t>(
-      2 * (request_.num_max_contacts -
-           std::min(request_.num_max_contacts, result_.numContacts())),
-      4, kSize);
+      request_.num_max_contacts -
+          std::min(request_.num_max_contacts, result_.numContacts()),
+      1, kSize);
   int id_[kSize];
   Triangle<double> tri_[kSize];
 };
@@ -229,11 +258,15 @@ double centreDistance2(const BV& bv, const Local& k) {
 }
 
 template <class BV>
-bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
-              const fcl::Cylinderd* cyl_geom, const Tf& tf_cyl,
-              const fcl::CollisionRequest<double>& request,
-              fcl::CollisionResult<double>& result, double margin,
-              TraversalStats* stats) {
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((always_inline))
+#endif
+inline bool
+traverseBody(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
+             const fcl::Cylinderd* cyl_geom, const Tf& tf_cyl,
+             const fcl::CollisionRequest<double>& request,
+             fcl::CollisionResult<double>& result, double margin,
+             TraversalStats* stats) {
   using Boxer = BoxOf<BV>;
   const auto& model = static_cast<const fcl::BVHModel<BV>&>(*geom);
   Setup setup;
@@ -249,6 +282,8 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
   // ORDER: only a walk that can stop early orders its children.
   const bool nearer_first = request.num_max_contacts - result.numContacts() <
                             std::size_t(std::max(model.num_tris, 0));
+  const int untested_subtree =
+      nearer_first ? kUntestedSubtreeEarlyStop : kUntestedSubtree;
   NodeStack stack;
   stack.push(0);
   Box box;
@@ -275,7 +310,7 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
       const int left = leftChild(node), right = rightChild(node);
       prefetchNode(model.getBV(left));
       prefetchNode(model.getBV(right));
-      if (untested || node.num_primitives <= kUntestedSubtree) {
+      if (untested || node.num_primitives <= untested_subtree) {
         stack.push(~right);
         stack.push(~left);
         continue;
@@ -299,6 +334,63 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
     stats->nodes_skipped += skipped;
   }
   return true;
+}
+
+// The walk compiled twice on x86-64: for the baseline (SSE2) and for AVX2,
+// chosen once per process. The same operations in the same order either way
+// (-ffp-contract=off, no FMA: AVX2's three-operand, VEX-encoded forms of
+// the same instructions, correctly rounded alike), so the same nodes are
+// skipped and the same triangles reported; the AVX2 build saves the register
+// copies and two-instruction broadcasts of the baseline's node test (5-8 %
+// fewer instructions a call on bench_fcl_collide's grazing scenes). As for
+// the kernel's prologues, TRICYL_SCALAR_BASELINE=1 in the environment keeps
+// the baseline (to test it on AVX2 machines).
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && \
+    !defined(__AVX2__)
+#define TRICYL_WALK_AVX2 1
+const bool kWalkAvx2 = __builtin_cpu_supports("avx2") != 0 &&
+                       std::getenv("TRICYL_SCALAR_BASELINE") == nullptr;
+#else
+#define TRICYL_WALK_AVX2 0
+#endif
+
+template <class BV>
+bool traverseBaseline(const fcl::CollisionGeometry<double>* geom,
+                      const Tf& tf_mesh, const fcl::Cylinderd* cyl_geom,
+                      const Tf& tf_cyl,
+                      const fcl::CollisionRequest<double>& request,
+                      fcl::CollisionResult<double>& result, double margin,
+                      TraversalStats* stats) {
+  return traverseBody<BV>(geom, tf_mesh, cyl_geom, tf_cyl, request, result,
+                          margin, stats);
+}
+
+#if TRICYL_WALK_AVX2
+template <class BV>
+__attribute__((target("avx2"))) bool traverseAvx2(
+    const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
+    const fcl::Cylinderd* cyl_geom, const Tf& tf_cyl,
+    const fcl::CollisionRequest<double>& request,
+    fcl::CollisionResult<double>& result, double margin,
+    TraversalStats* stats) {
+  return traverseBody<BV>(geom, tf_mesh, cyl_geom, tf_cyl, request, result,
+                          margin, stats);
+}
+#endif
+
+template <class BV>
+bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
+              const fcl::Cylinderd* cyl_geom, const Tf& tf_cyl,
+              const fcl::CollisionRequest<double>& request,
+              fcl::CollisionResult<double>& result, double margin,
+              TraversalStats* stats) {
+#if TRICYL_WALK_AVX2
+  if (kWalkAvx2)
+    return traverseAvx2<BV>(geom, tf_mesh, cyl_geom, tf_cyl, request, result,
+                            margin, stats);
+#endif
+  return traverseBaseline<BV>(geom, tf_mesh, cyl_geom, tf_cyl, request, result,
+                              margin, stats);
 }
 
 }  // namespace

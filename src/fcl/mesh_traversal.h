@@ -166,7 +166,7 @@ struct NodeTerms {
   double p[3];
 };
 
-template <bool kAligned>
+template <bool kAligned, bool kMargin = true>
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((always_inline))
 #endif
@@ -176,8 +176,12 @@ nodeTerms(const Box& x, const Local& k) {
   const double* b = x.b;
   const double* e = x.e;
   for (int i = 0; i < 3; ++i) n.d[i] = b[i] - k.c[i];
-  n.m = k.global + k.rel * (std::fabs(b[0]) + std::fabs(b[1]) +
-                            std::fabs(b[2]) + e[0] + e[1] + e[2]);
+  if constexpr (kMargin) {
+    n.m = k.global + k.rel * (std::fabs(b[0]) + std::fabs(b[1]) +
+                              std::fabs(b[2]) + e[0] + e[1] + e[2]);
+  } else {
+    n.m = 0;  // (computed by the caller only where needed: nodeMargin)
+  }
   n.ud = k.u[0] * n.d[0] + k.u[1] * n.d[1] + k.u[2] * n.d[2];
   if constexpr (kAligned) {
     for (int i = 0; i < 3; ++i) n.ua[i] = k.au[i];
@@ -219,28 +223,47 @@ inline double radialFactor(const NodeTerms& n, int i) {
   return sqrtNonNegative(wj * wj + wk * wk);
 }
 
+// The margin m is added last to each right-hand side (the sums are
+// evaluated left to right), so each test is first made without it: rounding
+// is monotone and m >= 0 (or NaN), so a right-hand side without m is at most
+// the one with it, and a node the test without m does not skip, the test
+// with m does not skip either. Only a test that would skip without m
+// computes m and decides with the right-hand side it always had: the
+// same decisions, bit for bit, without m's eight operations on the nodes
+// that pass (most of a grazing walk's nodes).
+inline double nodeMargin(const Box& x, const Local& k) {
+  const double* b = x.b;
+  const double* e = x.e;
+  return k.global + k.rel * (std::fabs(b[0]) + std::fabs(b[1]) +
+                             std::fabs(b[2]) + e[0] + e[1] + e[2]);
+}
+
 template <bool kAligned>
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((always_inline))
 #endif
 inline bool
 overlaps(const Box& x, const Local& k) {
-  const NodeTerms n = nodeTerms<kAligned>(x, k);
+  const NodeTerms n = nodeTerms<kAligned, false>(x, k);
   const double* d = n.d;
   const double* e = x.e;
-  const double m = n.m;
   const double ud = n.ud;
   const double* ua = n.ua;
   // (A): the cylinder's axis.
-  if (gt(std::fabs(ud), k.h + e[0] * ua[0] + e[1] * ua[1] + e[2] * ua[2] + m))
+  const double sa = k.h + e[0] * ua[0] + e[1] * ua[1] + e[2] * ua[2];
+  if (gt(std::fabs(ud), sa) && gt(std::fabs(ud), sa + nodeMargin(x, k)))
     return false;
   // (B): the box's axes. The radial part r |a_i x u| >= 0 is only computed
   // when the rest does not already pass.
   for (int i = 0; i < 3; ++i) {
     if constexpr (kAligned) {
-      if (gt(std::fabs(d[i]), e[i] + k.support[i] + m)) return false;
+      const double sb = e[i] + k.support[i];
+      if (gt(std::fabs(d[i]), sb) && gt(std::fabs(d[i]), sb + nodeMargin(x, k)))
+        return false;
     } else {
-      const double excess = std::fabs(n.p[i]) - (e[i] + k.h * ua[i] + m);
+      const double sb = e[i] + k.h * ua[i];
+      if (!gt(std::fabs(n.p[i]) - sb, 0)) continue;
+      const double excess = std::fabs(n.p[i]) - (sb + nodeMargin(x, k));
       if (!gt(excess, 0)) continue;
       if (gt(excess, k.r * radialFactor(n, i))) return false;
     }
@@ -254,7 +277,11 @@ overlaps(const Box& x, const Local& k) {
   // (max by quiet comparisons, not std::fmax, a libm call: a NaN extent
   // makes m NaN, and the node is visited either way.)
   const double e01 = gt(e[1], e[0]) ? e[1] : e[0];
-  const double inner = k.r + (gt(e[2], e01) ? e[2] : e01) + m;
+  const double re = k.r + (gt(e[2], e01) ? e[2] : e01);
+  // (re >= 0 for every box FCL fits: then re + m >= re >= 0.)
+  if (!gt(q2, re * re) && std::isgreaterequal(re, 0)) return true;
+  const double m = nodeMargin(x, k);
+  const double inner = re + m;
   if (!gt(q2, inner * inner)) return true;
   const double reach =
       k.r + sqrtNonNegative(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) + m;
@@ -365,12 +392,8 @@ inline double nonOrthogonality(const fcl::Matrix3d& R) {
   return gramDeparture(R.data());
 }
 
-inline bool finiteTransform(const Tf& tf) {
-  const auto& M = tf.matrix();
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 4; ++j)
-      if (!std::isfinite(M(i, j))) return false;
-  return true;
+inline bool finiteVector(const V3& v) {
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
 }
 
 inline bool exactIdentity(const Tf& tf) {
@@ -582,8 +605,16 @@ bool prepare(const fcl::BVHModel<BV>& model, const Tf& tf_mesh,
 
   const double r = cyl_geom.radius, lz = cyl_geom.lz;
   if (!(std::isfinite(r) && std::isfinite(lz) && r >= 0 && lz >= 0) ||
-      !(std::isfinite(margin) && margin >= 0) || !finiteTransform(tf_mesh) ||
-      !finiteTransform(tf_cyl))
+      !(std::isfinite(margin) && margin >= 0))
+    return false;
+  // A mesh placed by the identity (the common case: a static environment)
+  // needs neither its checks nor its products. The rotations' entries need
+  // no finiteness test of their own: a NaN or an infinite entry makes
+  // nonOrthogonality NaN or infinite, which the delta test below rejects;
+  // the translations are tested here.
+  const bool identity = exactIdentity(tf_mesh);
+  if (!(identity || finiteVector(tf_mesh.translation())) ||
+      !finiteVector(tf_cyl.translation()))
     return false;
   const fcl::Matrix3d& Rm = tf_mesh.linear();
   const fcl::Matrix3d& Rc = tf_cyl.linear();
@@ -603,13 +634,18 @@ bool prepare(const fcl::BVHModel<BV>& model, const Tf& tf_mesh,
       if (!std::isfinite(root.b[i]) || !std::isfinite(root.e[i])) return false;
     if constexpr (!Boxer::kAligned) box_delta = gramDeparture(root.a);
   }
-  const double delta =
-      std::max({nonOrthogonality(Rm), nonOrthogonality(Rc), box_delta});
+  // (The identity's departure is exactly 0.)
+  const double delta = std::max(
+      {identity ? 0.0 : nonOrthogonality(Rm), nonOrthogonality(Rc), box_delta});
   if (!std::islessequal(delta, kMaxNonOrthogonality)) return false;
 
   Local& k = out->k;
-  const V3 c = Rm.transpose() * (tf_cyl.translation() - tf_mesh.translation());
-  const V3 u = Rm.transpose() * Rc.col(2);
+  // (For the identity, R_m^T x computes x exactly, up to the sign of a zero.)
+  const V3 c =
+      identity
+          ? V3(tf_cyl.translation())
+          : V3(Rm.transpose() * (tf_cyl.translation() - tf_mesh.translation()));
+  const V3 u = identity ? V3(Rc.col(2)) : V3(Rm.transpose() * Rc.col(2));
   for (int i = 0; i < 3; ++i) {
     k.c[i] = c[i];
     k.u[i] = u[i];
@@ -646,8 +682,7 @@ bool prepare(const fcl::BVHModel<BV>& model, const Tf& tf_mesh,
   // 0 z + 0 = x, up to the sign of a zero), so the vertices are read as they
   // are. (A non-finite vertex stays non-finite and is reported "in
   // collision" either way.)
-  out->raw =
-      Boxer::kAligned ? tf_mesh.matrix().isIdentity() : exactIdentity(tf_mesh);
+  out->raw = Boxer::kAligned ? tf_mesh.matrix().isIdentity() : identity;
   return true;
 }
 
