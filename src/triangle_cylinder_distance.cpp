@@ -717,6 +717,20 @@ inline DDx pullBackDW(const double s[3], const double e[3], double r0,
   return DDx(h, l);
 }
 
+// True when the double point p, within e (per coordinate) of a point of the
+// exact pulled-back triangle, is certainly inside C with that point: h -
+// |p_z| >= 2e (one rounding: the true |z| stays below h), and p_xy^2 <=
+// (r - 2e)^2 (1 - 2^-50) (the roundings of the squares, the sums and r -
+// 2e are below 6u relative, 2^-50 = 8u), so the exact point's rho, within
+// sqrt 2 e of p's, is below r. Then `intersect` is true: a witness that
+// needs no Boolean.
+inline bool certainlyInside(const P3<double>& p, const Problem<double>& P,
+                            double e) {
+  const double rr = P.r - 2 * e;
+  return P.h - absd(p.z) >= 2 * e && rr > 0 &&
+         p.x * p.x + p.y * p.y <= rr * rr * (1 - 0x1p-50);
+}
+
 // The distance for valid double inputs of moderate magnitude (no
 // overflow of products of up to six lengths: every length below 2^100).
 // `booleanOf()` returns the exact Boolean (kIntersect or kDisjoint) of the
@@ -724,12 +738,16 @@ inline DDx pullBackDW(const double s[3], const double e[3], double r0,
 // disjoint (the lean refinement's, or the double pass's above its own
 // error), and first when the double pass puts a vertex, an edge point or
 // the face in C (then the pair usually intersects, and that point is the
-// witness).
+// witness). `exact_frame`: the local problem is the inputs' own (not a
+// scaled one that may have lost parts below the underflow threshold), so a
+// point of the double pass certainly inside C is a witness of intersection
+// without the Boolean (certainlyInside).
 template <class DDx, class BooleanFn>
 TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
                                   const Pose<double>& pose,
                                   const Triangle<double>& tri,
                                   BooleanFn&& booleanOf, int rexp,
+                                  bool exact_frame,
                                   DistanceResult<double>* out) {
   const WorldMap wm{&pose, rexp};
   // The vertices in order of increasing magnitude of their local
@@ -786,6 +804,13 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   // the Boolean decides first, the vertex the witness. (A vertex just
   // outside in double, 0 < f <= slack_d, is nearly always disjoint:
   // the lean refinement below is tried before the Boolean.)
+  // A vertex certainly inside C (its double coordinates within eps_y_d of
+  // the exact ones): intersecting, no Boolean needed.
+  if (vp.f[vmin] == 0 && exact_frame &&
+      certainlyInside(P.v[vmin], P, eps_y_d * (1 + 0x1p-50))) {
+    TRICYL_DIST_PATH(11);
+    return intersecting(P.v[vmin], P.v[vmin]);
+  }
   if (vp.f[vmin] == 0 && booleanOf() == Answer::kIntersect) {
     TRICYL_DIST_PATH(1);
     return intersecting(P.v[vmin], P.v[vmin]);
@@ -817,6 +842,18 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
     const Candidate<double>& c = pass.cand[pass.best];
     return intersecting(c.p, c.q);
   };
+  // An edge point at distance 0 in double: p = fl(a + s fl(b - a)) is
+  // within eps_y_d + 8u Mx of the exact triangle's point at s (the
+  // vertices' error, and three roundings of coordinates below 3M, M the
+  // largest vertex coordinate, Mx > 1.75 M); certainly inside C, it is a
+  // witness as above.
+  if (near_c && pass.cand[pass.best].f == 0 && exact_frame &&
+      pass.best < 3 &&
+      certainlyInside(pass.cand[pass.best].p, P,
+                      (eps_y_d + 8 * kU * Mx) * (1 + 0x1p-50))) {
+    TRICYL_DIST_PATH(12);
+    return intersectingBest();
+  }
   if (near_c && pass.cand[pass.best].f == 0 &&
       booleanOf() == Answer::kIntersect) {
     TRICYL_DIST_PATH(2);
@@ -968,7 +1005,7 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
     return x == 0 || (x <= lim && x >= 1 / lim);
   };
   if (moderate(mr, 0x1p30) && moderate(mw, 0x1p60) && moderate(mc, 0x1p60))
-    return solve<DDx>(cyl, pose, tri, booleanOf, 0, out);
+    return solve<DDx>(cyl, pose, tri, booleanOf, 0, true, out);
   int ea = 0, ew = 0, ec = 0;
   if (mr > 0) (void)std::frexp(mr, &ea);
   if (mw > 0) (void)std::frexp(mw, &ew);
@@ -978,7 +1015,7 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   if (mc > 0 && ec > eM) eM = ec;
   if (eM == -2000) eM = 0;  // everything 0: nothing to scale
   if (eM >= -80 && eM <= 80 && ea >= -40 && ea <= 40)
-    return solve<DDx>(cyl, pose, tri, booleanOf, 0, out);
+    return solve<DDx>(cyl, pose, tri, booleanOf, 0, true, out);
   // The world lengths' scale, kept so that they stay within 2^+-100 (with
   // R = 0, or a tiny R, the world lengths hardly matter); the local
   // frame's scale is then 2^-(ea + el) (>= 2^-eM).
@@ -1004,7 +1041,7 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   // Boolean (of the unscaled inputs) comes first here.
   const Answer exact = booleanOf();
   const Answer a = solve<DDx>(
-      c2, p2, t2, [exact]() { return exact; }, 2 * ea, &r2);
+      c2, p2, t2, [exact]() { return exact; }, 2 * ea, false, &r2);
   if (out) {
     out->distance = std::ldexp(r2.distance, eM);
     out->error_bound = std::ldexp(r2.error_bound, eM);
