@@ -847,8 +847,7 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   // vertices' error, and three roundings of coordinates below 3M, M the
   // largest vertex coordinate, Mx > 1.75 M); certainly inside C, it is a
   // witness as above.
-  if (near_c && pass.cand[pass.best].f == 0 && exact_frame &&
-      pass.best < 3 &&
+  if (near_c && pass.cand[pass.best].f == 0 && exact_frame && pass.best < 3 &&
       certainlyInside(pass.cand[pass.best].p, P,
                       (eps_y_d + 8 * kU * Mx) * (1 + 0x1p-50))) {
     TRICYL_DIST_PATH(12);
