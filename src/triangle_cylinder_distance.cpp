@@ -97,16 +97,6 @@ inline double sum3(double a, double b, double c) {
   return (lo + hi) + mid;
 }
 
-// Largest magnitude of the lengths (vertices, translation, r, lz).
-double maxLength(const Cylinder<double>& c, const Pose<double>& p,
-                 const Triangle<double>& t) {
-  double m = maxd(absd(c.radius), absd(c.lz));
-  const Vec3<double>* v[4] = {&t.a, &t.b, &t.c, &p.t};
-  for (const auto* x : v)
-    m = maxd(m, maxd(absd(x->x), maxd(absd(x->y), absd(x->z))));
-  return m;
-}
-
 // The inputs `intersect` accepts: every number finite, r >= 0, lz >= 0
 // (-0 passes; NaN fails every comparison). x - x is 0 exactly for a
 // finite x and NaN for an infinite or NaN one.
@@ -182,7 +172,7 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
   const P3<double>* g = vp.g;
   const double* f = vp.f;
   auto vertex = [&](int k, int i) {  // vertex i as edge k's candidate
-    Candidate<double> c;
+    Candidate<double>& c = out.cand[k];
     c.valid = true;
     c.kind = k;
     c.s = i == detail::dist::kEdgeA[k] ? 0.0 : 1.0;
@@ -190,14 +180,15 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
     c.q = P.v[i] - g[i];
     c.w = g[i];
     c.f = f[i];
-    return c;
   };
+  // The best so far: the nearer end of the first edge that has the nearest
+  // vertex (each edge's candidate is written once, below).
   double best = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 3; ++k) {
     const int i = detail::dist::kEdgeA[k], j = detail::dist::kEdgeB[k];
-    out.cand[k] = vertex(k, f[i] <= f[j] ? i : j);
-    if (out.cand[k].f < best) {
-      best = out.cand[k].f;
+    const double fk = f[i] <= f[j] ? f[i] : f[j];
+    if (fk < best) {
+      best = fk;
       out.best = k;
     }
   }
@@ -207,7 +198,7 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
     const double ga = detail::dist::dot(g[i], d),
                  gb = detail::dist::dot(g[j], d);
     if (!(ga < 0) || !(gb > 0)) {  // the minimum is at an end
-      out.cand[k] = vertex(k, ga < 0 ? j : i);
+      vertex(k, ga < 0 ? j : i);
       continue;
     }
     double s0 = 0.5;
@@ -218,7 +209,10 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
       const double den = sb - sa;  // > 0 unless both slopes underflow
       const double t = den > 0 ? (f[i] + sb - f[j]) / den : 0.5;
       const double lb = f[i] + sa * (t < 0 ? 0 : (t > 1 ? 1 : t));
-      if (lb > best * (1 + 0x1p-40) + prune_slack) continue;
+      if (lb > best * (1 + 0x1p-40) + prune_slack) {
+        vertex(k, f[i] <= f[j] ? i : j);
+        continue;
+      }
       if (t > 0 && t < 1) s0 = t;
     }
     // The closed form first: where the edge's root lies in the barrel's
@@ -973,7 +967,6 @@ template <class DDx>
 Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
                       const Triangle<double>& tri,
                       DistanceResult<double>* out) {
-  if (!validInputs(cyl, pose, tri)) return Answer::kInvalidInput;
   // The exact Boolean of the inputs as given, computed at most once and
   // only when solve asks for it (most disjoint pairs are proved disjoint
   // by the double pass's certificate alone).
@@ -992,19 +985,32 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   // the world lengths by 2^-(eM - ea), so the local frame (y, r, lz) by
   // 2^-eM. Exact, except that parts below the scaled underflow threshold
   // are lost (docs/distance.md, section 6).
-  double mr = 0;
+  //
+  // The usual case, validated and classified in one pass of comparisons:
+  // every |R_ij| <= 2^30 and every length <= 2^60 (which NaN and Inf fail:
+  // the inputs are then valid), r, lz >= 0, and the largest of each group
+  // 0 or above 2^-30, 2^-60 (then eM and ea below are inside the window).
+  double mr = 0, mw = 0;
+  bool small = true;
   for (const auto& row : pose.R)
-    for (double x : row) mr = maxd(mr, absd(x));
-  Cylinder<double> none{0, 0};
-  const double mw = maxLength(none, pose, tri);  // world lengths
+    for (double x : row) {
+      const double a = absd(x);
+      small &= a <= 0x1p30;
+      mr = maxd(mr, a);
+    }
+  for (const Vec3<double>* v : {&tri.a, &tri.b, &tri.c, &pose.t})
+    for (double x : {v->x, v->y, v->z}) {
+      const double a = absd(x);
+      small &= a <= 0x1p60;
+      mw = maxd(mw, a);
+    }
   const double mc = maxd(cyl.radius, cyl.lz);
-  // The usual case, decided by comparisons alone: R within 2^+-30, the
-  // lengths within 2^+-60 (then eM and ea below are inside the window).
-  auto moderate = [](double x, double lim) {
-    return x == 0 || (x <= lim && x >= 1 / lim);
-  };
-  if (moderate(mr, 0x1p30) && moderate(mw, 0x1p60) && moderate(mc, 0x1p60))
+  small &= cyl.radius >= 0 && cyl.lz >= 0 && mc <= 0x1p60;
+  auto aboveOrZero = [](double x, double lim) { return x == 0 || x >= lim; };
+  if (small && aboveOrZero(mr, 0x1p-30) && aboveOrZero(mw, 0x1p-60) &&
+      aboveOrZero(mc, 0x1p-60))
     return solve<DDx>(cyl, pose, tri, booleanOf, 0, true, out);
+  if (!validInputs(cyl, pose, tri)) return Answer::kInvalidInput;
   int ea = 0, ew = 0, ec = 0;
   if (mr > 0) (void)std::frexp(mr, &ea);
   if (mw > 0) (void)std::frexp(mw, &ew);
