@@ -752,27 +752,28 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   Problem<double> P;
   P.r = cyl.radius;
   P.h = cyl.lz * 0.5;
-  double S = 0, M = 0;
+  double S = 0, absR[3][3], mag[3];  // mag: each vertex's largest |y_i|
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 3; ++i) absR[k][i] = absd(pose.R[k][i]);
   for (int v = 0; v < 3; ++v) {
     const double x[3] = {X[v]->x, X[v]->y, X[v]->z};
     const double dx[3] = {x[0] - tt[0], x[1] - tt[1], x[2] - tt[2]};
+    const double adx[3] = {absd(dx[0]), absd(dx[1]), absd(dx[2])};
     double y[3];
     for (int i = 0; i < 3; ++i) {
       y[i] = sum3(pose.R[0][i] * dx[0], pose.R[1][i] * dx[1],
                   pose.R[2][i] * dx[2]);
-      S = maxd(S, absd(pose.R[0][i]) * absd(dx[0]) +
-                      absd(pose.R[1][i]) * absd(dx[1]) +
-                      absd(pose.R[2][i]) * absd(dx[2]));
-      M = maxd(M, absd(y[i]));
+      S = maxd(S,
+               absR[0][i] * adx[0] + absR[1][i] * adx[1] + absR[2][i] * adx[2]);
     }
     P.v[v] = {y[0], y[1], y[2]};
+    mag[v] = maxd(absd(y[0]), maxd(absd(y[1]), absd(y[2])));
   }
-  auto mag = [&](int v) {
-    return maxd(absd(P.v[v].x), maxd(absd(P.v[v].y), absd(P.v[v].z)));
-  };
+  const double M = maxd(mag[0], maxd(mag[1], mag[2]));
   for (int pass = 0; pass < 2; ++pass)
     for (int v = 0; v + 1 < 3; ++v)
-      if (mag(v + 1) < mag(v)) {
+      if (mag[v + 1] < mag[v]) {
+        std::swap(mag[v], mag[v + 1]);
         std::swap(P.v[v], P.v[v + 1]);
         std::swap(X[v], X[v + 1]);
       }
