@@ -930,10 +930,10 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
     if (!c.valid || !(c.f <= U + tie)) continue;
     const P3<DDx>& a = Q.v[detail::dist::kEdgeA[k]];
     const P3<DDx> d = Q.v[detail::dist::kEdgeB[k]] - a;
-    const DDx s = detail::dist::edgeRefine(
-        a, d, Q.r, Q.h, DDx(c.s), DDx(0x1p-24), kRefineIter, DDx(0x1p-104));
-    DDx at[7] = {s, DDx(0), DDx(1)};
+    DDx at[7] = {DDx(0), DDx(0), DDx(1)};
     const int n = 3 + detail::dist::edgeKinks(a, d, Q.r, Q.h, at + 3);
+    at[0] = detail::dist::edgeRefine(a, d, Q.r, Q.h, DDx(c.s), DDx(0x1p-24),
+                                     kRefineIter, DDx(0x1p-104), at + 3, n - 3);
     for (int i = 0; i < n; ++i) {
       const Candidate<DDx> e = detail::dist::edgeCandidate(Q, k, at[i]);
       const DDx l = detail::dist::certify(Q, e.w);
