@@ -225,17 +225,34 @@ inline T edgeRefine(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
     lo = T(0);
     hi = T(1);
   }
+  bool lo_kink = false, hi_kink = false;
   for (int k = 0; k < nk; ++k) {
     const T& x = kinks[k];
     if (!(x > lo && x < hi)) continue;
     const T g = edgeDphi(a, d, x, r, h).g;
     if (g < T(0)) {
       lo = x;
+      lo_kink = true;
     } else if (g > T(0)) {
       hi = x;
+      hi_kink = true;
     } else {
       return x;
     }
+  }
+  // A root within `tol` of a kink at an end of the bracket (the edge
+  // nearly parallel to a cap and leaving it over the rim: phi' jumps from
+  // the cap's side within the rounding of the kink's parameter, phi'' =
+  // d_z^2 is tiny there, every Newton point leaves the bracket and the
+  // bisection would run down to `tol`): one probe at `tol` from the kink
+  // settles it.
+  if (lo_kink && hi - lo > tol) {
+    const T x = lo + tol;
+    if (edgeDphi(a, d, x, r, h).g > T(0)) return (lo + x) * T(0.5);
+  }
+  if (hi_kink && hi - lo > tol) {
+    const T x = hi - tol;
+    if (edgeDphi(a, d, x, r, h).g < T(0)) return (x + hi) * T(0.5);
   }
   T s = s0;
   if (!(s > lo && s < hi)) s = (lo + hi) * T(0.5);
