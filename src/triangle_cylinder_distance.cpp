@@ -717,11 +717,18 @@ inline DDx pullBackDW(const double s[3], const double e[3], double r0,
 // (r - 2e)^2 (1 - 2^-50) (the roundings of the squares, the sums and r -
 // 2e are below 6u relative, 2^-50 = 8u), so the exact point's rho, within
 // sqrt 2 e of p's, is below r. Then `intersect` is true: a witness that
-// needs no Boolean.
+// needs no Boolean. The relative bounds behind e miss underflow (an
+// operation in the subnormal range errs by up to 2^-1075 absolute, and the
+// vertices of tiny inputs may be formed from subnormal products, with S
+// itself 0): e is widened by 2^-1060, far above the few such errors of a
+// point, and r - 2e >= 2^-500 keeps rr^2 normal, so that an underflowed
+// square (2^-1075 absolute) stays inside the 2u rr^2 left by the factor
+// 1 - 2^-50. (Found by the fuzz target: lz = 0 and subnormal lengths.)
 inline bool certainlyInside(const P3<double>& p, const Problem<double>& P,
                             double e) {
+  e += 0x1p-1060;
   const double rr = P.r - 2 * e;
-  return P.h - absd(p.z) >= 2 * e && rr > 0 &&
+  return P.h - absd(p.z) >= 2 * e && rr >= 0x1p-500 &&
          p.x * p.x + p.y * p.y <= rr * rr * (1 - 0x1p-50);
 }
 
