@@ -97,16 +97,6 @@ inline double sum3(double a, double b, double c) {
   return (lo + hi) + mid;
 }
 
-// Largest magnitude of the lengths (vertices, translation, r, lz).
-double maxLength(const Cylinder<double>& c, const Pose<double>& p,
-                 const Triangle<double>& t) {
-  double m = maxd(absd(c.radius), absd(c.lz));
-  const Vec3<double>* v[4] = {&t.a, &t.b, &t.c, &p.t};
-  for (const auto* x : v)
-    m = maxd(m, maxd(absd(x->x), maxd(absd(x->y), absd(x->z))));
-  return m;
-}
-
 // The inputs `intersect` accepts: every number finite, r >= 0, lz >= 0
 // (-0 passes; NaN fails every comparison). x - x is 0 exactly for a
 // finite x and NaN for an infinite or NaN one.
@@ -182,7 +172,7 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
   const P3<double>* g = vp.g;
   const double* f = vp.f;
   auto vertex = [&](int k, int i) {  // vertex i as edge k's candidate
-    Candidate<double> c;
+    Candidate<double>& c = out.cand[k];
     c.valid = true;
     c.kind = k;
     c.s = i == detail::dist::kEdgeA[k] ? 0.0 : 1.0;
@@ -190,14 +180,15 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
     c.q = P.v[i] - g[i];
     c.w = g[i];
     c.f = f[i];
-    return c;
   };
+  // The best so far: the nearer end of the first edge that has the nearest
+  // vertex (each edge's candidate is written once, below).
   double best = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 3; ++k) {
     const int i = detail::dist::kEdgeA[k], j = detail::dist::kEdgeB[k];
-    out.cand[k] = vertex(k, f[i] <= f[j] ? i : j);
-    if (out.cand[k].f < best) {
-      best = out.cand[k].f;
+    const double fk = f[i] <= f[j] ? f[i] : f[j];
+    if (fk < best) {
+      best = fk;
       out.best = k;
     }
   }
@@ -207,7 +198,7 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
     const double ga = detail::dist::dot(g[i], d),
                  gb = detail::dist::dot(g[j], d);
     if (!(ga < 0) || !(gb > 0)) {  // the minimum is at an end
-      out.cand[k] = vertex(k, ga < 0 ? j : i);
+      vertex(k, ga < 0 ? j : i);
       continue;
     }
     double s0 = 0.5;
@@ -218,7 +209,10 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
       const double den = sb - sa;  // > 0 unless both slopes underflow
       const double t = den > 0 ? (f[i] + sb - f[j]) / den : 0.5;
       const double lb = f[i] + sa * (t < 0 ? 0 : (t > 1 ? 1 : t));
-      if (lb > best * (1 + 0x1p-40) + prune_slack) continue;
+      if (lb > best * (1 + 0x1p-40) + prune_slack) {
+        vertex(k, f[i] <= f[j] ? i : j);
+        continue;
+      }
       if (t > 0 && t < 1) s0 = t;
     }
     // The closed form first: where the edge's root lies in the barrel's
@@ -717,6 +711,27 @@ inline DDx pullBackDW(const double s[3], const double e[3], double r0,
   return DDx(h, l);
 }
 
+// True when the double point p, within e (per coordinate) of a point of the
+// exact pulled-back triangle, is certainly inside C with that point: h -
+// |p_z| >= 2e (one rounding: the true |z| stays below h), and p_xy^2 <=
+// (r - 2e)^2 (1 - 2^-50) (the roundings of the squares, the sums and r -
+// 2e are below 6u relative, 2^-50 = 8u), so the exact point's rho, within
+// sqrt 2 e of p's, is below r. Then `intersect` is true: a witness that
+// needs no Boolean. The relative bounds behind e miss underflow (an
+// operation in the subnormal range errs by up to 2^-1075 absolute, and the
+// vertices of tiny inputs may be formed from subnormal products, with S
+// itself 0): e is widened by 2^-1060, far above the few such errors of a
+// point, and r - 2e >= 2^-500 keeps rr^2 normal, so that an underflowed
+// square (2^-1075 absolute) stays inside the 2u rr^2 left by the factor
+// 1 - 2^-50. (Found by the fuzz target: lz = 0 and subnormal lengths.)
+inline bool certainlyInside(const P3<double>& p, const Problem<double>& P,
+                            double e) {
+  e += 0x1p-1060;
+  const double rr = P.r - 2 * e;
+  return P.h - absd(p.z) >= 2 * e && rr >= 0x1p-500 &&
+         p.x * p.x + p.y * p.y <= rr * rr * (1 - 0x1p-50);
+}
+
 // The distance for valid double inputs of moderate magnitude (no
 // overflow of products of up to six lengths: every length below 2^100).
 // `booleanOf()` returns the exact Boolean (kIntersect or kDisjoint) of the
@@ -724,12 +739,16 @@ inline DDx pullBackDW(const double s[3], const double e[3], double r0,
 // disjoint (the lean refinement's, or the double pass's above its own
 // error), and first when the double pass puts a vertex, an edge point or
 // the face in C (then the pair usually intersects, and that point is the
-// witness).
+// witness). `exact_frame`: the local problem is the inputs' own (not a
+// scaled one that may have lost parts below the underflow threshold), so a
+// point of the double pass certainly inside C is a witness of intersection
+// without the Boolean (certainlyInside).
 template <class DDx, class BooleanFn>
 TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
                                   const Pose<double>& pose,
                                   const Triangle<double>& tri,
                                   BooleanFn&& booleanOf, int rexp,
+                                  bool exact_frame,
                                   DistanceResult<double>* out) {
   const WorldMap wm{&pose, rexp};
   // The vertices in order of increasing magnitude of their local
@@ -740,27 +759,28 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   Problem<double> P;
   P.r = cyl.radius;
   P.h = cyl.lz * 0.5;
-  double S = 0, M = 0;
+  double S = 0, absR[3][3], mag[3];  // mag: each vertex's largest |y_i|
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 3; ++i) absR[k][i] = absd(pose.R[k][i]);
   for (int v = 0; v < 3; ++v) {
     const double x[3] = {X[v]->x, X[v]->y, X[v]->z};
     const double dx[3] = {x[0] - tt[0], x[1] - tt[1], x[2] - tt[2]};
+    const double adx[3] = {absd(dx[0]), absd(dx[1]), absd(dx[2])};
     double y[3];
     for (int i = 0; i < 3; ++i) {
       y[i] = sum3(pose.R[0][i] * dx[0], pose.R[1][i] * dx[1],
                   pose.R[2][i] * dx[2]);
-      S = maxd(S, absd(pose.R[0][i]) * absd(dx[0]) +
-                      absd(pose.R[1][i]) * absd(dx[1]) +
-                      absd(pose.R[2][i]) * absd(dx[2]));
-      M = maxd(M, absd(y[i]));
+      S = maxd(S,
+               absR[0][i] * adx[0] + absR[1][i] * adx[1] + absR[2][i] * adx[2]);
     }
     P.v[v] = {y[0], y[1], y[2]};
+    mag[v] = maxd(absd(y[0]), maxd(absd(y[1]), absd(y[2])));
   }
-  auto mag = [&](int v) {
-    return maxd(absd(P.v[v].x), maxd(absd(P.v[v].y), absd(P.v[v].z)));
-  };
+  const double M = maxd(mag[0], maxd(mag[1], mag[2]));
   for (int pass = 0; pass < 2; ++pass)
     for (int v = 0; v + 1 < 3; ++v)
-      if (mag(v + 1) < mag(v)) {
+      if (mag[v + 1] < mag[v]) {
+        std::swap(mag[v], mag[v + 1]);
         std::swap(P.v[v], P.v[v + 1]);
         std::swap(X[v], X[v + 1]);
       }
@@ -786,6 +806,13 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   // the Boolean decides first, the vertex the witness. (A vertex just
   // outside in double, 0 < f <= slack_d, is nearly always disjoint:
   // the lean refinement below is tried before the Boolean.)
+  // A vertex certainly inside C (its double coordinates within eps_y_d of
+  // the exact ones): intersecting, no Boolean needed.
+  if (vp.f[vmin] == 0 && exact_frame &&
+      certainlyInside(P.v[vmin], P, eps_y_d * (1 + 0x1p-50))) {
+    TRICYL_DIST_PATH(11);
+    return intersecting(P.v[vmin], P.v[vmin]);
+  }
   if (vp.f[vmin] == 0 && booleanOf() == Answer::kIntersect) {
     TRICYL_DIST_PATH(1);
     return intersecting(P.v[vmin], P.v[vmin]);
@@ -817,6 +844,17 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
     const Candidate<double>& c = pass.cand[pass.best];
     return intersecting(c.p, c.q);
   };
+  // An edge point at distance 0 in double: p = fl(a + s fl(b - a)) is
+  // within eps_y_d + 8u Mx of the exact triangle's point at s (the
+  // vertices' error, and three roundings of coordinates below 3M, M the
+  // largest vertex coordinate, Mx > 1.75 M); certainly inside C, it is a
+  // witness as above.
+  if (near_c && pass.cand[pass.best].f == 0 && exact_frame && pass.best < 3 &&
+      certainlyInside(pass.cand[pass.best].p, P,
+                      (eps_y_d + 8 * kU * Mx) * (1 + 0x1p-50))) {
+    TRICYL_DIST_PATH(12);
+    return intersectingBest();
+  }
   if (near_c && pass.cand[pass.best].f == 0 &&
       booleanOf() == Answer::kIntersect) {
     TRICYL_DIST_PATH(2);
@@ -899,10 +937,10 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
     if (!c.valid || !(c.f <= U + tie)) continue;
     const P3<DDx>& a = Q.v[detail::dist::kEdgeA[k]];
     const P3<DDx> d = Q.v[detail::dist::kEdgeB[k]] - a;
-    const DDx s = detail::dist::edgeRefine(
-        a, d, Q.r, Q.h, DDx(c.s), DDx(0x1p-24), kRefineIter, DDx(0x1p-104));
-    DDx at[7] = {s, DDx(0), DDx(1)};
+    DDx at[7] = {DDx(0), DDx(0), DDx(1)};
     const int n = 3 + detail::dist::edgeKinks(a, d, Q.r, Q.h, at + 3);
+    at[0] = detail::dist::edgeRefine(a, d, Q.r, Q.h, DDx(c.s), DDx(0x1p-24),
+                                     kRefineIter, DDx(0x1p-104), at + 3, n - 3);
     for (int i = 0; i < n; ++i) {
       const Candidate<DDx> e = detail::dist::edgeCandidate(Q, k, at[i]);
       const DDx l = detail::dist::certify(Q, e.w);
@@ -937,7 +975,6 @@ template <class DDx>
 Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
                       const Triangle<double>& tri,
                       DistanceResult<double>* out) {
-  if (!validInputs(cyl, pose, tri)) return Answer::kInvalidInput;
   // The exact Boolean of the inputs as given, computed at most once and
   // only when solve asks for it (most disjoint pairs are proved disjoint
   // by the double pass's certificate alone).
@@ -956,19 +993,32 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   // the world lengths by 2^-(eM - ea), so the local frame (y, r, lz) by
   // 2^-eM. Exact, except that parts below the scaled underflow threshold
   // are lost (docs/distance.md, section 6).
-  double mr = 0;
+  //
+  // The usual case, validated and classified in one pass of comparisons:
+  // every |R_ij| <= 2^30 and every length <= 2^60 (which NaN and Inf fail:
+  // the inputs are then valid), r, lz >= 0, and the largest of each group
+  // 0 or above 2^-30, 2^-60 (then eM and ea below are inside the window).
+  double mr = 0, mw = 0;
+  bool small = true;
   for (const auto& row : pose.R)
-    for (double x : row) mr = maxd(mr, absd(x));
-  Cylinder<double> none{0, 0};
-  const double mw = maxLength(none, pose, tri);  // world lengths
+    for (double x : row) {
+      const double a = absd(x);
+      small &= a <= 0x1p30;
+      mr = maxd(mr, a);
+    }
+  for (const Vec3<double>* v : {&tri.a, &tri.b, &tri.c, &pose.t})
+    for (double x : {v->x, v->y, v->z}) {
+      const double a = absd(x);
+      small &= a <= 0x1p60;
+      mw = maxd(mw, a);
+    }
   const double mc = maxd(cyl.radius, cyl.lz);
-  // The usual case, decided by comparisons alone: R within 2^+-30, the
-  // lengths within 2^+-60 (then eM and ea below are inside the window).
-  auto moderate = [](double x, double lim) {
-    return x == 0 || (x <= lim && x >= 1 / lim);
-  };
-  if (moderate(mr, 0x1p30) && moderate(mw, 0x1p60) && moderate(mc, 0x1p60))
-    return solve<DDx>(cyl, pose, tri, booleanOf, 0, out);
+  small &= cyl.radius >= 0 && cyl.lz >= 0 && mc <= 0x1p60;
+  auto aboveOrZero = [](double x, double lim) { return x == 0 || x >= lim; };
+  if (small && aboveOrZero(mr, 0x1p-30) && aboveOrZero(mw, 0x1p-60) &&
+      aboveOrZero(mc, 0x1p-60))
+    return solve<DDx>(cyl, pose, tri, booleanOf, 0, true, out);
+  if (!validInputs(cyl, pose, tri)) return Answer::kInvalidInput;
   int ea = 0, ew = 0, ec = 0;
   if (mr > 0) (void)std::frexp(mr, &ea);
   if (mw > 0) (void)std::frexp(mw, &ew);
@@ -978,7 +1028,7 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   if (mc > 0 && ec > eM) eM = ec;
   if (eM == -2000) eM = 0;  // everything 0: nothing to scale
   if (eM >= -80 && eM <= 80 && ea >= -40 && ea <= 40)
-    return solve<DDx>(cyl, pose, tri, booleanOf, 0, out);
+    return solve<DDx>(cyl, pose, tri, booleanOf, 0, true, out);
   // The world lengths' scale, kept so that they stay within 2^+-100 (with
   // R = 0, or a tiny R, the world lengths hardly matter); the local
   // frame's scale is then 2^-(ea + el) (>= 2^-eM).
@@ -1004,7 +1054,7 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   // Boolean (of the unscaled inputs) comes first here.
   const Answer exact = booleanOf();
   const Answer a = solve<DDx>(
-      c2, p2, t2, [exact]() { return exact; }, 2 * ea, &r2);
+      c2, p2, t2, [exact]() { return exact; }, 2 * ea, false, &r2);
   if (out) {
     out->distance = std::ldexp(r2.distance, eM);
     out->error_bound = std::ldexp(r2.error_bound, eM);

@@ -204,9 +204,17 @@ inline T edgeSolve(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
 /// of phi' is solved in the bracket [s0 - delta, s0 + delta] when phi'
 /// changes sign there (Newton converges from s0 in a few steps), else in
 /// [0, 1]. Bounded by `max_iter` evaluations.
+///
+/// With `kinks` (the edge's `nk` kinks, edgeKinks), the bracket is first
+/// cut at those inside it by the sign of phi' there: phi'' then has no jump
+/// inside it, and Newton's steps are not thrown back into bisections by a
+/// kink next to the root (an edge hovering over a cap and leaving it over
+/// the rim, whose root lies just past the rim's kink: from the cap's side
+/// phi'' = d_z^2 is tiny and the Newton point leaves the bracket).
 template <class T>
 inline T edgeRefine(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
-                    const T& s0, const T& delta, int max_iter, const T& tol) {
+                    const T& s0, const T& delta, int max_iter, const T& tol,
+                    const T* kinks = nullptr, int nk = 0) {
   if (!(edgeDphi(a, d, T(0), r, h).g < T(0))) return T(0);
   if (!(edgeDphi(a, d, T(1), r, h).g > T(0))) return T(1);
   T lo = s0 - delta, hi = s0 + delta;
@@ -216,6 +224,35 @@ inline T edgeRefine(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
       !(hi == T(1) || edgeDphi(a, d, hi, r, h).g > T(0))) {
     lo = T(0);
     hi = T(1);
+  }
+  bool lo_kink = false, hi_kink = false;
+  for (int k = 0; k < nk; ++k) {
+    const T& x = kinks[k];
+    if (!(x > lo && x < hi)) continue;
+    const T g = edgeDphi(a, d, x, r, h).g;
+    if (g < T(0)) {
+      lo = x;
+      lo_kink = true;
+    } else if (g > T(0)) {
+      hi = x;
+      hi_kink = true;
+    } else {
+      return x;
+    }
+  }
+  // A root within `tol` of a kink at an end of the bracket (the edge
+  // nearly parallel to a cap and leaving it over the rim: phi' jumps from
+  // the cap's side within the rounding of the kink's parameter, phi'' =
+  // d_z^2 is tiny there, every Newton point leaves the bracket and the
+  // bisection would run down to `tol`): one probe at `tol` from the kink
+  // settles it.
+  if (lo_kink && hi - lo > tol) {
+    const T x = lo + tol;
+    if (edgeDphi(a, d, x, r, h).g > T(0)) return (lo + x) * T(0.5);
+  }
+  if (hi_kink && hi - lo > tol) {
+    const T x = hi - tol;
+    if (edgeDphi(a, d, x, r, h).g < T(0)) return (x + hi) * T(0.5);
   }
   T s = s0;
   if (!(s > lo && s < hi)) s = (lo + hi) * T(0.5);

@@ -125,6 +125,30 @@ TEST(TriangleCylinderDistance, ZeroExactlyWhenIntersecting) {
       {0, 0, std::nextafter(1.0, 2.0)}, {5, 0, 5}, {5, 1, 5}};
   EXPECT_FALSE(intersect(c, gap));
   EXPECT_EQ(distance(c, gap).distance, 0x1p-52);
+  // A flat disk (lz = 0) and subnormal lengths (the fuzz target's case
+  // regress-subnormal-flat-witness): the double pass's pulled-back vertex
+  // rounds into the disk's plane while the exact one is off it; its
+  // a-priori error (6u S, S = 0 here: every product underflows) must not
+  // make it an intersection witness.
+  const Cylinder<double> disk{1, 0};
+  Pose<double> p = identityPose<double>();
+  p.R[0][0] = 0x0.03fep-1022;
+  p.R[0][1] = 0x0.0003p-1022;
+  p.R[0][2] = -0x1p-8;
+  p.R[1][0] = -1;
+  p.R[1][1] = 0x1.1fep+3;
+  p.R[1][2] = 0x0.000000000004p-1022;
+  p.R[2][0] = 0x0.000000000003fp-1022;
+  p.R[2][1] = 0;
+  p.R[2][2] = 0;
+  p.t = {0, 0x0.000000000003fp-1022, 0x0.000000000002p-1022};
+  const Triangle<double> tiny{
+      {0x0.0002ep-1022, 0, 0x0.0004p-1022}, {0, 0, 0}, {0, 0, 0}};
+  const bool meets = intersect(disk, p, tiny);
+  DistanceResult<double> rt{};
+  EXPECT_EQ(tryDistance(disk, p, tiny, &rt),
+            meets ? Answer::kIntersect : Answer::kDisjoint);
+  EXPECT_EQ(rt.distance == 0, meets);
 }
 
 TEST(TriangleCylinderDistance, InvalidInput) {
