@@ -112,8 +112,7 @@ int main(int argc, char** argv) {
     std::vector<TriCase> by[8];
     for (int i = 0; i < kCases; ++i) {
       const TriCase c = tricyl::scenes::generate(fam, 7, std::uint64_t(i));
-      by[int(tricyl::decideIntersect(c.cyl, c.pose, c.tri).stage)].push_back(
-          c);
+      by[int(tricyl::decideIntersect(c.cyl, c.pose, c.tri).stage)].push_back(c);
     }
     for (Stage s : {Stage::kRunning, Stage::kExtended, Stage::kExact}) {
       std::vector<TriCase>& v = by[int(s)];
@@ -134,9 +133,8 @@ int main(int argc, char** argv) {
         filter = std::min(filter, ns(Clock::now() - a) / double(v.size()));
       }
       std::printf("| %s | %s | %zu | %.1f ns | %.1f ns | %.1f ns |\n",
-                  tricyl::scenes::familyName(fam),
-                  tricyl::bench::stageName(s), v.size(), whole, filter,
-                  whole - filter);
+                  tricyl::scenes::familyName(fam), tricyl::bench::stageName(s),
+                  v.size(), whole, filter, whole - filter);
       if (hits == -1) std::printf("\n");  // keep the answers alive
     }
   }

@@ -305,10 +305,10 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
       filtered && areaNonzero(*fast)
           ? Decision{Answer::kDisjoint, Stage::kFastPath}
           : detail::runStages(
-      [&](auto tag, bool*) {
-        return collinear<typename decltype(tag)::type>(in.tri);
-      },
-      max_len, max_unitless);
+                [&](auto tag, bool*) {
+                  return collinear<typename decltype(tag)::type>(in.tri);
+                },
+                max_len, max_unitless);
   if (degenerate.answer == Answer::kIntersect) {
     if (fast != nullptr) validate(in, &max_len, &max_unitless);
     detail::LinearInputs seg;
@@ -1120,9 +1120,10 @@ __attribute__((target("avx2"), always_inline)) inline Pre prologueAvx2Body(
 // read their bits) are widened once, exactly, by vector conversions into
 // double aggregates of the same layout, so the arithmetic reads doubles.
 template <class S>
-__attribute__((target("avx2"))) inline Pre prologueAvx2(
-    const Cylinder<S>& cyl, const Pose<S>& pose, const Triangle<S>& tri,
-    Local* L) {
+__attribute__((target("avx2"))) inline Pre prologueAvx2(const Cylinder<S>& cyl,
+                                                        const Pose<S>& pose,
+                                                        const Triangle<S>& tri,
+                                                        Local* L) {
   if (!gateBitsOkAvx2(cyl, pose, tri)) return Pre::kGateMiss;
   const double r = double(cyl.radius), H = double(cyl.lz);
   if constexpr (sizeof(S) == 4) {  // (double: the gate read the signs)
@@ -1652,7 +1653,6 @@ __attribute__((target("avx2"), noinline)) Decision decideAvx2(
   return decideBody<true>(cylinder, pose, triangle);
 }
 #endif
-
 
 // The baseline path out of line too, so that the entry points stay a
 // test and a call (no stack frame of their own).

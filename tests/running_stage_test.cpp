@@ -562,9 +562,9 @@ TEST(FilterOnly, StopsWhereTheFastPathStops) {
       const bool by_fast =
           d.stage == Stage::kEarlyOut || d.stage == Stage::kFastPath;
       const bool ok = f == 1 ? by_fast
-                      : f == 0 ? d.stage != Stage::kEarlyOut
-                               : diagnostic::fastPathGate(k.cyl, k.pose,
-                                                          k.tri) != 1;
+                      : f == 0
+                          ? d.stage != Stage::kEarlyOut
+                          : diagnostic::fastPathGate(k.cyl, k.pose, k.tri) != 1;
       open += f == 0;
       if (!ok) {
         ++failures;
