@@ -902,25 +902,24 @@ __attribute__((target("avx2"), always_inline)) inline bool edgeHitAvx2(
 // in separate registers, so a lane it reports is a separation
 // FilterKernel::sign certifies (docs/exactness.md, "Edge separation").
 // A2 = (o01 + o12) + o20 (twice the projected area, the kernel's (A)
-// grouping) in every lane, and the bound of its sign (FilterKernel).
+// grouping) in every lane, and its magnitude (FilterKernel).
 __attribute__((target("avx2"), always_inline)) inline void areaLanes(
-    const EdgeLanes& e, __m256d* A2, __m256d* bA) {
+    const EdgeLanes& e, __m256d* A2, __m256d* mA) {
   *A2 = _mm256_add_pd(_mm256_add_pd(_mm256_permute4x64_pd(e.o, 0x00),
                                     _mm256_permute4x64_pd(e.o, 0x55)),
                       _mm256_permute4x64_pd(e.o, 0xaa));
-  const __m256d mA =
-      _mm256_add_pd(_mm256_add_pd(_mm256_permute4x64_pd(e.mo, 0x00),
-                                  _mm256_permute4x64_pd(e.mo, 0x55)),
-                    _mm256_permute4x64_pd(e.mo, 0xaa));
-  *bA = bound(mA, _mm256_set1_pd(kRel), _mm256_set1_pd(kAbs));
+  *mA = _mm256_add_pd(_mm256_add_pd(_mm256_permute4x64_pd(e.mo, 0x00),
+                                    _mm256_permute4x64_pd(e.mo, 0x55)),
+                      _mm256_permute4x64_pd(e.mo, 0xaa));
 }
 
 __attribute__((target("avx2"), always_inline)) inline bool edgeSeparatesAvx2(
     const EdgeLanes& e, __m256d r2) {
   const __m256d kr = _mm256_set1_pd(kRel), ka = _mm256_set1_pd(kAbs);
   const __m256d neg = _mm256_set1_pd(-0.0);
-  __m256d A2, bA;
-  areaLanes(e, &A2, &bA);
+  __m256d A2, mA;
+  areaLanes(e, &A2, &mA);
+  const __m256d bA = bound(mA, kr, ka);
   const __m256d bo = bound(e.mo, kr, ka);
   // The origin strictly beyond edge i's line: sign(o_i) = -sign(A2) != 0.
   const __m256d outside = _mm256_or_pd(
@@ -1387,10 +1386,8 @@ struct LaneTri {
 // The sign lanes of v with magnitude mv: certainly positive, certainly
 // negative.
 __attribute__((target("avx2"), always_inline)) inline void signLanes(
-    __m256d v, __m256d mv, __m256d* pos, __m256d* neg, bool is_bound = false) {
-  // is_bound: mv is already the bound (areaLanes).
-  const __m256d b =
-      is_bound ? mv : bound(mv, _mm256_set1_pd(kRel), _mm256_set1_pd(kAbs));
+    __m256d v, __m256d mv, __m256d* pos, __m256d* neg) {
+  const __m256d b = bound(mv, _mm256_set1_pd(kRel), _mm256_set1_pd(kAbs));
   *pos = _mm256_cmp_pd(v, b, _CMP_GT_OQ);
   *neg = _mm256_cmp_pd(v, _mm256_xor_pd(b, _mm256_set1_pd(-0.0)), _CMP_LT_OQ);
 }
@@ -1555,10 +1552,9 @@ __attribute__((target("avx2"), noinline)) Tri filterTestsAvx2(
     return Tri::kFalse;
   *undecided = open;
   // For the stages after the filter (Local).
-  __m256d A2, bA;
-  areaLanes(e, &A2, &bA);
-  __m256d ap, an;
-  signLanes(A2, bA, &ap, &an, /*is_bound=*/true);
+  __m256d A2, mA, ap, an;
+  areaLanes(e, &A2, &mA);
+  signLanes(A2, mA, &ap, &an);
   out->area_nonzero = (_mm256_movemask_pd(_mm256_or_pd(ap, an)) & 1) != 0;
   out->early_settled = settled;
   return Tri::kUnknown;
