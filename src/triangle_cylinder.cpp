@@ -160,7 +160,6 @@ Segment<double> collinearHull(const Triangle<double>& t) {
   return {t.a, t.a};
 }
 
-struct Local;
 bool shortRotation(const Pose<double>& pose);
 
 // The local coordinates in double word, x, y and Z of each vertex, with
@@ -271,11 +270,22 @@ detail::TriCylLocal<K> runningFrame(const Inputs& in, const DwFrame& f) {
 // or the tests the fast path's filter left undecided (detail::TestMask).
 // `fast`: the fast path's local frame when it ran (then the inputs are
 // valid and inside the gate: not validated again).
-struct Local;
+// The local frame as toLocal<FilterKernel> computes it: one magnitude
+// m_i = rho s_i per vertex (rho = max |R_jk|), z doubled; and the cylinder.
+struct Local {
+  double x[4], y[4], Z[4], m[4];  // [3]: scratch (the AVX2 lane 3)
+  double r, H;
+  // What the filter certified on its way, for the stages after it (set
+  // when it leaves the query open; the scalar filter leaves both false):
+  // twice the projected area A2 = o01 + o12 + o20 is not 0, so the
+  // triangle is not degenerate (the projection of three collinear points is
+  // collinear); each of the six early-outs has a vertex certainly not
+  // beyond its plane, so none can decide in any arithmetic (EarlyOuts).
+  bool area_nonzero, early_settled;
+};
+
 detail::TriCylLocal<detail::AdaptiveKernel> adaptiveLocal(const Inputs& in,
                                                           const Local& L);
-bool areaNonzero(const Local& L);
-bool earlySettled(const Local& L);
 
 Decision decide(const Inputs& in, std::uint32_t undecided,
                 const Local* fast = nullptr) {
@@ -302,7 +312,7 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
   if (undecided == 0) undecided = detail::kAllTests;
   // A certified non-zero projected area: not degenerate, no hand-off.
   const Decision degenerate =
-      filtered && areaNonzero(*fast)
+      filtered && fast->area_nonzero
           ? Decision{Answer::kDisjoint, Stage::kFastPath}
           : detail::runStages(
                 [&](auto tag, bool*) {
@@ -346,7 +356,7 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
     Tri t;
     // Settled by the filter, or here: the stages skip them.
     detail::EarlyOuts early;
-    early.settled = filtered && earlySettled(*fast);
+    early.settled = filtered && fast->early_settled;
     DwFrame frame;
     dwFrameStage(in, &frame);
     detail::tls_exact_zero = false;
@@ -449,20 +459,6 @@ enum class Fast { kGateMiss, kDecided, kUnknown };
 // nothing yet.
 enum class Pre { kGateMiss, kEarlyOut, kHit, kDisjoint, kOpen };
 
-// The local frame as toLocal<FilterKernel> computes it: one magnitude
-// m_i = rho s_i per vertex (rho = max |R_jk|), z doubled; and the cylinder.
-struct Local {
-  double x[4], y[4], Z[4], m[4];  // [3]: scratch (the AVX2 lane 3)
-  double r, H;
-  // What the filter certified on its way, for the stages after it (set
-  // when it leaves the query open; the scalar filter leaves both false):
-  // twice the projected area A2 = o01 + o12 + o20 is not 0, so the
-  // triangle is not degenerate (the projection of three collinear points is
-  // collinear); each of the six early-outs has a vertex certainly not
-  // beyond its plane, so none can decide in any arithmetic (EarlyOuts).
-  bool area_nonzero, early_settled;
-};
-
 // Whether every rotation entry has at most 27 significant bits (the low 26
 // bits of its significand zero): exact poses (signed permutations, short
 // dyadics) do, rounded rotations almost never; only then is it worth
@@ -477,9 +473,6 @@ bool shortRotation(const Pose<double>& pose) {
     }
   return (low & ((std::uint64_t(1) << 26) - 1)) == 0;
 }
-
-bool areaNonzero(const Local& L) { return L.area_nonzero; }
-bool earlySettled(const Local& L) { return L.early_settled; }
 
 // The adaptive run's local frame from the fast path's (double inputs).
 detail::TriCylLocal<detail::AdaptiveKernel> adaptiveLocal(const Inputs& in,
@@ -913,12 +906,11 @@ __attribute__((target("avx2"), always_inline)) inline void areaLanes(
                       _mm256_permute4x64_pd(e.mo, 0xaa));
 }
 
+// A2, mA: areaLanes(e).
 __attribute__((target("avx2"), always_inline)) inline bool edgeSeparatesAvx2(
-    const EdgeLanes& e, __m256d r2) {
+    const EdgeLanes& e, __m256d A2, __m256d mA, __m256d r2) {
   const __m256d kr = _mm256_set1_pd(kRel), ka = _mm256_set1_pd(kAbs);
   const __m256d neg = _mm256_set1_pd(-0.0);
-  __m256d A2, mA;
-  areaLanes(e, &A2, &mA);
   const __m256d bA = bound(mA, kr, ka);
   const __m256d bo = bound(e.mo, kr, ka);
   // The origin strictly beyond edge i's line: sign(o_i) = -sign(A2) != 0.
@@ -1087,7 +1079,9 @@ __attribute__((target("avx2"), always_inline)) inline Pre prologueAvx2Body(
   if ((early | vin) != 0) return Pre(int(Pre::kHit) - early);
   const EdgeLanes e = edgeLanes(x, y, Z, me);
   if (capCrossingHit(e, x, y, me, Z, zt, bze, r2, HH)) return Pre::kHit;
-  if (edgeSeparatesAvx2(e, r2)) return Pre::kDisjoint;
+  __m256d A2, mA;
+  areaLanes(e, &A2, &mA);
+  if (edgeSeparatesAvx2(e, A2, mA, r2)) return Pre::kDisjoint;
   if (edgeHitAvx2(e, x, y, Z, me, r2, HH)) return Pre::kHit;
 
   // rho = max |R_jk|, the same value as the scalar max.
@@ -1548,12 +1542,13 @@ __attribute__((target("avx2"), noinline)) Tri filterTestsAvx2(
   signLanes(_mm256_sub_pd(ny, rr), mr, &bp, &bn);
   beyond |= bits3(bp) == 7;
   settled &= bits3(bn) != 0;
-  if (beyond || edgeSeparatesAvx2(e, r2) || directionSeparates(q))
+  __m256d A2, mA;
+  areaLanes(e, &A2, &mA);
+  if (beyond || edgeSeparatesAvx2(e, A2, mA, r2) || directionSeparates(q))
     return Tri::kFalse;
   *undecided = open;
   // For the stages after the filter (Local).
-  __m256d A2, mA, ap, an;
-  areaLanes(e, &A2, &mA);
+  __m256d ap, an;
   signLanes(A2, mA, &ap, &an);
   out->area_nonzero = (_mm256_movemask_pd(_mm256_or_pd(ap, an)) & 1) != 0;
   out->early_settled = settled;
