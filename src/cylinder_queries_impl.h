@@ -891,8 +891,25 @@ TRICYL_PER_SIGN_INLINE Tri lineCylinder(C& c, bool* early) {
     auto cross_p = [](const auto& f) {
       return f.a().x * f.e().y - f.a().y * f.e().x;
     };
+    // A line parallel to the axis, e_x = e_y = 0 exactly: then L = 0 and
+    // c = 0, so r^2 L - c^2 = 0 exactly, and (E) is false (L = 0). Where the
+    // filter's r^2 L - c^2, e_x and e_y are all 0, the two signs of e_x and
+    // e_y (each from the direction alone: exact in double for an exact
+    // pose) certify that tie, which r^2 L - c^2's own exact-in-double check
+    // would certify only from the whole predicate on both frame points (the
+    // same sign and stage, fewer operations; otherwise the stages below).
+    auto ex_p = [](const auto& f) { return f.e().x; };
+    auto ey_p = [](const auto& f) { return f.e().y; };
+    bool axial = false;
+    if (toFd(v[kS]).v == 0) {
+      const Fp vx = c.value(ex_p), vy = c.value(ey_p);
+      axial = toFd(vx).v == 0 && toFd(vy).v == 0 &&
+              c.resolve(ex_p, vx) == Sign::kZero &&
+              c.resolve(ey_p, vy) == Sign::kZero;
+    }
     const Fd cv = toFd(c.value(cross_p));
-    const Sign sep = cv.m > 0x1p24 * std::fabs(cv.v)
+    const Sign sep = axial ? Sign::kZero
+                     : cv.m > 0x1p24 * std::fabs(cv.v)
                          ? c.resolveRunning(sep_p, v[kS])
                          : c.resolve(sep_p, v[kS]);
     if (sep == Sign::kNeg) {
@@ -903,8 +920,8 @@ TRICYL_PER_SIGN_INLINE Tri lineCylinder(C& c, bool* early) {
     auto nonNegR = [&c](const auto& pred, const Fp& value) {
       return c.resolve(pred, value) != Sign::kNeg;
     };
-    if (!approach.f && axisLenPositive(c, v[kL]) && nonNegR(foot_top, v[kHT]) &&
-        nonNegR(foot_bot, v[kHB]))
+    if (!approach.f && !axial && axisLenPositive(c, v[kL]) &&
+        nonNegR(foot_top, v[kHT]) && nonNegR(foot_bot, v[kHB]))
       return Tri::kTrue;
     if (!cross.f && ((!d.isNeg(kXT) && nonNegR(cap_top, v[kXT])) ||
                      (!d.isNeg(kXB) && nonNegR(cap_bot, v[kXB]))))
