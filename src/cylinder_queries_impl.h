@@ -497,6 +497,20 @@ inline auto axisFootHeight(const F& f, int side) {
   return side > 0 ? f.H * L - zL : f.H * L + zL;
 }
 
+/// The direction's local x and y (e_x, e_y), as predicates.
+struct DirX {
+  template <class F>
+  auto operator()(const F& f) const {
+    return f.e().x;
+  }
+};
+struct DirY {
+  template <class F>
+  auto operator()(const F& f) const {
+    return f.e().y;
+  }
+};
+
 /// L = e_x^2 + e_y^2 > 0, certified from the filter's value of L (PerSign):
 /// L is a sum of squares, so L > 0 iff e_x != 0 or e_y != 0, exactly. The
 /// two signs of degree 2 decide where L's own sign (degree 4) would take
@@ -504,11 +518,25 @@ inline auto axisFootHeight(const F& f, int side) {
 /// 1e-32 of its magnitude, below the a-priori double word's 2^-90.
 template <class C>
 inline bool axisLenPositive(C& c, const Fp& len_value) {
-  auto ex_p = [](const auto& f) { return f.e().x; };
-  auto ey_p = [](const auto& f) { return f.e().y; };
   return shallowSign(toFd(len_value)) == Sign::kPos ||
-         c.resolve(ex_p, c.value(ex_p)) != Sign::kZero ||
-         c.resolve(ey_p, c.value(ey_p)) != Sign::kZero;
+         c.resolve(DirX{}, c.value(DirX{})) != Sign::kZero ||
+         c.resolve(DirY{}, c.value(DirY{})) != Sign::kZero;
+}
+
+/// e_x = e_y = 0 exactly: the segment or line is parallel to the axis, so
+/// L = 0, g = -(x_a e_x + y_a e_y) = 0 and c = x_a e_y - y_a e_x = 0
+/// exactly, and (E) is false. Certified (PerSign) only where the filter's
+/// values of e_x and e_y are both 0, by their exact signs (each from the
+/// direction alone: exact in double for an exact pose); false otherwise
+/// (not known). For a query whose filter value of g or of r^2 L - c^2 is 0:
+/// the exact-in-double check of that sign would certify the same tie from
+/// the whole predicate on both frame points.
+template <class C>
+inline bool axisParallel(C& c) {
+  const Fp vx = c.value(DirX{}), vy = c.value(DirY{});
+  return toFd(vx).v == 0 && toFd(vy).v == 0 &&
+         c.resolve(DirX{}, vx) == Sign::kZero &&
+         c.resolve(DirY{}, vy) == Sign::kZero;
 }
 
 template <class C>
@@ -754,7 +782,10 @@ TRICYL_PER_SIGN_INLINE Tri segmentCylinder(C& c, bool* early) {
     // (V) (E) (X) escalates least ((V) (X) (E) 1% more, (E) (V) (X) 2%).
     // Within (E) the low-degree conditions first (any of them may be the
     // one that fails).
-    if (!e_false && nonNegR(foot_p, vf) && nonNegR(rest_p, vr) &&
+    // A segment parallel to the axis (axisParallel, tried where the
+    // filter's g is 0): (E) false without its signs.
+    if (!e_false && !(toFd(vf).v == 0 && axisParallel(c)) &&
+        nonNegR(foot_p, vf) && nonNegR(rest_p, vr) &&
         c.resolve(len_p, vl) == Sign::kPos && nonNegR(foot_top, vht) &&
         nonNegR(foot_bot, vhb) && nonNegR(sep_p, vs))
       return Tri::kTrue;
@@ -891,8 +922,12 @@ TRICYL_PER_SIGN_INLINE Tri lineCylinder(C& c, bool* early) {
     auto cross_p = [](const auto& f) {
       return f.a().x * f.e().y - f.a().y * f.e().x;
     };
+    // A line parallel to the axis (axisParallel): r^2 L - c^2 = 0 exactly
+    // and (E) false.
+    const bool axial = toFd(v[kS]).v == 0 && axisParallel(c);
     const Fd cv = toFd(c.value(cross_p));
-    const Sign sep = cv.m > 0x1p24 * std::fabs(cv.v)
+    const Sign sep = axial ? Sign::kZero
+                     : cv.m > 0x1p24 * std::fabs(cv.v)
                          ? c.resolveRunning(sep_p, v[kS])
                          : c.resolve(sep_p, v[kS]);
     if (sep == Sign::kNeg) {
@@ -903,8 +938,8 @@ TRICYL_PER_SIGN_INLINE Tri lineCylinder(C& c, bool* early) {
     auto nonNegR = [&c](const auto& pred, const Fp& value) {
       return c.resolve(pred, value) != Sign::kNeg;
     };
-    if (!approach.f && axisLenPositive(c, v[kL]) && nonNegR(foot_top, v[kHT]) &&
-        nonNegR(foot_bot, v[kHB]))
+    if (!approach.f && !axial && axisLenPositive(c, v[kL]) &&
+        nonNegR(foot_top, v[kHT]) && nonNegR(foot_bot, v[kHB]))
       return Tri::kTrue;
     if (!cross.f && ((!d.isNeg(kXT) && nonNegR(cap_top, v[kXT])) ||
                      (!d.isNeg(kXB) && nonNegR(cap_bot, v[kXB]))))

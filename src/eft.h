@@ -134,24 +134,6 @@ inline constexpr double kDwAddRel = 0x1p-104;  // 4 u^2
 
 inline DW dwNeg(DW x) { return {-x.hi, -x.lo}; }
 
-/// x * y: Algorithm 10 (DWTimesDW1; relative error <= 7u^2 of the exact
-/// product x y, without underflow). Its TwoProduct is exact with or without
-/// FMA, and nothing else in it could be fused (-ffp-contract=off), so the
-/// result is the same bits on every platform.
-template <bool kFma>
-inline DW dwMulT(DW x, DW y) {
-  double ch, cl1;
-  twoProdT<kFma>(x.hi, y.hi, ch, cl1);
-  const double tl1 = x.hi * y.lo;
-  const double tl2 = x.lo * y.hi;
-  const double cl2 = tl1 + tl2;
-  const double cl3 = cl1 + cl2;
-  DW z;
-  twoSum(ch, cl3, z.hi, z.lo);
-  return z;
-}
-inline DW dwMul(DW x, DW y) { return dwMulT<TRICYL_HAVE_FMA != 0>(x, y); }
-
 /// FastTwoSum (Dekker): s = fl(a + b) and e = (a + b) - s EXACTLY when
 /// |a| >= |b| or a = 0 (and always when the sum is subnormal: such sums are
 /// exact). Three operations instead of TwoSum's six.
@@ -160,24 +142,35 @@ inline void fastTwoSum(double a, double b, double& s, double& e) {
   e = b - (s - a);
 }
 
-/// dwMulT with its final normalisation by FastTwoSum (Joldes, Muller and
-/// Popescu's Algorithm 10 as published): for normalised operands
-/// (|lo| <= u |hi|, which every operation here returns) |cl3| <= 3u (1 +
-/// 5u) |ch| < |ch|, and ch = 0 (a zero factor, or a product below 2^-1075)
-/// makes cl3 = 0; so FastTwoSum's precondition holds and it returns the
-/// exact pair that TwoSum returns: the same double words as dwMulT, up to
-/// the sign of a zero low part (which no later sum, product or sign test
-/// tells apart), and the same error bound kDwRel.
-/// (The same operations in the same order as dwMulT up to its last step:
-/// cl3 = cl1 + (x_h y_l + x_l y_h).)
+/// x * y: Algorithm 10 of Joldes, Muller and Popescu (DWTimesDW1, as
+/// published: relative error <= 7u^2 of the exact product x y, without
+/// underflow). Its TwoProduct is exact with or without FMA, and nothing
+/// else in it could be fused (-ffp-contract=off), so the result is the
+/// same bits on every platform.
+/// PRECONDITION: both operands normalised, |lo| <= u |hi| (hi = fl(hi +
+/// lo)); every double word of the library is (each operation of this file
+/// ends in a TwoSum or a FastTwoSum, a TwoProduct's (p, e) is, lift gives
+/// (x, 0), and the callers scale only by powers of 2 and negate; checked
+/// caller by caller in src/dw_kernel.h, src/per_sign.h, src/dd.h,
+/// src/adaptive.cpp and src/triangle_cylinder_margin.cpp). Then the final
+/// FastTwoSum is exact: cl3 = cl1 + (x_h y_l + x_l y_h) has |cl3| <= 3u (1
+/// + 5u) |ch| < |ch| (|cl1| <= u |ch|, each cross term <= u (1 + u) |ch|,
+/// two roundings), and ch = 0 (a zero factor, or a product below 2^-1075)
+/// is FastTwoSum's other exact case; under underflow a sum with a
+/// subnormal result is exact anyway. So (z.hi, z.lo) is the exact pair
+/// that TwoSum(ch, cl3) returns (z.hi = fl(ch + cl3) by both; z.lo the
+/// exact remainder, up to the sign of a zero, which no later sum, product
+/// or sign test tells apart): the double words of the general form with a
+/// cheaper last step, and the same error bound kDwRel.
 template <bool kFma>
-inline DW dwMulFastT(DW x, DW y) {
+inline DW dwMulT(DW x, DW y) {
   double ch, cl1;
   twoProdT<kFma>(x.hi, y.hi, ch, cl1);
   DW z;
   fastTwoSum(ch, cl1 + (x.hi * y.lo + x.lo * y.hi), z.hi, z.lo);
   return z;
 }
+inline DW dwMul(DW x, DW y) { return dwMulT<TRICYL_HAVE_FMA != 0>(x, y); }
 
 /// The relative error bound of dwMul used by the running bound of
 /// src/adaptive.cpp: 2^-103 = 8u^2 covers 7u^2 with room for the (1 + u)

@@ -132,7 +132,7 @@ inline DwEt<kFma> operator-(const DwEt<kFma>& a, const DwEt<kFma>& b) {
 }
 template <bool kFma>
 inline DwEt<kFma> operator*(const DwEt<kFma>& a, const DwEt<kFma>& b) {
-  const DW v = dwMulFastT<kFma>(a.v, b.v);
+  const DW v = dwMulT<kFma>(a.v, b.v);
   const double ma = std::fabs(a.v.hi) + std::fabs(a.v.lo);
   const double mb = std::fabs(b.v.hi) + std::fabs(b.v.lo);
   return {v,
@@ -355,7 +355,7 @@ inline DwPt<kFma> operator-(const DwPt<kFma>& a, const DwPt<kFma>& b) {
 }
 template <bool kFma>
 inline DwPt<kFma> operator*(const DwPt<kFma>& a, const DwPt<kFma>& b) {
-  return {dwMulFastT<kFma>(a.v, b.v)};
+  return {dwMulT<kFma>(a.v, b.v)};
 }
 template <bool kFma>
 inline DwPt<kFma> absolute(const DwPt<kFma>& a) {
