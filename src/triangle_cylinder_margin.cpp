@@ -53,6 +53,7 @@
 #include <gmpxx.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -505,8 +506,7 @@ Tri edgeFilter(const TorusInput<K>& t, int a, int b) {
 
 // ---- The exact stage: GMP integers, Sturm sequence ------------------------
 
-/// Is a0 + a1 s + a2 s^2 > 0 for every s in [0, 1]? (src/margin_sturm.h)
-using detail::sturm::cert::quadraticPositive;
+using detail::sturm::cert::signSquaresPlusProduct;
 
 /// The exact stage of one edge (GMP integers). With p(s) = A + s E,
 /// rho^2 = p0 + p1 s + p2 s^2 and z - C = za + ez s, in this order:
@@ -535,11 +535,39 @@ using detail::sturm::cert::quadraticPositive;
 ///    in closed form, no gcd; exact subdivision of the Bernstein form was
 ///    tried before it and dropped: on the wide inputs whose edges reach
 ///    this point it needed thousands of pieces).
-/// The coefficient size (bits) above which edgeExact tries the local
+/// The coefficient size (bits) above which edgeExactWide tries the local
 /// certificate before the Sturm count.
 constexpr std::size_t kWideQuarticBits = 10000;
 
-bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
+/// Is f(s) = |A + s E|^2 + K > 0 on [0, 1], for f = a[0] + a[1] s + a[2] s^2
+/// (a[0] = |A|^2 + K, a[1] = 2 A.E, a[2] = |E|^2)? As quadraticPositive
+/// (src/margin_sturm.h),
+/// with the vertex's discriminant in the form of Lagrange's identity,
+/// 4 a0 a2 - a1^2 = 4 (|A x E|^2 + K |E|^2): `vertexSign()` gives the sign
+/// of |A x E|^2 + K |E|^2. The power form cancels where the edge's line
+/// passes close to o compared with |A| (a far edge of a wide triangle
+/// grazing a small torus: a0 a2 and a1^2 then agree to thousands of bits,
+/// and their exact products were most of this stage's cost); the cross
+/// product is small there, and its squares' sum has no cancellation.
+template <class VertexSign>
+bool distancePositive(const mpz_class* a, VertexSign&& vertexSign) {
+  if (sgn(a[0]) <= 0 || sgn(a[0] + a[1] + a[2]) <= 0) return false;
+  if (sgn(a[2]) > 0 && sgn(a[1]) < 0 && a[1] + 2 * a[2] > 0)
+    return vertexSign() > 0;
+  return true;
+}
+
+/// One edge's polynomials, kept between the phases of its exact stage:
+/// L, rho^2 = P and (from the second phase) Q, with the torus's R and M.
+struct ExactEdge {
+  mpz_class l[3], p[3], q[5], R, M;
+  std::size_t bits = 0;  // Q's largest coefficient (bits)
+};
+
+/// Phase 1 of the exact stage (steps 1 and 2 above): products of the
+/// inputs' size only. 1: the edge meets the torus, 0: it does not; -1: not
+/// decided, L and P left in *e for edgeExactQuartic.
+int edgeExactBounds(const TorusInput<ZKernel>& t, int a, int b, ExactEdge* e) {
   const mpz_class ex = t.X[b] - t.X[a], ey = t.Y[b] - t.Y[a],
                   ez = t.Z[b] - t.Z[a];
   const mpz_class za = t.Z[a] - t.C, zb = t.Z[b] - t.C;
@@ -547,40 +575,93 @@ bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
   const mpz_class p1 = 2 * (t.X[a] * ex + t.Y[a] * ey);
   const mpz_class p2 = ex * ex + ey * ey;
   const mpz_class R2 = t.R * t.R, M2 = t.M * t.M;
-  const mpz_class l[3] = {p0 + za * za + (R2 - M2), p1 + 2 * za * ez,
-                          p2 + ez * ez};
-  if (!quadraticPositive(l[0], l[1], l[2])) return true;  // 1.
-  if ((za > t.M && zb > t.M) || (za < -t.M && zb < -t.M)) return false;
+  const mpz_class K = R2 - M2;
+  const mpz_class l[3] = {p0 + za * za + K, p1 + 2 * za * ez, p2 + ez * ez};
+  // A = p(0) - o, E: A x E, made once when a vertex test needs it.
+  std::optional<std::array<mpz_class, 3>> axe;
+  auto cross3 = [&]() -> const std::array<mpz_class, 3>& {
+    if (!axe)
+      axe =
+          std::array<mpz_class, 3>{t.Y[a] * ez - za * ey, za * ex - t.X[a] * ez,
+                                   t.X[a] * ey - t.Y[a] * ex};
+    return *axe;
+  };
+  if (!distancePositive(l, [&] {
+        const auto& c = cross3();
+        return signSquaresPlusProduct({&c[0], &c[1], &c[2]}, K, l[2]);
+      }))
+    return 1;  // 1.
+  if ((za > t.M && zb > t.M) || (za < -t.M && zb < -t.M)) return 0;
   const mpz_class rm2 = (t.R + t.M) * (t.R + t.M);
-  if (quadraticPositive(p0 - rm2, p1, p2)) return false;
-  if (quadraticPositive(p0 + za * za - rm2, l[1], l[2])) return false;
-  // 3. Q's coefficients in the power basis.
-  const mpz_class R4 = 4 * R2;
-  const mpz_class q[5] = {l[0] * l[0] - R4 * p0, 2 * l[0] * l[1] - R4 * p1,
-                          l[1] * l[1] + 2 * l[0] * l[2] - R4 * p2,
-                          2 * l[1] * l[2], l[2] * l[2]};
+  const mpz_class nrm2 = -rm2;
+  const mpz_class pm[3] = {p0 - rm2, p1, p2};
+  if (distancePositive(pm, [&] {
+        const auto& c = cross3();  // (A x E)_z = A_xy x E_xy
+        return signSquaresPlusProduct({&c[2]}, nrm2, p2);
+      }))
+    return 0;
+  const mpz_class bm[3] = {p0 + za * za - rm2, l[1], l[2]};
+  if (distancePositive(bm, [&] {
+        const auto& c = cross3();
+        return signSquaresPlusProduct({&c[0], &c[1], &c[2]}, nrm2, l[2]);
+      }))
+    return 0;
+  for (int i = 0; i < 3; ++i) e->l[i] = l[i];
+  e->p[0] = p0;
+  e->p[1] = p1;
+  e->p[2] = p2;
+  e->R = t.R;
+  e->M = t.M;
+  return -1;
+}
+
+/// Phase 2 (step 3 up to the Bernstein test; the Sturm count for narrow
+/// quartics): Q, products of L's size. -1: a wide quartic (above
+/// kWideQuarticBits), Q left in *e for edgeExactWide.
+int edgeExactQuartic(ExactEdge* e) {
+  const mpz_class* l = e->l;
+  const mpz_class* p = e->p;
+  const mpz_class R4 = 4 * e->R * e->R;
+  mpz_class* q = e->q;
+  q[0] = l[0] * l[0] - R4 * p[0];
+  q[1] = 2 * l[0] * l[1] - R4 * p[1];
+  q[2] = l[1] * l[1] + 2 * l[0] * l[2] - R4 * p[2];
+  q[3] = 2 * l[1] * l[2];
+  q[4] = l[2] * l[2];
   const mpz_class q_end = q[0] + q[1] + q[2] + q[3] + q[4];
-  if (sgn(q[0]) <= 0 || sgn(q_end) <= 0) return true;
+  if (sgn(q[0]) <= 0 || sgn(q_end) <= 0) return 1;
   // Bernstein coefficients (times 12) all > 0: Q > 0 on [0, 1], no roots.
   const mpz_class q0 = 12 * q[0];
   if (sgn(q0 + 3 * q[1]) > 0 && sgn(q0 + 6 * q[1] + 2 * q[2]) > 0 &&
       sgn(q0 + 9 * q[1] + 6 * q[2] + 3 * q[3]) > 0)
-    return false;
+    return 0;
   // Wide quartics: the local certificate at an approximate minimiser
   // first (torusEdgeCertificate, src/margin_sturm.h), the Sturm count where
-  // it cannot decide (an exact tangency, for one). s0 gets at most a third
-  // of Q's bits: beyond that, its floats cost about what the count does.
-  // Narrow quartics go to the Sturm count directly, which is cheap there.
-  std::size_t bits = 0;
-  for (const mpz_class& c : q)
-    bits = std::max(bits, mpz_sizeinbase(c.get_mpz_t(), 2));
-  if (bits > kWideQuarticBits) {
-    const mpz_class pq[3] = {p0, p1, p2};
-    const int s =
-        detail::sturm::torusEdgeCertificate(q, l, pq, t.R, t.M, long(bits) / 3);
-    if (s >= 0) return s == 1;
-  }
+  // it cannot decide (an exact tangency, for one): edgeExactWide. Narrow
+  // quartics go to the Sturm count directly, which is cheap there.
+  e->bits = 0;
+  for (int i = 0; i < 5; ++i)
+    e->bits = std::max(e->bits, mpz_sizeinbase(q[i].get_mpz_t(), 2));
+  if (e->bits > kWideQuarticBits) return -1;
   return detail::sturm::rootsInUnitTorus(q, l[1], l[2]) > 0;
+}
+
+/// Phase 3, wide quartics: s0 gets at most a third of Q's bits (beyond
+/// that, its floats cost about what the count does).
+bool edgeExactWide(const ExactEdge& e) {
+  const int s = detail::sturm::torusEdgeCertificate(e.q, e.l, e.p, e.R, e.M,
+                                                    long(e.bits) / 3);
+  if (s >= 0) return s == 1;
+  return detail::sturm::rootsInUnitTorus(e.q, e.l[1], e.l[2]) > 0;
+}
+
+/// The whole exact stage of one edge, phases 1 - 3 in order.
+bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
+  ExactEdge e;
+  int r = edgeExactBounds(t, a, b, &e);
+  if (r < 0) r = edgeExactQuartic(&e);
+  if (r < 0) r = edgeExactWide(e);
+  return r == 1;
 }
 
 /// The edges of one torus in the filter: kTrue if one certainly meets it,
@@ -1013,6 +1094,43 @@ bool wideSpread(const Query& q) {
   return elo < 1023 - 400 || ehi - elo > 500 || ehi >= 1023 + 40;
 }
 
+/// Does the triangle certainly miss the sized part Cyl(r + m, h)
+/// (grow_radius) or Cyl(r, h + m)? Exact comparisons of the exact torus
+/// input `t` (torusExactInput(q, 1): doubled local coordinates X, Y, Z and
+/// sizes R = 2r, M = 2m, C = lz in one unit), no products: every vertex
+/// beyond one face of the part's slab (Z > C (+ M), or Z < -(C (+ M))), or
+/// beyond one of the four planes x = +-(r (+ m)), y = +-(r (+ m)) that
+/// touch the part's barrel (the part is convex and lies on the other
+/// side). Only a shortcut: false says nothing.
+bool sizedPartExcluded(const TorusInput<ZKernel>& t, bool grow_radius) {
+  const mpz_class half = grow_radius ? t.C : mpz_class(t.C + t.M);
+  const mpz_class rad = grow_radius ? mpz_class(t.R + t.M) : t.R;
+  auto all = [&t](auto&& pred) { return pred(0) && pred(1) && pred(2); };
+  return all([&](int i) { return t.Z[i] > half; }) ||
+         all([&](int i) { return t.Z[i] < -half; }) ||
+         all([&](int i) { return t.X[i] > rad; }) ||
+         all([&](int i) { return t.X[i] < -rad; }) ||
+         all([&](int i) { return t.Y[i] > rad; }) ||
+         all([&](int i) { return t.Y[i] < -rad; });
+}
+
+/// Does the triangle certainly miss the torus at +h (top) or -h? As
+/// sizedPartExcluded, for the torus's bounding box: the slab
+/// |z -+ h| <= m and the planes x, y = +-(r + m) (every point of the torus
+/// is a rim point plus a vector of length <= m).
+bool torusExcluded(const TorusInput<ZKernel>& t, bool top) {
+  const mpz_class hi = t.C + t.M, lo = t.C - t.M, rad = t.R + t.M;
+  auto all = [&t](auto&& pred) { return pred(0) && pred(1) && pred(2); };
+  // Z of the top torus's input; the bottom one's is -Z (torusExactInput).
+  auto z = [&t, top](int i) { return top ? t.Z[i] : mpz_class(-t.Z[i]); };
+  return all([&](int i) { return z(i) > hi; }) ||
+         all([&](int i) { return z(i) < lo; }) ||
+         all([&](int i) { return t.X[i] > rad; }) ||
+         all([&](int i) { return t.X[i] < -rad; }) ||
+         all([&](int i) { return t.Y[i] > rad; }) ||
+         all([&](int i) { return t.Y[i] < -rad; });
+}
+
 /// A sized part (grow_radius: Cyl(r + m, h), else Cyl(r, h + m)).
 /// `stage` accumulates the strongest stage used; `wide` is wideSpread(q).
 bool cylinderPart(const Query& q, bool grow_radius, bool wide, Stage* stage) {
@@ -1055,12 +1173,21 @@ Decision decide(Query& q) {
   }
   if (!validated && !q.scan()) return {Answer::kInvalidInput, Stage::kInvalid};
   Stage stage = Stage::kFastPath;
+  // The order of the parts (every part is a subset of C + B_m, so a hit by
+  // any one ends the query, in any order; a miss needs all four). Inside
+  // the range gate the sized cylinders first: two or three kernel calls
+  // that decide most queries. On wide inputs (wideSpread) each sized part
+  // is one exact run of the kernel on dyadics of thousands of bits, the
+  // torus edges' filters and exact stages mostly far less (docs/margin.md,
+  // "Order of the parts"): there the edges first, then the sized parts that
+  // the slab and half-plane tests do not exclude, then the faces (which
+  // need the triangle to miss C, i.e. the sized parts decided first).
   const bool wide = wideSpread(q);
-  if (cylinderPart(q, true, wide, &stage)) return yes(stage);
-  if (cylinderPart(q, false, wide, &stage)) return yes(stage);
-  // The tori. The triangle misses C here, hence the rim circles. Edges
-  // first (the face part is complete only when they miss): the filter on
-  // both tori, then GMP for the edges it left open, then the faces.
+  if (!wide) {
+    if (cylinderPart(q, true, false, &stage)) return yes(stage);
+    if (cylinderPart(q, false, false, &stage)) return yes(stage);
+  }
+  // The tori: edges, then (after the sized parts on wide inputs) the faces.
   q.scan();
   const ScaledInputs s = scaleInputs(q);
   bool open[2][3] = {{true, true, true}, {true, true, true}};
@@ -1120,15 +1247,53 @@ Decision decide(Query& q) {
         open[i][e] = r == Tri::kUnknown;
       }
     }
+  // The exact stage of the open edges. Inside the range gate all of it,
+  // edge by edge. On wide inputs by cost: phase 1 of every open edge
+  // (products of the inputs' size), then the sized parts (one exact kernel
+  // run each), then the quartics (products of twice that size, and for the
+  // wide ones the local certificate), so that a hit by a cheaper part is
+  // found before the dearer ones run.
+  ExactEdge edge[2][3];
   for (int i = 0; i < 2; ++i) {
     if (!(open[i][0] || open[i][1] || open[i][2])) continue;
     const TorusInput<ZKernel> t = exactTorus(i);
     stage = Stage::kExactGmp;
-    for (int e = 0; e < 3; ++e)
-      if (open[i][e] && edgeExact(t, kEdge[e][0], kEdge[e][1]))
-        return yes(stage);
+    for (int e = 0; e < 3; ++e) {
+      if (!open[i][e]) continue;
+      if (!wide) {
+        if (edgeExact(t, kEdge[e][0], kEdge[e][1])) return yes(stage);
+        open[i][e] = false;
+        continue;
+      }
+      const int r = edgeExactBounds(t, kEdge[e][0], kEdge[e][1], &edge[i][e]);
+      if (r == 1) return yes(stage);
+      open[i][e] = r < 0;
+    }
   }
+  bool slab_out[2] = {false, false};  // the triangle beyond a torus's slab
+  if (wide) {
+    if (!exact_top) exact_top = torusExactInput(q, 1);
+    const TorusInput<ZKernel>& t = *exact_top;
+    if (!sizedPartExcluded(t, true) && cylinderPart(q, true, true, &stage))
+      return yes(stage);
+    if (!sizedPartExcluded(t, false) && cylinderPart(q, false, true, &stage))
+      return yes(stage);
+    for (int i = 0; i < 2; ++i)
+      for (int e = 0; e < 3; ++e) {
+        if (!open[i][e]) continue;
+        const int r = edgeExactQuartic(&edge[i][e]);
+        if (r == 1) return yes(stage);
+        open[i][e] = r < 0;
+      }
+    for (int i = 0; i < 2; ++i)
+      for (int e = 0; e < 3; ++e)
+        if (open[i][e] && edgeExactWide(edge[i][e])) return yes(stage);
+    for (int i = 0; i < 2; ++i) slab_out[i] = torusExcluded(t, i == 0);
+  }
+  // The triangle misses C here (C is inside Cyl(r + m, h)), hence the rim
+  // circles: the face part is complete.
   for (int i = 0; i < 2; ++i) {
+    if (slab_out[i]) continue;
     const Decision d = faceStage(
         q, s, i == 0, [&]() -> const TorusInput<Ul>& { return wideTorus(i); });
     stage = stronger(stage, d.stage);
