@@ -475,7 +475,8 @@ inline int signProductDifference(std::initializer_list<const mpz_class*> a,
   return sgn(product(a, sa - m) - product(b, sb - m));
 }
 
-/// The sign of c_1^2 + ... + c_n^2 + k l (n <= 3), leading bits first.
+/// The sign of c_1^2 + ... + c_n^2 + k_1 ... k_m (n <= 3, 1 <= m <= 4),
+/// leading bits first (the product as in leadingProduct).
 /// The sum of squares has no cancellation: with each |c_i| = g_i 2^k_i
 /// (1 + d_i) as in leadingProduct, the terms g_i^2 2^(2 k_i - E) (E the
 /// largest 2 k_i; each term at most 1, the largest at least 1/4) summed in
@@ -484,7 +485,7 @@ inline int signProductDifference(std::initializer_list<const mpz_class*> a,
 /// a term that underflows loses below 2^-1074, far below 2^-60 of the
 /// sum); frexp brings it to [1/2, 1) exactly.
 inline int signSquaresPlusProduct(std::initializer_list<const mpz_class*> c,
-                                  const mpz_class& k, const mpz_class& l,
+                                  std::initializer_list<const mpz_class*> k,
                                   bool* exact = nullptr) {
   if (exact != nullptr) *exact = false;
   long e_max = std::numeric_limits<long>::min();
@@ -502,7 +503,7 @@ inline int signSquaresPlusProduct(std::initializer_list<const mpz_class*> c,
   }
   double ft = 0;
   long et = 0;
-  const int st = leadingProduct({&k, &l}, &ft, &et);
+  const int st = leadingProduct(k, &ft, &et);
   if (n == 0) return st;  // the squares are 0
   if (st >= 0) return 1;  // a positive sum and a term >= 0
   double sum = 0;
@@ -513,7 +514,8 @@ inline int signSquaresPlusProduct(std::initializer_list<const mpz_class*> c,
   const int cmp = compareLeading(fs, e_max + fe, ft, et);
   if (cmp != 0) return cmp;
   if (exact != nullptr) *exact = true;
-  mpz_class v = k * l;
+  mpz_class v = 1;
+  for (const mpz_class* x : k) v *= *x;
   for (const mpz_class* x : c) v += *x * *x;
   return sgn(v);
 }

@@ -564,13 +564,45 @@ struct ExactEdge {
   std::size_t bits = 0;  // Q's largest coefficient (bits)
 };
 
-/// Phase 1 of the exact stage (steps 1 and 2 above): products of the
-/// inputs' size only. 1: the edge meets the torus, 0: it does not; -1: not
-/// decided, L and P left in *e for edgeExactQuartic.
-int edgeExactBounds(const TorusInput<ZKernel>& t, int a, int b, ExactEdge* e) {
+/// Step 1 alone, cheaply: does L = |p(s) - o|^2 + R^2 - M^2 take a value
+/// <= 0 on [0, 1] (the edge meets the ball |p - o|^2 <= M^2 - R^2 about the
+/// rim's centre o, inside the torus)? Never for R > M. Else, with
+/// A = p(0) - o, B = p(1) - o, E = B - A and K = R^2 - M^2 = (R - M)(R + M):
+/// at an end iff |A|^2 + K <= 0 or |B|^2 + K <= 0; inside iff the vertex
+/// -A.E / |E|^2 is in (0, 1) (A.E < 0 < B.E) and |A x E|^2 + K |E|^2 <= 0
+/// (Lagrange's identity, as distancePositive). Each a sum of squares
+/// against a product, on leading bits first (signSquaresPlusProduct): no
+/// product of the inputs is formed at the ends, six for the dot products
+/// and nine for |E|^2 and the cross product at most. The same answer as
+/// step 1 of edgeExactBounds, which decide() skips after it.
+bool edgeBallHit(const TorusInput<ZKernel>& t, int a, int b) {
+  if (t.R > t.M) return false;  // L >= R^2 - M^2 > 0
+  const mpz_class km = t.R - t.M, kp = t.R + t.M;
+  const mpz_class za = t.Z[a] - t.C, zb = t.Z[b] - t.C;
+  if (signSquaresPlusProduct({&t.X[a], &t.Y[a], &za}, {&km, &kp}) <= 0 ||
+      signSquaresPlusProduct({&t.X[b], &t.Y[b], &zb}, {&km, &kp}) <= 0)
+    return true;
+  const mpz_class ex = t.X[b] - t.X[a], ey = t.Y[b] - t.Y[a], ez = zb - za;
+  if (sgn(t.X[a] * ex + t.Y[a] * ey + za * ez) >= 0 ||
+      sgn(t.X[b] * ex + t.Y[b] * ey + zb * ez) <= 0)
+    return false;  // the least value is at an end
+  const mpz_class e2 = ex * ex + ey * ey + ez * ez;
+  const mpz_class c[3] = {t.Y[a] * ez - za * ey, za * ex - t.X[a] * ez,
+                          t.X[a] * ey - t.Y[a] * ex};
+  return signSquaresPlusProduct({&c[0], &c[1], &c[2]}, {&km, &kp, &e2}) <= 0;
+}
+
+/// Phase 1 of the exact stage (steps 1 and 2 above; step 1 not again if
+/// `ball_done`: edgeBallHit said no): products of the inputs' size only.
+/// 1: the edge meets the torus, 0: it does not; -1: not decided, L and P
+/// left in *e for edgeExactQuartic.
+int edgeExactBounds(const TorusInput<ZKernel>& t, int a, int b, ExactEdge* e,
+                    bool ball_done = false) {
+  const mpz_class za = t.Z[a] - t.C, zb = t.Z[b] - t.C;
+  // The slab first: comparisons only.
+  if ((za > t.M && zb > t.M) || (za < -t.M && zb < -t.M)) return 0;
   const mpz_class ex = t.X[b] - t.X[a], ey = t.Y[b] - t.Y[a],
                   ez = t.Z[b] - t.Z[a];
-  const mpz_class za = t.Z[a] - t.C, zb = t.Z[b] - t.C;
   const mpz_class p0 = t.X[a] * t.X[a] + t.Y[a] * t.Y[a];
   const mpz_class p1 = 2 * (t.X[a] * ex + t.Y[a] * ey);
   const mpz_class p2 = ex * ex + ey * ey;
@@ -586,24 +618,23 @@ int edgeExactBounds(const TorusInput<ZKernel>& t, int a, int b, ExactEdge* e) {
                                    t.X[a] * ey - t.Y[a] * ex};
     return *axe;
   };
-  if (!distancePositive(l, [&] {
+  if (!ball_done && !distancePositive(l, [&] {
         const auto& c = cross3();
-        return signSquaresPlusProduct({&c[0], &c[1], &c[2]}, K, l[2]);
+        return signSquaresPlusProduct({&c[0], &c[1], &c[2]}, {&K, &l[2]});
       }))
     return 1;  // 1.
-  if ((za > t.M && zb > t.M) || (za < -t.M && zb < -t.M)) return 0;
   const mpz_class rm2 = (t.R + t.M) * (t.R + t.M);
   const mpz_class nrm2 = -rm2;
   const mpz_class pm[3] = {p0 - rm2, p1, p2};
   if (distancePositive(pm, [&] {
         const auto& c = cross3();  // (A x E)_z = A_xy x E_xy
-        return signSquaresPlusProduct({&c[2]}, nrm2, p2);
+        return signSquaresPlusProduct({&c[2]}, {&nrm2, &p2});
       }))
     return 0;
   const mpz_class bm[3] = {p0 + za * za - rm2, l[1], l[2]};
   if (distancePositive(bm, [&] {
         const auto& c = cross3();
-        return signSquaresPlusProduct({&c[0], &c[1], &c[2]}, nrm2, l[2]);
+        return signSquaresPlusProduct({&c[0], &c[1], &c[2]}, {&nrm2, &l[2]});
       }))
     return 0;
   for (int i = 0; i < 3; ++i) e->l[i] = l[i];
@@ -1248,11 +1279,14 @@ Decision decide(Query& q) {
       }
     }
   // The exact stage of the open edges. Inside the range gate all of it,
-  // edge by edge. On wide inputs by cost: phase 1 of every open edge
-  // (products of the inputs' size), then the sized parts (one exact kernel
-  // run each), then the quartics (products of twice that size, and for the
-  // wide ones the local certificate), so that a hit by a cheaper part is
-  // found before the dearer ones run.
+  // edge by edge. On wide inputs by cost, so that a hit by a cheaper part
+  // is found before the dearer ones run: step 1 of every open edge
+  // (edgeBallHit: nothing for R > M, else sums of squares against
+  // products on leading bits; the hits of the edges' exact stage on the
+  // hostile thresholds all come from it), then the sized parts (one exact
+  // kernel run each), then the bounding sets (products of the inputs'
+  // size), the quartics (twice that size) and the wide quartics' local
+  // certificate, then the faces.
   ExactEdge edge[2][3];
   for (int i = 0; i < 2; ++i) {
     if (!(open[i][0] || open[i][1] || open[i][2])) continue;
@@ -1265,9 +1299,7 @@ Decision decide(Query& q) {
         open[i][e] = false;
         continue;
       }
-      const int r = edgeExactBounds(t, kEdge[e][0], kEdge[e][1], &edge[i][e]);
-      if (r == 1) return yes(stage);
-      open[i][e] = r < 0;
+      if (edgeBallHit(t, kEdge[e][0], kEdge[e][1])) return yes(stage);
     }
   }
   bool slab_out[2] = {false, false};  // the triangle beyond a torus's slab
@@ -1278,6 +1310,17 @@ Decision decide(Query& q) {
       return yes(stage);
     if (!sizedPartExcluded(t, false) && cylinderPart(q, false, true, &stage))
       return yes(stage);
+    for (int i = 0; i < 2; ++i) {
+      if (!(open[i][0] || open[i][1] || open[i][2])) continue;
+      const TorusInput<ZKernel> ti = exactTorus(i);
+      for (int e = 0; e < 3; ++e) {
+        if (!open[i][e]) continue;
+        const int r =
+            edgeExactBounds(ti, kEdge[e][0], kEdge[e][1], &edge[i][e], true);
+        if (r == 1) return yes(stage);
+        open[i][e] = r < 0;
+      }
+    }
     for (int i = 0; i < 2; ++i)
       for (int e = 0; e < 3; ++e) {
         if (!open[i][e]) continue;

@@ -201,7 +201,8 @@ TEST(MarginSturm, LeadingBitsSignsAgreeWithExact) {
       if (kind == 3) k += g.integer(7) - 3;
     }
     const int want = sgn(sq + k * l);
-    ASSERT_EQ(signSquaresPlusProduct({&c[0], &c[1], &c[2]}, k, l, &exact), want)
+    ASSERT_EQ(signSquaresPlusProduct({&c[0], &c[1], &c[2]}, {&k, &l}, &exact),
+              want)
         << "i = " << i << ", kind " << kind;
     (exact ? fallbacks : filtered)[1]++;
   }
