@@ -493,15 +493,21 @@ void edgeBernstein(const TorusInput<K>& t, int a, int b, typename K::Num* lb,
   qb[4] = six * (lb[2] * lb[2]) - (R12 + R12) * p2;
 }
 
+/// kTrue: the edge meets the torus; kFalse: it does not; kUnknown: open.
+/// `l_positive` (if given) is set when L > 0 on the edge is certified
+/// (then edgeBallHit, step 1 of the exact stage, would say no).
 template <class K>
-Tri edgeFilter(const TorusInput<K>& t, int a, int b) {
+Tri edgeFilter(const TorusInput<K>& t, int a, int b,
+               bool* l_positive = nullptr) {
   typename K::Num lb[3], qb[5];
   edgeBernstein<K>(t, a, b, lb, qb);
   int budget = kBernsteinBudget<K>;
   const Tri tq = bernsteinAnyNonPos<K>(qb, 4, kBernsteinDepth, &budget);
   if (tq == Tri::kTrue) return tq;
   budget = kBernsteinBudget<K>;
-  return kOr(tq, bernsteinAnyNonPos<K>(lb, 2, kBernsteinDepth, &budget));
+  const Tri tl = bernsteinAnyNonPos<K>(lb, 2, kBernsteinDepth, &budget);
+  if (l_positive != nullptr && tl == Tri::kFalse) *l_positive = true;
+  return kOr(tq, tl);
 }
 
 // ---- The exact stage: GMP integers, Sturm sequence ------------------------
@@ -564,6 +570,37 @@ struct ExactEdge {
   std::size_t bits = 0;  // Q's largest coefficient (bits)
 };
 
+/// The inner part of edgeBallHit in a filter kernel K (UnderflowKernelT on
+/// the exact coordinates rounded once, torusWideInput): kTrue if the
+/// vertex of L is certainly inside (0, 1) with |A x E|^2 + K |E|^2 < 0
+/// (a hit), kFalse if the vertex is certainly outside or that value
+/// certainly > 0, kUnknown else (the exact test decides). Where the edge's
+/// line passes far from o compared with the ball's radius, nothing here
+/// cancels and the fifteen products of integers of thousands of bits are
+/// not formed.
+template <class K>
+Tri edgeBallVertex(const TorusInput<K>& t, int a, int b) {
+  using N = typename K::Num;
+  const N za = t.Z[a] - t.C, zb = t.Z[b] - t.C;
+  const N ex = t.X[b] - t.X[a], ey = t.Y[b] - t.Y[a], ez = t.Z[b] - t.Z[a];
+  const Sign sa = K::sign(t.X[a] * ex + t.Y[a] * ey + za * ez);
+  const Sign sb = K::sign(t.X[b] * ex + t.Y[b] * ey + zb * ez);
+  if (sa == Sign::kPos || sa == Sign::kZero || sb == Sign::kNeg ||
+      sb == Sign::kZero)
+    return Tri::kFalse;
+  if (sa == Sign::kUnknown || sb == Sign::kUnknown) return Tri::kUnknown;
+  // A x E = A x B: the latter does not cancel where B is far smaller
+  // than A (a vertex near o, the other far away).
+  const N cx = t.Y[a] * zb - za * t.Y[b], cy = za * t.X[b] - t.X[a] * zb,
+          cz = t.X[a] * t.Y[b] - t.Y[a] * t.X[b];
+  const N v = ((cx * cx + cy * cy) + cz * cz) +
+              ((t.R - t.M) * (t.R + t.M)) * ((ex * ex + ey * ey) + ez * ez);
+  const Sign sv = K::sign(v);
+  if (sv == Sign::kPos) return Tri::kFalse;
+  if (sv == Sign::kNeg) return Tri::kTrue;
+  return Tri::kUnknown;
+}
+
 /// Step 1 alone, cheaply: does L = |p(s) - o|^2 + R^2 - M^2 take a value
 /// <= 0 on [0, 1] (the edge meets the ball |p - o|^2 <= M^2 - R^2 about the
 /// rim's centre o, inside the torus)? Never for R > M. Else, with
@@ -575,20 +612,24 @@ struct ExactEdge {
 /// product of the inputs is formed at the ends, six for the dot products
 /// and nine for |E|^2 and the cross product at most. The same answer as
 /// step 1 of edgeExactBounds, which decide() skips after it.
-bool edgeBallHit(const TorusInput<ZKernel>& t, int a, int b) {
+template <class VertexHint>
+bool edgeBallHit(const TorusInput<ZKernel>& t, int a, int b,
+                 VertexHint&& vertexHint) {
   if (t.R > t.M) return false;  // L >= R^2 - M^2 > 0
   const mpz_class km = t.R - t.M, kp = t.R + t.M;
   const mpz_class za = t.Z[a] - t.C, zb = t.Z[b] - t.C;
   if (signSquaresPlusProduct({&t.X[a], &t.Y[a], &za}, {&km, &kp}) <= 0 ||
       signSquaresPlusProduct({&t.X[b], &t.Y[b], &zb}, {&km, &kp}) <= 0)
     return true;
+  const Tri hint = vertexHint();
+  if (hint != Tri::kUnknown) return hint == Tri::kTrue;
   const mpz_class ex = t.X[b] - t.X[a], ey = t.Y[b] - t.Y[a], ez = zb - za;
   if (sgn(t.X[a] * ex + t.Y[a] * ey + za * ez) >= 0 ||
       sgn(t.X[b] * ex + t.Y[b] * ey + zb * ez) <= 0)
     return false;  // the least value is at an end
   const mpz_class e2 = ex * ex + ey * ey + ez * ez;
-  const mpz_class c[3] = {t.Y[a] * ez - za * ey, za * ex - t.X[a] * ez,
-                          t.X[a] * ey - t.Y[a] * ex};
+  const mpz_class c[3] = {t.Y[a] * zb - za * t.Y[b], za * t.X[b] - t.X[a] * zb,
+                          t.X[a] * t.Y[b] - t.Y[a] * t.X[b]};  // A x B
   return signSquaresPlusProduct({&c[0], &c[1], &c[2]}, {&km, &kp, &e2}) <= 0;
 }
 
@@ -609,13 +650,14 @@ int edgeExactBounds(const TorusInput<ZKernel>& t, int a, int b, ExactEdge* e,
   const mpz_class R2 = t.R * t.R, M2 = t.M * t.M;
   const mpz_class K = R2 - M2;
   const mpz_class l[3] = {p0 + za * za + K, p1 + 2 * za * ez, p2 + ez * ez};
-  // A = p(0) - o, E: A x E, made once when a vertex test needs it.
+  // A = p(0) - o, B = p(1) - o: A x E = A x B, made once when a vertex
+  // test needs it.
   std::optional<std::array<mpz_class, 3>> axe;
   auto cross3 = [&]() -> const std::array<mpz_class, 3>& {
     if (!axe)
-      axe =
-          std::array<mpz_class, 3>{t.Y[a] * ez - za * ey, za * ex - t.X[a] * ez,
-                                   t.X[a] * ey - t.Y[a] * ex};
+      axe = std::array<mpz_class, 3>{t.Y[a] * zb - za * t.Y[b],
+                                     za * t.X[b] - t.X[a] * zb,
+                                     t.X[a] * t.Y[b] - t.Y[a] * t.X[b]};
     return *axe;
   };
   if (!ball_done && !distancePositive(l, [&] {
@@ -696,12 +738,13 @@ bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
 }
 
 /// The edges of one torus in the filter: kTrue if one certainly meets it,
-/// kFalse if none does; `open[e]` flags the edges left open.
+/// kFalse if none does; `open[e]` flags the edges left open, `l_positive[e]`
+/// those whose L > 0 is certified (edgeFilter).
 template <class K>
-Tri edgesFilter(const TorusInput<K>& t, bool* open) {
+Tri edgesFilter(const TorusInput<K>& t, bool* open, bool* l_positive) {
   detail::AnyOf any;
   for (int e = 0; e < 3; ++e) {
-    const Tri r = edgeFilter<K>(t, kEdge[e][0], kEdge[e][1]);
+    const Tri r = edgeFilter<K>(t, kEdge[e][0], kEdge[e][1], &l_positive[e]);
     open[e] = r == Tri::kUnknown;
     if (any.add(r)) return Tri::kTrue;
   }
@@ -1205,46 +1248,61 @@ Decision decide(Query& q) {
   if (!validated && !q.scan()) return {Answer::kInvalidInput, Stage::kInvalid};
   Stage stage = Stage::kFastPath;
   // The order of the parts (every part is a subset of C + B_m, so a hit by
-  // any one ends the query, in any order; a miss needs all four). Inside
-  // the range gate the sized cylinders first: two or three kernel calls
-  // that decide most queries. On wide inputs (wideSpread) each sized part
-  // is one exact run of the kernel on dyadics of thousands of bits, the
-  // torus edges' filters and exact stages mostly far less (docs/margin.md,
-  // "Order of the parts"): there the edges first, then the sized parts that
-  // the slab and half-plane tests do not exclude, then the faces (which
-  // need the triangle to miss C, i.e. the sized parts decided first).
+  // any one ends the query, in any order; a miss needs all four; the faces
+  // need the triangle to miss C, so they come after the sized parts). Where
+  // a sized part is cheap (inside the range gate: two or three kernel calls,
+  // or one adaptive run on wide inputs) the sized parts first, as they
+  // decide most queries. Outside the gate on wide inputs (wideSpread) each
+  // is one exact kernel run on dyadics of thousands of bits, and for
+  // r <= m the edges' ball test (edgeBallHit, products of the inputs' size
+  // at most) runs first: on the hostile thresholds every hit of the edges'
+  // exact stage comes from it. Then the sized parts that the slab and
+  // half-plane tests do not exclude, the rest of the edges, the faces
+  // (docs/margin.md, "Wide inputs: the parts by cost").
   const bool wide = wideSpread(q);
-  if (!wide) {
-    if (cylinderPart(q, true, false, &stage)) return yes(stage);
-    if (cylinderPart(q, false, false, &stage)) return yes(stage);
+  bool sized_first = !wide;
+  if (wide) {
+    q.scan();
+    sized_first = detail::rangeGateOk(4 * q.max_len, q.max_unitless);
   }
-  // The tori: edges, then (after the sized parts on wide inputs) the faces.
+  const bool ball_first = !sized_first && q.cyl.radius <= q.m;
+  if (sized_first) {
+    if (cylinderPart(q, true, wide, &stage)) return yes(stage);
+    if (cylinderPart(q, false, wide, &stage)) return yes(stage);
+  }
+  // The tori: the edges' filters.
   q.scan();
   const ScaledInputs s = scaleInputs(q);
   bool open[2][3] = {{true, true, true}, {true, true, true}};
+  bool l_pos[2][3] = {};  // L > 0 certified by a filter
   if (s.ok) {
     const auto l = detail::makeLocal<Rk>(s.cyl, s.pose, s.tri, q.max_unitless);
     for (int i = 0; i < 2; ++i)
-      if (edgesFilter(torusInput<Rk>(l, s.m, i == 0), open[i]) == Tri::kTrue)
+      if (edgesFilter(torusInput<Rk>(l, s.m, i == 0), open[i], l_pos[i]) ==
+          Tri::kTrue)
         return yes(stage);
   } else if (q.max_len > 0) {
     for (int i = 0; i < 2; ++i)
-      if (edgesFilter(torusRobustInput(q, i == 0), open[i]) == Tri::kTrue)
+      if (edgesFilter(torusRobustInput(q, i == 0), open[i], l_pos[i]) ==
+          Tri::kTrue)
         return yes(stage);
   }
+  auto anyOpen = [&open](int i) {
+    return open[i][0] || open[i][1] || open[i][2];
+  };
   // The edges the double filter left open: double-word, on the same exactly
   // scaled inputs (the hostile path has no such stage: its inputs are
   // rounded, and its ties are rare).
-  if (s.ok && (open[0][0] || open[0][1] || open[0][2] || open[1][0] ||
-               open[1][1] || open[1][2])) {
+  if (s.ok && (anyOpen(0) || anyOpen(1))) {
     stage = stronger(stage, Stage::kExtended);
     const auto lw = detail::makeLocal<Wk>(s.cyl, s.pose, s.tri, q.max_unitless);
     for (int i = 0; i < 2; ++i) {
-      if (!(open[i][0] || open[i][1] || open[i][2])) continue;
+      if (!anyOpen(i)) continue;
       const TorusInput<Wk> tw = torusInput<Wk>(lw, s.m, i == 0);
       for (int e = 0; e < 3; ++e) {
         if (!open[i][e]) continue;
-        const Tri r = edgeFilter<Wk>(tw, kEdge[e][0], kEdge[e][1]);
+        const Tri r =
+            edgeFilter<Wk>(tw, kEdge[e][0], kEdge[e][1], &l_pos[i][e]);
         if (r == Tri::kTrue) return yes(stage);
         open[i][e] = r == Tri::kUnknown;
       }
@@ -1266,57 +1324,74 @@ Decision decide(Query& q) {
     return *wide_in[i];
   };
   // The edges the rescaled double filter left open: the same filter in
-  // long double on the exact coordinates (torusWideInput).
-  if (!s.ok)
+  // long double on the exact coordinates (torusWideInput; it needs the
+  // exact input, so it runs after the sized parts where those go first
+  // in the wide order). True: a hit.
+  bool wide_filter_done = s.ok;
+  auto wideFilter = [&]() {
+    wide_filter_done = true;
     for (int i = 0; i < 2; ++i) {
-      if (!(open[i][0] || open[i][1] || open[i][2])) continue;
+      if (!anyOpen(i)) continue;
       stage = stronger(stage, Stage::kExtended);
       for (int e = 0; e < 3; ++e) {
         if (!open[i][e]) continue;
-        const Tri r = edgeFilter<Ul>(wideTorus(i), kEdge[e][0], kEdge[e][1]);
-        if (r == Tri::kTrue) return yes(stage);
+        const Tri r = edgeFilter<Ul>(wideTorus(i), kEdge[e][0], kEdge[e][1],
+                                     &l_pos[i][e]);
+        if (r == Tri::kTrue) return true;
         open[i][e] = r == Tri::kUnknown;
       }
     }
-  // The exact stage of the open edges. Inside the range gate all of it,
-  // edge by edge. On wide inputs by cost, so that a hit by a cheaper part
-  // is found before the dearer ones run: step 1 of every open edge
-  // (edgeBallHit: nothing for R > M, else sums of squares against
-  // products on leading bits; the hits of the edges' exact stage on the
-  // hostile thresholds all come from it), then the sized parts (one exact
-  // kernel run each), then the bounding sets (products of the inputs'
-  // size), the quartics (twice that size) and the wide quartics' local
-  // certificate, then the faces.
-  ExactEdge edge[2][3];
-  for (int i = 0; i < 2; ++i) {
-    if (!(open[i][0] || open[i][1] || open[i][2])) continue;
-    const TorusInput<ZKernel> t = exactTorus(i);
-    stage = Stage::kExactGmp;
-    for (int e = 0; e < 3; ++e) {
-      if (!open[i][e]) continue;
-      if (!wide) {
-        if (edgeExact(t, kEdge[e][0], kEdge[e][1])) return yes(stage);
-        open[i][e] = false;
-        continue;
-      }
-      if (edgeBallHit(t, kEdge[e][0], kEdge[e][1])) return yes(stage);
-    }
-  }
+    return false;
+  };
+  if (!wide_filter_done && (sized_first || ball_first) && wideFilter())
+    return yes(stage);
   bool slab_out[2] = {false, false};  // the triangle beyond a torus's slab
-  if (wide) {
-    if (!exact_top) exact_top = torusExactInput(q, 1);
-    const TorusInput<ZKernel>& t = *exact_top;
-    if (!sizedPartExcluded(t, true) && cylinderPart(q, true, true, &stage))
-      return yes(stage);
-    if (!sizedPartExcluded(t, false) && cylinderPart(q, false, true, &stage))
-      return yes(stage);
+  if (!wide) {
+    // The exact stage of the open edges, edge by edge.
     for (int i = 0; i < 2; ++i) {
-      if (!(open[i][0] || open[i][1] || open[i][2])) continue;
-      const TorusInput<ZKernel> ti = exactTorus(i);
+      if (!anyOpen(i)) continue;
+      const TorusInput<ZKernel> t = exactTorus(i);
+      stage = Stage::kExactGmp;
+      for (int e = 0; e < 3; ++e)
+        if (open[i][e] && edgeExact(t, kEdge[e][0], kEdge[e][1]))
+          return yes(stage);
+    }
+  } else {
+    // Wide inputs, by cost: the ball test, the sized parts (when not run
+    // first), the bounding sets (products of the inputs' size), the
+    // quartics (twice that size), the wide quartics' local certificate.
+    if (ball_first)
+      for (int i = 0; i < 2; ++i) {
+        if (!anyOpen(i)) continue;
+        const TorusInput<ZKernel> t = exactTorus(i);
+        stage = Stage::kExactGmp;
+        for (int e = 0; e < 3; ++e)
+          if (open[i][e] && !l_pos[i][e] &&
+              edgeBallHit(t, kEdge[e][0], kEdge[e][1], [&] {
+                return edgeBallVertex<Ul>(wideTorus(i), kEdge[e][0],
+                                          kEdge[e][1]);
+              }))
+            return yes(stage);
+      }
+    if (!sized_first) {
+      if (!exact_top) exact_top = torusExactInput(q, 1);
+      if (!sizedPartExcluded(*exact_top, true) &&
+          cylinderPart(q, true, true, &stage))
+        return yes(stage);
+      if (!sizedPartExcluded(*exact_top, false) &&
+          cylinderPart(q, false, true, &stage))
+        return yes(stage);
+    }
+    if (!wide_filter_done && wideFilter()) return yes(stage);
+    ExactEdge edge[2][3];
+    for (int i = 0; i < 2; ++i) {
+      if (!anyOpen(i)) continue;
+      const TorusInput<ZKernel> t = exactTorus(i);
+      stage = Stage::kExactGmp;
       for (int e = 0; e < 3; ++e) {
         if (!open[i][e]) continue;
-        const int r =
-            edgeExactBounds(ti, kEdge[e][0], kEdge[e][1], &edge[i][e], true);
+        const int r = edgeExactBounds(t, kEdge[e][0], kEdge[e][1], &edge[i][e],
+                                      ball_first);
         if (r == 1) return yes(stage);
         open[i][e] = r < 0;
       }
@@ -1331,7 +1406,10 @@ Decision decide(Query& q) {
     for (int i = 0; i < 2; ++i)
       for (int e = 0; e < 3; ++e)
         if (open[i][e] && edgeExactWide(edge[i][e])) return yes(stage);
-    for (int i = 0; i < 2; ++i) slab_out[i] = torusExcluded(t, i == 0);
+    // The faces' exclusion where the exact input is at hand (comparisons).
+    if (exact_top)
+      for (int i = 0; i < 2; ++i)
+        slab_out[i] = torusExcluded(*exact_top, i == 0);
   }
   // The triangle misses C here (C is inside Cyl(r + m, h)), hence the rim
   // circles: the face part is complete.
