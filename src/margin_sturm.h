@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -404,13 +405,129 @@ inline void minimaIn(const double* t, double lo, double hi,
   }
 }
 
+/// Magnitudes A = fa 2^ea and B = fb 2^eb known to a relative error below
+/// 2^-49 each, with fa, fb in [2^-4, 1): 1 if certainly A > B, -1 if
+/// certainly A < B, 0 if they agree to about 2^-45. ea - eb >= 5 gives
+/// A > B (A >= 2^(ea - 4) (1 - 2^-49) > 2^eb (1 + 2^-49) > B), and
+/// symmetrically; else fa 2^(ea - eb) (exact: the shift is at most 4
+/// either way and fa >= 2^-4) is compared with fb with a relative slack of
+/// 2^-45, far above the two errors and the slack's own rounding (2^-53).
+inline int compareLeading(double fa, long ea, double fb, long eb) {
+  if (ea - eb >= 5) return 1;
+  if (eb - ea >= 5) return -1;
+  const double x = std::ldexp(fa, int(ea - eb));
+  if (x > fb * (1 + 0x1p-45)) return 1;
+  if (x * (1 + 0x1p-45) < fb) return -1;
+  return 0;
+}
+
+/// |x_1 ... x_n| (n <= 4, every x nonzero) as f 2^e with f in [2^-4, 1) and
+/// a relative error below 2^-49; returns the product's sign (0 if some x
+/// is 0). mpz_get_d_2exp truncates, so |x| = g 2^k (1 + d) with
+/// 0.5 <= g < 1 and 0 <= d < 2^-52; the product of the g's in double
+/// (n - 1 <= 3 roundings of 2^-53, no underflow: each g >= 1/2) is the
+/// product of the |x| / 2^k up to a factor in (1 - 2^-51, 1 + 2^-49):
+/// (1 + 2^-52)^4 (1 + 2^-53)^3 < 1 + 2^-49.
+inline int leadingProduct(std::initializer_list<const mpz_class*> xs, double* f,
+                          long* e) {
+  int s = 1;
+  *f = 1;
+  *e = 0;
+  for (const mpz_class* x : xs) {
+    const int sx = mpz_sgn(x->get_mpz_t());
+    if (sx == 0) return 0;
+    long k = 0;
+    *f *= std::fabs(mpz_get_d_2exp(&k, x->get_mpz_t()));
+    *e += k;
+    s *= sx;
+  }
+  return s;
+}
+
+/// The sign of 2^sa (a_1 ... a_n) - 2^sb (b_1 ... b_m) for integers a_i,
+/// b_j (1 <= n, m <= 4), from their leading 53 bits (leadingProduct,
+/// compareLeading) where they decide it, else from the exact products
+/// (`exact`, if given, flags that fallback). Only where the two sides agree
+/// to about 2^-45 are the exact products formed: for the integers of
+/// thousands of bits of the torus edges' exact stage that saves their
+/// products in nearly every test.
+inline int signProductDifference(std::initializer_list<const mpz_class*> a,
+                                 long sa,
+                                 std::initializer_list<const mpz_class*> b,
+                                 long sb, bool* exact = nullptr) {
+  double fa = 0, fb = 0;
+  long ea = 0, eb = 0;
+  const int sga = leadingProduct(a, &fa, &ea),
+            sgb = leadingProduct(b, &fb, &eb);
+  if (exact != nullptr) *exact = false;
+  if (sga == 0 || sgb == 0 || sga != sgb) return sga != 0 ? sga : -sgb;
+  const int c = compareLeading(fa, ea + sa, fb, eb + sb);
+  if (c != 0) return c * sga;
+  if (exact != nullptr) *exact = true;
+  auto product = [](std::initializer_list<const mpz_class*> xs, long sh) {
+    mpz_class p = 1;
+    for (const mpz_class* x : xs) p *= *x;
+    mpz_mul_2exp(p.get_mpz_t(), p.get_mpz_t(), mp_bitcnt_t(sh));
+    return p;
+  };
+  // Both sides divided by 2^min(sa, sb) (a positive factor).
+  const long m = std::min(sa, sb);
+  return sgn(product(a, sa - m) - product(b, sb - m));
+}
+
+/// The sign of c_1^2 + ... + c_n^2 + k_1 ... k_m (n <= 3, 1 <= m <= 4),
+/// leading bits first (the product as in leadingProduct).
+/// The sum of squares has no cancellation: with each |c_i| = g_i 2^k_i
+/// (1 + d_i) as in leadingProduct, the terms g_i^2 2^(2 k_i - E) (E the
+/// largest 2 k_i; each term at most 1, the largest at least 1/4) summed in
+/// double are the sum over 2^E up to a factor in (1 - 2^-50, 1 + 2^-49)
+/// ((1 + 2^-52)^2 per square, 2^-53 per rounding, at most 5 roundings;
+/// a term that underflows loses below 2^-1074, far below 2^-60 of the
+/// sum); frexp brings it to [1/2, 1) exactly.
+inline int signSquaresPlusProduct(std::initializer_list<const mpz_class*> c,
+                                  std::initializer_list<const mpz_class*> k,
+                                  bool* exact = nullptr) {
+  if (exact != nullptr) *exact = false;
+  long e_max = std::numeric_limits<long>::min();
+  double g[3] = {0, 0, 0};
+  long e2[3] = {0, 0, 0};
+  int n = 0;
+  for (const mpz_class* x : c) {
+    if (mpz_sgn(x->get_mpz_t()) == 0) continue;
+    long kx = 0;
+    const double gx = mpz_get_d_2exp(&kx, x->get_mpz_t());
+    g[n] = gx * gx;
+    e2[n] = 2 * kx;
+    e_max = std::max(e_max, e2[n]);
+    ++n;
+  }
+  double ft = 0;
+  long et = 0;
+  const int st = leadingProduct(k, &ft, &et);
+  if (n == 0) return st;  // the squares are 0
+  if (st >= 0) return 1;  // a positive sum and a term >= 0
+  double sum = 0;
+  for (int i = 0; i < n; ++i)
+    sum += std::ldexp(g[i], int(std::max(e2[i] - e_max, -2000L)));
+  int fe = 0;
+  const double fs = std::frexp(sum, &fe);
+  const int cmp = compareLeading(fs, e_max + fe, ft, et);
+  if (cmp != 0) return cmp;
+  if (exact != nullptr) *exact = true;
+  mpz_class v = 1;
+  for (const mpz_class* x : k) v *= *x;
+  for (const mpz_class* x : c) v += *x * *x;
+  return sgn(v);
+}
+
 /// Is a0 + a1 s + a2 s^2 > 0 on [0, 1]? (At the ends, and at the vertex
-/// -a1 / (2 a2) of a convex parabola when inside.)
+/// -a1 / (2 a2) of a convex parabola when inside: 4 a0 a2 > a1^2, compared
+/// on leading bits first.)
 inline bool quadraticPositive(const mpz_class& a0, const mpz_class& a1,
                               const mpz_class& a2) {
   if (sgn(a0) <= 0 || sgn(a0 + a1 + a2) <= 0) return false;
   if (sgn(a2) > 0 && sgn(a1) < 0 && a1 + 2 * a2 > 0)
-    return sgn(4 * a0 * a2 - a1 * a1) > 0;
+    return signProductDifference({&a0, &a2}, 2, {&a1, &a1}, 0) > 0;
   return true;
 }
 
@@ -428,10 +545,8 @@ inline bool hitAt(const mpz_class* L, const mpz_class* P, const mpz_class& R2,
     mpz_mul_2exp(t.get_mpz_t(), t.get_mpz_t(), mp_bitcnt_t(2 * k));
     return mpz_class(v + t);
   };
-  const mpz_class ls = at(L);
-  mpz_class rhs = 4 * R2 * at(P);
-  mpz_mul_2exp(rhs.get_mpz_t(), rhs.get_mpz_t(), mp_bitcnt_t(2 * k));
-  return ls * ls <= rhs;
+  const mpz_class ls = at(L), ps = at(P);
+  return signProductDifference({&ls, &ls}, 0, {&R2, &ps}, 2 * k + 2) <= 0;
 }
 
 /// The AM-GM certificate with lambda = a / 2^j, a the leading `bits` bits
@@ -485,10 +600,13 @@ inline int taylorCertificate(const mpz_class* q, const mpz_class& m, long k,
   mpz_class lo = -m, hi = 1;
   mpz_mul_2exp(hi.get_mpz_t(), hi.get_mpz_t(), mp_bitcnt_t(k));
   hi -= m;
-  const mpz_class c1sq = c[1] * c[1];
+  // C1^2 against 4 C0 h and C1^2 C4 against C0 (4 C4 h) on leading bits
+  // first (signProductDifference).
   for (const mpz_class* t : {&lo, &hi}) {
     const mpz_class h = c[2] + *t * (c[3] + c[4] * *t);
-    if (sgn(h) <= 0 || c1sq >= 4 * c[0] * h) return -1;
+    if (sgn(h) <= 0 ||
+        signProductDifference({&c[1], &c[1]}, 0, {&c[0], &h}, 2) >= 0)
+      return -1;
   }
   const mpz_class v2 = -c[3];  // the vertex times 2 C4
   if (v2 > 2 * c[4] * lo && v2 < 2 * c[4] * hi) {
@@ -503,7 +621,8 @@ inline int taylorCertificate(const mpz_class* q, const mpz_class& m, long k,
       *other = t;
       return 2;
     }
-    if (c1sq * c[4] >= c[0] * hv) return -1;
+    if (signProductDifference({&c[1], &c[1], &c[4]}, 0, {&c[0], &hv}, 0) >= 0)
+      return -1;
   }
   return 0;
 }

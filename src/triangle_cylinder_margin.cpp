@@ -53,6 +53,7 @@
 #include <gmpxx.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -492,21 +493,26 @@ void edgeBernstein(const TorusInput<K>& t, int a, int b, typename K::Num* lb,
   qb[4] = six * (lb[2] * lb[2]) - (R12 + R12) * p2;
 }
 
+/// kTrue: the edge meets the torus; kFalse: it does not; kUnknown: open.
+/// `l_positive` (if given) is set when L > 0 on the edge is certified
+/// (then edgeBallHit, step 1 of the exact stage, would say no).
 template <class K>
-Tri edgeFilter(const TorusInput<K>& t, int a, int b) {
+Tri edgeFilter(const TorusInput<K>& t, int a, int b,
+               bool* l_positive = nullptr) {
   typename K::Num lb[3], qb[5];
   edgeBernstein<K>(t, a, b, lb, qb);
   int budget = kBernsteinBudget<K>;
   const Tri tq = bernsteinAnyNonPos<K>(qb, 4, kBernsteinDepth, &budget);
   if (tq == Tri::kTrue) return tq;
   budget = kBernsteinBudget<K>;
-  return kOr(tq, bernsteinAnyNonPos<K>(lb, 2, kBernsteinDepth, &budget));
+  const Tri tl = bernsteinAnyNonPos<K>(lb, 2, kBernsteinDepth, &budget);
+  if (l_positive != nullptr && tl == Tri::kFalse) *l_positive = true;
+  return kOr(tq, tl);
 }
 
 // ---- The exact stage: GMP integers, Sturm sequence ------------------------
 
-/// Is a0 + a1 s + a2 s^2 > 0 for every s in [0, 1]? (src/margin_sturm.h)
-using detail::sturm::cert::quadraticPositive;
+using detail::sturm::cert::signSquaresPlusProduct;
 
 /// The exact stage of one edge (GMP integers). With p(s) = A + s E,
 /// rho^2 = p0 + p1 s + p2 s^2 and z - C = za + ez s, in this order:
@@ -535,61 +541,210 @@ using detail::sturm::cert::quadraticPositive;
 ///    in closed form, no gcd; exact subdivision of the Bernstein form was
 ///    tried before it and dropped: on the wide inputs whose edges reach
 ///    this point it needed thousands of pieces).
-/// The coefficient size (bits) above which edgeExact tries the local
+/// The coefficient size (bits) above which edgeExactWide tries the local
 /// certificate before the Sturm count.
 constexpr std::size_t kWideQuarticBits = 10000;
 
-bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
+/// Is f(s) = |A + s E|^2 + K > 0 on [0, 1], for f = a[0] + a[1] s + a[2] s^2
+/// (a[0] = |A|^2 + K, a[1] = 2 A.E, a[2] = |E|^2)? As quadraticPositive
+/// (src/margin_sturm.h),
+/// with the vertex's discriminant in the form of Lagrange's identity,
+/// 4 a0 a2 - a1^2 = 4 (|A x E|^2 + K |E|^2): `vertexSign()` gives the sign
+/// of |A x E|^2 + K |E|^2. The power form cancels where the edge's line
+/// passes close to o compared with |A| (a far edge of a wide triangle
+/// grazing a small torus: a0 a2 and a1^2 then agree to thousands of bits,
+/// and their exact products were most of this stage's cost); the cross
+/// product is small there, and its squares' sum has no cancellation.
+template <class VertexSign>
+bool distancePositive(const mpz_class* a, VertexSign&& vertexSign) {
+  if (sgn(a[0]) <= 0 || sgn(a[0] + a[1] + a[2]) <= 0) return false;
+  if (sgn(a[2]) > 0 && sgn(a[1]) < 0 && a[1] + 2 * a[2] > 0)
+    return vertexSign() > 0;
+  return true;
+}
+
+/// One edge's polynomials, kept between the phases of its exact stage:
+/// L, rho^2 = P and (from the second phase) Q, with the torus's R and M.
+struct ExactEdge {
+  mpz_class l[3], p[3], q[5], R, M;
+  std::size_t bits = 0;  // Q's largest coefficient (bits)
+};
+
+/// The inner part of edgeBallHit in a filter kernel K (UnderflowKernelT on
+/// the exact coordinates rounded once, torusWideInput): kTrue if the
+/// vertex of L is certainly inside (0, 1) with |A x E|^2 + K |E|^2 < 0
+/// (a hit), kFalse if the vertex is certainly outside or that value
+/// certainly > 0, kUnknown else (the exact test decides). Where the edge's
+/// line passes far from o compared with the ball's radius, nothing here
+/// cancels and the fifteen products of integers of thousands of bits are
+/// not formed.
+template <class K>
+Tri edgeBallVertex(const TorusInput<K>& t, int a, int b) {
+  using N = typename K::Num;
+  const N za = t.Z[a] - t.C, zb = t.Z[b] - t.C;
+  const N ex = t.X[b] - t.X[a], ey = t.Y[b] - t.Y[a], ez = t.Z[b] - t.Z[a];
+  const Sign sa = K::sign(t.X[a] * ex + t.Y[a] * ey + za * ez);
+  const Sign sb = K::sign(t.X[b] * ex + t.Y[b] * ey + zb * ez);
+  if (sa == Sign::kPos || sa == Sign::kZero || sb == Sign::kNeg ||
+      sb == Sign::kZero)
+    return Tri::kFalse;
+  if (sa == Sign::kUnknown || sb == Sign::kUnknown) return Tri::kUnknown;
+  // A x E = A x B: the latter does not cancel where B is far smaller
+  // than A (a vertex near o, the other far away).
+  const N cx = t.Y[a] * zb - za * t.Y[b], cy = za * t.X[b] - t.X[a] * zb,
+          cz = t.X[a] * t.Y[b] - t.Y[a] * t.X[b];
+  const N v = ((cx * cx + cy * cy) + cz * cz) +
+              ((t.R - t.M) * (t.R + t.M)) * ((ex * ex + ey * ey) + ez * ez);
+  const Sign sv = K::sign(v);
+  if (sv == Sign::kPos) return Tri::kFalse;
+  if (sv == Sign::kNeg) return Tri::kTrue;
+  return Tri::kUnknown;
+}
+
+/// Step 1 alone, cheaply: does L = |p(s) - o|^2 + R^2 - M^2 take a value
+/// <= 0 on [0, 1] (the edge meets the ball |p - o|^2 <= M^2 - R^2 about the
+/// rim's centre o, inside the torus)? Never for R > M. Else, with
+/// A = p(0) - o, B = p(1) - o, E = B - A and K = R^2 - M^2 = (R - M)(R + M):
+/// at an end iff |A|^2 + K <= 0 or |B|^2 + K <= 0; inside iff the vertex
+/// -A.E / |E|^2 is in (0, 1) (A.E < 0 < B.E) and |A x E|^2 + K |E|^2 <= 0
+/// (Lagrange's identity, as distancePositive). Each a sum of squares
+/// against a product, on leading bits first (signSquaresPlusProduct): no
+/// product of the inputs is formed at the ends, six for the dot products
+/// and nine for |E|^2 and the cross product at most. The same answer as
+/// step 1 of edgeExactBounds, which decide() skips after it.
+template <class VertexHint>
+bool edgeBallHit(const TorusInput<ZKernel>& t, int a, int b,
+                 VertexHint&& vertexHint) {
+  if (t.R > t.M) return false;  // L >= R^2 - M^2 > 0
+  const mpz_class km = t.R - t.M, kp = t.R + t.M;
+  const mpz_class za = t.Z[a] - t.C, zb = t.Z[b] - t.C;
+  if (signSquaresPlusProduct({&t.X[a], &t.Y[a], &za}, {&km, &kp}) <= 0 ||
+      signSquaresPlusProduct({&t.X[b], &t.Y[b], &zb}, {&km, &kp}) <= 0)
+    return true;
+  const Tri hint = vertexHint();
+  if (hint != Tri::kUnknown) return hint == Tri::kTrue;
+  const mpz_class ex = t.X[b] - t.X[a], ey = t.Y[b] - t.Y[a], ez = zb - za;
+  if (sgn(t.X[a] * ex + t.Y[a] * ey + za * ez) >= 0 ||
+      sgn(t.X[b] * ex + t.Y[b] * ey + zb * ez) <= 0)
+    return false;  // the least value is at an end
+  const mpz_class e2 = ex * ex + ey * ey + ez * ez;
+  const mpz_class c[3] = {t.Y[a] * zb - za * t.Y[b], za * t.X[b] - t.X[a] * zb,
+                          t.X[a] * t.Y[b] - t.Y[a] * t.X[b]};  // A x B
+  return signSquaresPlusProduct({&c[0], &c[1], &c[2]}, {&km, &kp, &e2}) <= 0;
+}
+
+/// Phase 1 of the exact stage (steps 1 and 2 above; step 1 not again if
+/// `ball_done`: edgeBallHit said no): products of the inputs' size only.
+/// 1: the edge meets the torus, 0: it does not; -1: not decided, L and P
+/// left in *e for edgeExactQuartic.
+int edgeExactBounds(const TorusInput<ZKernel>& t, int a, int b, ExactEdge* e,
+                    bool ball_done = false) {
+  const mpz_class za = t.Z[a] - t.C, zb = t.Z[b] - t.C;
+  // The slab first: comparisons only.
+  if ((za > t.M && zb > t.M) || (za < -t.M && zb < -t.M)) return 0;
   const mpz_class ex = t.X[b] - t.X[a], ey = t.Y[b] - t.Y[a],
                   ez = t.Z[b] - t.Z[a];
-  const mpz_class za = t.Z[a] - t.C, zb = t.Z[b] - t.C;
   const mpz_class p0 = t.X[a] * t.X[a] + t.Y[a] * t.Y[a];
   const mpz_class p1 = 2 * (t.X[a] * ex + t.Y[a] * ey);
   const mpz_class p2 = ex * ex + ey * ey;
   const mpz_class R2 = t.R * t.R, M2 = t.M * t.M;
-  const mpz_class l[3] = {p0 + za * za + (R2 - M2), p1 + 2 * za * ez,
-                          p2 + ez * ez};
-  if (!quadraticPositive(l[0], l[1], l[2])) return true;  // 1.
-  if ((za > t.M && zb > t.M) || (za < -t.M && zb < -t.M)) return false;
+  const mpz_class K = R2 - M2;
+  const mpz_class l[3] = {p0 + za * za + K, p1 + 2 * za * ez, p2 + ez * ez};
+  // A = p(0) - o, B = p(1) - o: A x E = A x B, made once when a vertex
+  // test needs it.
+  std::optional<std::array<mpz_class, 3>> axe;
+  auto cross3 = [&]() -> const std::array<mpz_class, 3>& {
+    if (!axe)
+      axe = std::array<mpz_class, 3>{t.Y[a] * zb - za * t.Y[b],
+                                     za * t.X[b] - t.X[a] * zb,
+                                     t.X[a] * t.Y[b] - t.Y[a] * t.X[b]};
+    return *axe;
+  };
+  if (!ball_done && !distancePositive(l, [&] {
+        const auto& c = cross3();
+        return signSquaresPlusProduct({&c[0], &c[1], &c[2]}, {&K, &l[2]});
+      }))
+    return 1;  // 1.
   const mpz_class rm2 = (t.R + t.M) * (t.R + t.M);
-  if (quadraticPositive(p0 - rm2, p1, p2)) return false;
-  if (quadraticPositive(p0 + za * za - rm2, l[1], l[2])) return false;
-  // 3. Q's coefficients in the power basis.
-  const mpz_class R4 = 4 * R2;
-  const mpz_class q[5] = {l[0] * l[0] - R4 * p0, 2 * l[0] * l[1] - R4 * p1,
-                          l[1] * l[1] + 2 * l[0] * l[2] - R4 * p2,
-                          2 * l[1] * l[2], l[2] * l[2]};
+  const mpz_class nrm2 = -rm2;
+  const mpz_class pm[3] = {p0 - rm2, p1, p2};
+  if (distancePositive(pm, [&] {
+        const auto& c = cross3();  // (A x E)_z = A_xy x E_xy
+        return signSquaresPlusProduct({&c[2]}, {&nrm2, &p2});
+      }))
+    return 0;
+  const mpz_class bm[3] = {p0 + za * za - rm2, l[1], l[2]};
+  if (distancePositive(bm, [&] {
+        const auto& c = cross3();
+        return signSquaresPlusProduct({&c[0], &c[1], &c[2]}, {&nrm2, &l[2]});
+      }))
+    return 0;
+  for (int i = 0; i < 3; ++i) e->l[i] = l[i];
+  e->p[0] = p0;
+  e->p[1] = p1;
+  e->p[2] = p2;
+  e->R = t.R;
+  e->M = t.M;
+  return -1;
+}
+
+/// Phase 2 (step 3 up to the Bernstein test; the Sturm count for narrow
+/// quartics): Q, products of L's size. -1: a wide quartic (above
+/// kWideQuarticBits), Q left in *e for edgeExactWide.
+int edgeExactQuartic(ExactEdge* e) {
+  const mpz_class* l = e->l;
+  const mpz_class* p = e->p;
+  const mpz_class R4 = 4 * e->R * e->R;
+  mpz_class* q = e->q;
+  q[0] = l[0] * l[0] - R4 * p[0];
+  q[1] = 2 * l[0] * l[1] - R4 * p[1];
+  q[2] = l[1] * l[1] + 2 * l[0] * l[2] - R4 * p[2];
+  q[3] = 2 * l[1] * l[2];
+  q[4] = l[2] * l[2];
   const mpz_class q_end = q[0] + q[1] + q[2] + q[3] + q[4];
-  if (sgn(q[0]) <= 0 || sgn(q_end) <= 0) return true;
+  if (sgn(q[0]) <= 0 || sgn(q_end) <= 0) return 1;
   // Bernstein coefficients (times 12) all > 0: Q > 0 on [0, 1], no roots.
   const mpz_class q0 = 12 * q[0];
   if (sgn(q0 + 3 * q[1]) > 0 && sgn(q0 + 6 * q[1] + 2 * q[2]) > 0 &&
       sgn(q0 + 9 * q[1] + 6 * q[2] + 3 * q[3]) > 0)
-    return false;
+    return 0;
   // Wide quartics: the local certificate at an approximate minimiser
   // first (torusEdgeCertificate, src/margin_sturm.h), the Sturm count where
-  // it cannot decide (an exact tangency, for one). s0 gets at most a third
-  // of Q's bits: beyond that, its floats cost about what the count does.
-  // Narrow quartics go to the Sturm count directly, which is cheap there.
-  std::size_t bits = 0;
-  for (const mpz_class& c : q)
-    bits = std::max(bits, mpz_sizeinbase(c.get_mpz_t(), 2));
-  if (bits > kWideQuarticBits) {
-    const mpz_class pq[3] = {p0, p1, p2};
-    const int s =
-        detail::sturm::torusEdgeCertificate(q, l, pq, t.R, t.M, long(bits) / 3);
-    if (s >= 0) return s == 1;
-  }
+  // it cannot decide (an exact tangency, for one): edgeExactWide. Narrow
+  // quartics go to the Sturm count directly, which is cheap there.
+  e->bits = 0;
+  for (int i = 0; i < 5; ++i)
+    e->bits = std::max(e->bits, mpz_sizeinbase(q[i].get_mpz_t(), 2));
+  if (e->bits > kWideQuarticBits) return -1;
   return detail::sturm::rootsInUnitTorus(q, l[1], l[2]) > 0;
 }
 
+/// Phase 3, wide quartics: s0 gets at most a third of Q's bits (beyond
+/// that, its floats cost about what the count does).
+bool edgeExactWide(const ExactEdge& e) {
+  const int s = detail::sturm::torusEdgeCertificate(e.q, e.l, e.p, e.R, e.M,
+                                                    long(e.bits) / 3);
+  if (s >= 0) return s == 1;
+  return detail::sturm::rootsInUnitTorus(e.q, e.l[1], e.l[2]) > 0;
+}
+
+/// The whole exact stage of one edge, phases 1 - 3 in order.
+bool edgeExact(const TorusInput<ZKernel>& t, int a, int b) {
+  ExactEdge e;
+  int r = edgeExactBounds(t, a, b, &e);
+  if (r < 0) r = edgeExactQuartic(&e);
+  if (r < 0) r = edgeExactWide(e);
+  return r == 1;
+}
+
 /// The edges of one torus in the filter: kTrue if one certainly meets it,
-/// kFalse if none does; `open[e]` flags the edges left open.
+/// kFalse if none does; `open[e]` flags the edges left open, `l_positive[e]`
+/// those whose L > 0 is certified (edgeFilter).
 template <class K>
-Tri edgesFilter(const TorusInput<K>& t, bool* open) {
+Tri edgesFilter(const TorusInput<K>& t, bool* open, bool* l_positive) {
   detail::AnyOf any;
   for (int e = 0; e < 3; ++e) {
-    const Tri r = edgeFilter<K>(t, kEdge[e][0], kEdge[e][1]);
+    const Tri r = edgeFilter<K>(t, kEdge[e][0], kEdge[e][1], &l_positive[e]);
     open[e] = r == Tri::kUnknown;
     if (any.add(r)) return Tri::kTrue;
   }
@@ -1013,6 +1168,43 @@ bool wideSpread(const Query& q) {
   return elo < 1023 - 400 || ehi - elo > 500 || ehi >= 1023 + 40;
 }
 
+/// Does the triangle certainly miss the sized part Cyl(r + m, h)
+/// (grow_radius) or Cyl(r, h + m)? Exact comparisons of the exact torus
+/// input `t` (torusExactInput(q, 1): doubled local coordinates X, Y, Z and
+/// sizes R = 2r, M = 2m, C = lz in one unit), no products: every vertex
+/// beyond one face of the part's slab (Z > C (+ M), or Z < -(C (+ M))), or
+/// beyond one of the four planes x = +-(r (+ m)), y = +-(r (+ m)) that
+/// touch the part's barrel (the part is convex and lies on the other
+/// side). Only a shortcut: false says nothing.
+bool sizedPartExcluded(const TorusInput<ZKernel>& t, bool grow_radius) {
+  const mpz_class half = grow_radius ? t.C : mpz_class(t.C + t.M);
+  const mpz_class rad = grow_radius ? mpz_class(t.R + t.M) : t.R;
+  auto all = [&t](auto&& pred) { return pred(0) && pred(1) && pred(2); };
+  return all([&](int i) { return t.Z[i] > half; }) ||
+         all([&](int i) { return t.Z[i] < -half; }) ||
+         all([&](int i) { return t.X[i] > rad; }) ||
+         all([&](int i) { return t.X[i] < -rad; }) ||
+         all([&](int i) { return t.Y[i] > rad; }) ||
+         all([&](int i) { return t.Y[i] < -rad; });
+}
+
+/// Does the triangle certainly miss the torus at +h (top) or -h? As
+/// sizedPartExcluded, for the torus's bounding box: the slab
+/// |z -+ h| <= m and the planes x, y = +-(r + m) (every point of the torus
+/// is a rim point plus a vector of length <= m).
+bool torusExcluded(const TorusInput<ZKernel>& t, bool top) {
+  const mpz_class hi = t.C + t.M, lo = t.C - t.M, rad = t.R + t.M;
+  auto all = [&t](auto&& pred) { return pred(0) && pred(1) && pred(2); };
+  // Z of the top torus's input; the bottom one's is -Z (torusExactInput).
+  auto z = [&t, top](int i) { return top ? t.Z[i] : mpz_class(-t.Z[i]); };
+  return all([&](int i) { return z(i) > hi; }) ||
+         all([&](int i) { return z(i) < lo; }) ||
+         all([&](int i) { return t.X[i] > rad; }) ||
+         all([&](int i) { return t.X[i] < -rad; }) ||
+         all([&](int i) { return t.Y[i] > rad; }) ||
+         all([&](int i) { return t.Y[i] < -rad; });
+}
+
 /// A sized part (grow_radius: Cyl(r + m, h), else Cyl(r, h + m)).
 /// `stage` accumulates the strongest stage used; `wide` is wideSpread(q).
 bool cylinderPart(const Query& q, bool grow_radius, bool wide, Stage* stage) {
@@ -1055,38 +1247,62 @@ Decision decide(Query& q) {
   }
   if (!validated && !q.scan()) return {Answer::kInvalidInput, Stage::kInvalid};
   Stage stage = Stage::kFastPath;
+  // The order of the parts (every part is a subset of C + B_m, so a hit by
+  // any one ends the query, in any order; a miss needs all four; the faces
+  // need the triangle to miss C, so they come after the sized parts). Where
+  // a sized part is cheap (inside the range gate: two or three kernel calls,
+  // or one adaptive run on wide inputs) the sized parts first, as they
+  // decide most queries. Outside the gate on wide inputs (wideSpread) each
+  // is one exact kernel run on dyadics of thousands of bits, and for
+  // r <= m the edges' ball test (edgeBallHit, products of the inputs' size
+  // at most) runs first: on the hostile thresholds every hit of the edges'
+  // exact stage comes from it. Then the sized parts that the slab and
+  // half-plane tests do not exclude, the rest of the edges, the faces
+  // (docs/margin.md, "Wide inputs: the parts by cost").
   const bool wide = wideSpread(q);
-  if (cylinderPart(q, true, wide, &stage)) return yes(stage);
-  if (cylinderPart(q, false, wide, &stage)) return yes(stage);
-  // The tori. The triangle misses C here, hence the rim circles. Edges
-  // first (the face part is complete only when they miss): the filter on
-  // both tori, then GMP for the edges it left open, then the faces.
+  bool sized_first = !wide;
+  if (wide) {
+    q.scan();
+    sized_first = detail::rangeGateOk(4 * q.max_len, q.max_unitless);
+  }
+  const bool ball_first = !sized_first && q.cyl.radius <= q.m;
+  if (sized_first) {
+    if (cylinderPart(q, true, wide, &stage)) return yes(stage);
+    if (cylinderPart(q, false, wide, &stage)) return yes(stage);
+  }
+  // The tori: the edges' filters.
   q.scan();
   const ScaledInputs s = scaleInputs(q);
   bool open[2][3] = {{true, true, true}, {true, true, true}};
+  bool l_pos[2][3] = {};  // L > 0 certified by a filter
   if (s.ok) {
     const auto l = detail::makeLocal<Rk>(s.cyl, s.pose, s.tri, q.max_unitless);
     for (int i = 0; i < 2; ++i)
-      if (edgesFilter(torusInput<Rk>(l, s.m, i == 0), open[i]) == Tri::kTrue)
+      if (edgesFilter(torusInput<Rk>(l, s.m, i == 0), open[i], l_pos[i]) ==
+          Tri::kTrue)
         return yes(stage);
   } else if (q.max_len > 0) {
     for (int i = 0; i < 2; ++i)
-      if (edgesFilter(torusRobustInput(q, i == 0), open[i]) == Tri::kTrue)
+      if (edgesFilter(torusRobustInput(q, i == 0), open[i], l_pos[i]) ==
+          Tri::kTrue)
         return yes(stage);
   }
+  auto anyOpen = [&open](int i) {
+    return open[i][0] || open[i][1] || open[i][2];
+  };
   // The edges the double filter left open: double-word, on the same exactly
   // scaled inputs (the hostile path has no such stage: its inputs are
   // rounded, and its ties are rare).
-  if (s.ok && (open[0][0] || open[0][1] || open[0][2] || open[1][0] ||
-               open[1][1] || open[1][2])) {
+  if (s.ok && (anyOpen(0) || anyOpen(1))) {
     stage = stronger(stage, Stage::kExtended);
     const auto lw = detail::makeLocal<Wk>(s.cyl, s.pose, s.tri, q.max_unitless);
     for (int i = 0; i < 2; ++i) {
-      if (!(open[i][0] || open[i][1] || open[i][2])) continue;
+      if (!anyOpen(i)) continue;
       const TorusInput<Wk> tw = torusInput<Wk>(lw, s.m, i == 0);
       for (int e = 0; e < 3; ++e) {
         if (!open[i][e]) continue;
-        const Tri r = edgeFilter<Wk>(tw, kEdge[e][0], kEdge[e][1]);
+        const Tri r =
+            edgeFilter<Wk>(tw, kEdge[e][0], kEdge[e][1], &l_pos[i][e]);
         if (r == Tri::kTrue) return yes(stage);
         open[i][e] = r == Tri::kUnknown;
       }
@@ -1108,27 +1324,97 @@ Decision decide(Query& q) {
     return *wide_in[i];
   };
   // The edges the rescaled double filter left open: the same filter in
-  // long double on the exact coordinates (torusWideInput).
-  if (!s.ok)
+  // long double on the exact coordinates (torusWideInput; it needs the
+  // exact input, so it runs after the sized parts where those go first
+  // in the wide order). True: a hit.
+  bool wide_filter_done = s.ok;
+  auto wideFilter = [&]() {
+    wide_filter_done = true;
     for (int i = 0; i < 2; ++i) {
-      if (!(open[i][0] || open[i][1] || open[i][2])) continue;
+      if (!anyOpen(i)) continue;
       stage = stronger(stage, Stage::kExtended);
       for (int e = 0; e < 3; ++e) {
         if (!open[i][e]) continue;
-        const Tri r = edgeFilter<Ul>(wideTorus(i), kEdge[e][0], kEdge[e][1]);
-        if (r == Tri::kTrue) return yes(stage);
+        const Tri r = edgeFilter<Ul>(wideTorus(i), kEdge[e][0], kEdge[e][1],
+                                     &l_pos[i][e]);
+        if (r == Tri::kTrue) return true;
         open[i][e] = r == Tri::kUnknown;
       }
     }
-  for (int i = 0; i < 2; ++i) {
-    if (!(open[i][0] || open[i][1] || open[i][2])) continue;
-    const TorusInput<ZKernel> t = exactTorus(i);
-    stage = Stage::kExactGmp;
-    for (int e = 0; e < 3; ++e)
-      if (open[i][e] && edgeExact(t, kEdge[e][0], kEdge[e][1]))
+    return false;
+  };
+  if (!wide_filter_done && (sized_first || ball_first) && wideFilter())
+    return yes(stage);
+  bool slab_out[2] = {false, false};  // the triangle beyond a torus's slab
+  if (!wide) {
+    // The exact stage of the open edges, edge by edge.
+    for (int i = 0; i < 2; ++i) {
+      if (!anyOpen(i)) continue;
+      const TorusInput<ZKernel> t = exactTorus(i);
+      stage = Stage::kExactGmp;
+      for (int e = 0; e < 3; ++e)
+        if (open[i][e] && edgeExact(t, kEdge[e][0], kEdge[e][1]))
+          return yes(stage);
+    }
+  } else {
+    // Wide inputs, by cost: the ball test, the sized parts (when not run
+    // first), the bounding sets (products of the inputs' size), the
+    // quartics (twice that size), the wide quartics' local certificate.
+    if (ball_first)
+      for (int i = 0; i < 2; ++i) {
+        if (!anyOpen(i)) continue;
+        const TorusInput<ZKernel> t = exactTorus(i);
+        stage = Stage::kExactGmp;
+        for (int e = 0; e < 3; ++e)
+          if (open[i][e] && !l_pos[i][e] &&
+              edgeBallHit(t, kEdge[e][0], kEdge[e][1], [&] {
+                return edgeBallVertex<Ul>(wideTorus(i), kEdge[e][0],
+                                          kEdge[e][1]);
+              }))
+            return yes(stage);
+      }
+    if (!sized_first) {
+      if (!exact_top) exact_top = torusExactInput(q, 1);
+      if (!sizedPartExcluded(*exact_top, true) &&
+          cylinderPart(q, true, true, &stage))
         return yes(stage);
+      if (!sizedPartExcluded(*exact_top, false) &&
+          cylinderPart(q, false, true, &stage))
+        return yes(stage);
+    }
+    if (!wide_filter_done && wideFilter()) return yes(stage);
+    ExactEdge edge[2][3];
+    for (int i = 0; i < 2; ++i) {
+      if (!anyOpen(i)) continue;
+      const TorusInput<ZKernel> t = exactTorus(i);
+      stage = Stage::kExactGmp;
+      for (int e = 0; e < 3; ++e) {
+        if (!open[i][e]) continue;
+        const int r = edgeExactBounds(t, kEdge[e][0], kEdge[e][1], &edge[i][e],
+                                      ball_first);
+        if (r == 1) return yes(stage);
+        open[i][e] = r < 0;
+      }
+    }
+    for (int i = 0; i < 2; ++i)
+      for (int e = 0; e < 3; ++e) {
+        if (!open[i][e]) continue;
+        const int r = edgeExactQuartic(&edge[i][e]);
+        if (r == 1) return yes(stage);
+        open[i][e] = r < 0;
+      }
+    for (int i = 0; i < 2; ++i)
+      for (int e = 0; e < 3; ++e)
+        if (open[i][e] && edgeExactWide(edge[i][e])) return yes(stage);
+    // The faces' exclusion where the exact input is at hand (comparisons).
+    if (exact_top)
+      for (int i = 0; i < 2; ++i)
+        slab_out[i] = torusExcluded(*exact_top, i == 0);
   }
+  // The triangle misses C here (C is inside Cyl(r + m, h)), hence the rim
+  // circles: the face part is complete.
   for (int i = 0; i < 2; ++i) {
+    if (slab_out[i]) continue;
     const Decision d = faceStage(
         q, s, i == 0, [&]() -> const TorusInput<Ul>& { return wideTorus(i); });
     stage = stronger(stage, d.stage);

@@ -140,6 +140,82 @@ TEST(MarginSturm, AgreesWithRationalSturmOnRandomPolynomials) {
   EXPECT_GT(with_roots, compared / 20);
 }
 
+/// A random integer of 1 .. max_bits bits (either sign, or 0 one time in
+/// 32), built from 64-bit limbs of the generator.
+mpz_class randomInteger(scenes::Rng& g, int max_bits) {
+  if (g.integer(32) == 0) return 0;
+  const int bits = 1 + g.integer(max_bits);
+  mpz_class z = 0;
+  for (int b = 0; b < bits; b += 32) {
+    z <<= 32;
+    z += static_cast<unsigned long>(g.next() >> 32);
+  }
+  z >>= (((bits + 31) / 32) * 32 - bits);
+  return g.integer(2) == 0 ? z : mpz_class(-z);
+}
+
+// signProductDifference and signSquaresPlusProduct (the leading-bits
+// filters in front of the torus edges' exact products) against the exact
+// signs: random integers of up to 6,000 bits, and near-ties made exactly
+// (one side equal to the other plus a tiny integer, or exactly equal)
+// where only the exact fallback can decide; both branches must be taken.
+TEST(MarginSturm, LeadingBitsSignsAgreeWithExact) {
+  const std::uint64_t seed = test::baseSeed();
+  SCOPED_TRACE(test::seedTrace(seed));
+  scenes::Rng g(seed ^ 0x6c656164u);
+  using detail::sturm::cert::signProductDifference;
+  using detail::sturm::cert::signSquaresPlusProduct;
+  const long n = test::scaled(6000);
+  long fallbacks[2] = {0, 0}, filtered[2] = {0, 0};
+  for (long i = 0; i < n; ++i) {
+    const int bits = i % 3 == 0 ? 64 : 6000;
+    // 2^sa a0 a1 a2 - 2^sb b0 b1.
+    mpz_class a[3], b[2];
+    for (auto& x : a) x = randomInteger(g, bits);
+    for (auto& x : b) x = randomInteger(g, bits);
+    long sa = g.integer(8), sb = g.integer(8);
+    const int kind = g.integer(4);
+    if (kind >= 2) {  // b0 b1 2^sb = a0 a1 a2 2^sa + delta (delta tiny or 0)
+      sb = 0;
+      b[1] = 1;
+      b[0] = a[0] * a[1] * a[2];
+      b[0] <<= sa;
+      if (kind == 3) b[0] += g.integer(7) - 3;
+    }
+    mpz_class lhs = a[0] * a[1] * a[2], rhs = b[0] * b[1];
+    lhs <<= sa;
+    rhs <<= sb;
+    bool exact = false;
+    const int got = signProductDifference({&a[0], &a[1], &a[2]}, sa,
+                                          {&b[0], &b[1]}, sb, &exact);
+    ASSERT_EQ(got, sgn(lhs - rhs)) << "i = " << i << ", kind " << kind;
+    (exact ? fallbacks : filtered)[0]++;
+    // c0^2 + c1^2 + c2^2 + k l, k l near -(sum of squares) for kind >= 2.
+    mpz_class c[3], k = randomInteger(g, bits), l = randomInteger(g, bits);
+    for (auto& x : c) x = randomInteger(g, bits);
+    const mpz_class sq = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    if (kind >= 2) {
+      l = 1 + g.integer(3);  // k l = -sq exactly, or within a few units
+      k = -sq;
+      mpz_tdiv_q(k.get_mpz_t(), k.get_mpz_t(), l.get_mpz_t());
+      if (kind == 3) k += g.integer(7) - 3;
+    }
+    const int want = sgn(sq + k * l);
+    ASSERT_EQ(signSquaresPlusProduct({&c[0], &c[1], &c[2]}, {&k, &l}, &exact),
+              want)
+        << "i = " << i << ", kind " << kind;
+    (exact ? fallbacks : filtered)[1]++;
+  }
+  std::printf(
+      "[ stats ] leading bits decided %ld and %ld, exact fallback %ld and "
+      "%ld\n",
+      filtered[0], filtered[1], fallbacks[0], fallbacks[1]);
+  EXPECT_GT(fallbacks[0], n / 10);
+  EXPECT_GT(fallbacks[1], n / 10);
+  EXPECT_GT(filtered[0], n / 4);
+  EXPECT_GT(filtered[1], n / 4);
+}
+
 /// The torus quartic Q = L^2 - 4 R^2 P from the quadratics L, P (lowest
 /// first) and R.
 Poly torusQuartic(const Poly& l, const Poly& pp, const mpz_class& R) {
