@@ -150,6 +150,17 @@ inline double keepLarger(double g, double cand) {
 #endif
 }
 
+/// t clamped to [0, 1] without a branch (a NaN t gives 0; the callers
+/// then get a NaN distance from their NaN inputs either way).
+inline double clampUnit(double t) {
+#if defined(__SSE2__)
+  return _mm_cvtsd_f64(
+      _mm_min_sd(_mm_max_sd(_mm_set_sd(t), _mm_setzero_pd()), _mm_set_sd(1)));
+#else
+  return std::isless(t, 0) ? 0 : (gt(t, 1) ? 1 : t);
+#endif
+}
+
 /// The correctly rounded square root of x >= 0 (or a quiet NaN, or +Inf:
 /// then NaN or +Inf, with no FP exception). Not std::sqrt: GCC treats the node
 /// test's rarely taken branches as cold and compiles std::sqrt there as a call
@@ -729,7 +740,7 @@ inline double originToTriangle2d(const double p[3][2]) {
     double t = 0;
     if (gt(ee, 0)) {
       t = -(a[0] * e0 + a[1] * e1) / ee;
-      t = std::isless(t, 0) ? 0 : (gt(t, 1) ? 1 : t);
+      t = clampUnit(t);
     }
     const double q0 = a[0] + t * e0, q1 = a[1] + t * e1;
     const double d2 = q0 * q0 + q1 * q1;
