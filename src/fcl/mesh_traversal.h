@@ -140,24 +140,22 @@ struct Box {
 inline bool gt(double a, double b) { return std::isgreater(a, b); }
 
 /// cand when cand > g, else g (a NaN cand leaves g; a NaN g stays): the
-/// larger of two gaps without a branch (maxsd keeps its second operand
-/// unless the first is greater, which is exactly this).
-inline double keepLarger(double g, double cand) {
-#if defined(__SSE2__)
-  return _mm_cvtsd_f64(_mm_max_sd(_mm_set_sd(cand), _mm_set_sd(g)));
-#else
-  return gt(cand, g) ? cand : g;
-#endif
-}
+/// larger of two gaps without a branch. Written as the ordered comparison
+/// it is, which compilers turn into one maxsd on x86 (maxsd keeps its
+/// second operand unless the first is greater: exactly this). Unlike gt,
+/// a NaN operand raises FE_INVALID here: the bounds that use it get a NaN
+/// only from arithmetic that raised it already (Inf - Inf; the traversals
+/// never see non-finite boxes, prepare() hands such models to FCL).
+inline double keepLarger(double g, double cand) { return cand > g ? cand : g; }
 
-/// t clamped to [0, 1] without a branch (a NaN t gives 0; the callers
-/// then get a NaN distance from their NaN inputs either way).
+/// t clamped to [0, 1] without a branch (maxsd and minsd), for t not NaN.
 inline double clampUnit(double t) {
 #if defined(__SSE2__)
   return _mm_cvtsd_f64(
       _mm_min_sd(_mm_max_sd(_mm_set_sd(t), _mm_setzero_pd()), _mm_set_sd(1)));
 #else
-  return std::isless(t, 0) ? 0 : (gt(t, 1) ? 1 : t);
+  const double lo = t > 0 ? t : 0;
+  return lo < 1 ? lo : 1;
 #endif
 }
 
