@@ -50,6 +50,7 @@ enum Kind : unsigned char {
   kInner,         // an inner node, its box bound
   kLeafBoxBound,  // a leaf, its box bound only
   kLeaf,          // a leaf, the larger of its box and triangle bounds
+  kLeafSupport,   // a leaf, with its support bound too
 };
 
 struct Entry {
@@ -109,17 +110,30 @@ class EntryQueue {
     const Entry last = heap_.pop();
     Entry* h = heap_.data();  // (after the pop: it may move the entries)
     const std::size_t n = heap_.size();
-    // The last entry sifted down from the root's hole.
-    std::size_t hole = 0;
-    for (;;) {
-      std::size_t child = 2 * hole + 1;
-      if (child >= n) break;
-      if (child + 1 < n && h[child + 1].lb < h[child].lb) ++child;
-      if (!(h[child].lb < last.lb)) break;
+    if (n == 0) return top;
+    // The root's hole moved down to the bottom along the smaller children
+    // (the choice as an add, not a branch: which child is smaller is data),
+    // then the last entry sifted up from there (Floyd's bottom-up pop: it
+    // rarely climbs, the last entry being among the largest). The bounds
+    // in the heap are positive, never NaN.
+    std::size_t hole = 0, child = 1;
+    while (child + 1 < n) {
+      child += std::size_t(h[child + 1].lb < h[child].lb);
+      h[hole] = h[child];
+      hole = child;
+      child = 2 * hole + 1;
+    }
+    if (child < n) {
       h[hole] = h[child];
       hole = child;
     }
-    if (n > 0) h[hole] = last;
+    while (hole > 0) {
+      const std::size_t parent = (hole - 1) / 2;
+      if (!(h[parent].lb > last.lb)) break;
+      h[hole] = h[parent];
+      hole = parent;
+    }
+    h[hole] = last;
     return top;
   }
 
@@ -226,22 +240,48 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
     const fcl::BVNode<BV>& node = model.getBV(e.node);
     // A leaf's world triangle (read once) and the best bound known for it.
     V3 p[3];
+    if (e.kind != kInner) triangleOf(node, p);
     double lt = e.lb;
-    if (e.kind == kLeafBoxBound) {
-      triangleOf(node, p);
+    if (e.kind == kLeafBoxBound || e.kind == kLeaf) {
       const double x[3][3] = {{p[0][0], p[0][1], p[0][2]},
                               {p[1][0], p[1][1], p[1][2]},
                               {p[2][0], p[2][1], p[2][2]}};
-      lt = triangleLowerBound(x, pose.R, t_cyl, cyl.radius, k.h);
+      const LocalTriangle local =
+          toCylinderFrame(x, pose.R, t_cyl, cyl.radius, k.h);
+      // A leaf's bounds, cheapest first, each only when the ones before
+      // leave it first in line (best-first: most leaves never are): the
+      // triangle's cheap bound, then its support bound (mesh_traversal.h)
+      // just before the distance itself, which costs far more (and
+      // measures, more often than not, a triangle that does not improve
+      // on best: the neighbours of the nearest one).
+      const bool support = e.kind == kLeaf;
+      const double lb = support ? triangleSupportBound(local, cyl.radius, k.h)
+                                : triangleLowerBound(local, cyl.radius, k.h);
+      if (gt(lb, lt)) lt = lb;
       if (pruner.prune(lt, best)) {
         ++skipped;
         continue;
       }
-      // (Not when lt proves nothing: it would come straight back.)
+      // Back in line when another entry is now first. (Not when lt proves
+      // nothing: it would come straight back.)
       if (gt(lt, 0) && gt(lt, e.lb) && !queue.empty() &&
           gt(lt, queue.floor())) {
-        queue.push(lt, e.node, kLeaf);
+        queue.push(lt, e.node, support ? kLeafSupport : kLeaf);
         continue;
+      }
+      if (!support && gt(lt, 0)) {
+        const double ls = triangleSupportBound(local, cyl.radius, k.h);
+        if (gt(ls, lt)) {
+          if (pruner.prune(ls, best)) {
+            ++skipped;
+            continue;
+          }
+          if (!queue.empty() && gt(ls, queue.floor())) {
+            queue.push(ls, e.node, kLeafSupport);
+            continue;
+          }
+          lt = ls;
+        }
       }
     }
     if (e.kind == kInner) {
@@ -271,7 +311,6 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
       continue;
     }
     const int id = primitiveId(node);
-    if (e.kind != kLeafBoxBound) triangleOf(node, p);
     const Triangle<double> tri{toVec3(p[0]), toVec3(p[1]), toVec3(p[2])};
     ++leaves;
     // A triangle whose bound proves nothing may meet the cylinder: the

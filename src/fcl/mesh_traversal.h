@@ -139,6 +139,26 @@ struct Box {
 /// then, so a NaN never skips a node.
 inline bool gt(double a, double b) { return std::isgreater(a, b); }
 
+/// cand when cand > g, else g (a NaN cand leaves g; a NaN g stays): the
+/// larger of two gaps without a branch. Written as the ordered comparison
+/// it is, which compilers turn into one maxsd on x86 (maxsd keeps its
+/// second operand unless the first is greater: exactly this). Unlike gt,
+/// a NaN operand raises FE_INVALID here: the bounds that use it get a NaN
+/// only from arithmetic that raised it already (Inf - Inf; the traversals
+/// never see non-finite boxes, prepare() hands such models to FCL).
+inline double keepLarger(double g, double cand) { return cand > g ? cand : g; }
+
+/// t clamped to [0, 1] without a branch (maxsd and minsd), for t not NaN.
+inline double clampUnit(double t) {
+#if defined(__SSE2__)
+  return _mm_cvtsd_f64(
+      _mm_min_sd(_mm_max_sd(_mm_set_sd(t), _mm_setzero_pd()), _mm_set_sd(1)));
+#else
+  const double lo = t > 0 ? t : 0;
+  return lo < 1 ? lo : 1;
+#endif
+}
+
 /// The correctly rounded square root of x >= 0 (or a quiet NaN, or +Inf:
 /// then NaN or +Inf, with no FP exception). Not std::sqrt: GCC treats the node
 /// test's rarely taken branches as cold and compiles std::sqrt there as a call
@@ -518,23 +538,20 @@ lowerBound(const Box& x, const Local& k) {
   const double g_axis =
       std::fabs(ud) - (k.h + e[0] * ua[0] + e[1] * ua[1] + e[2] * ua[2]);
   double g = g_axis;
-  // (B). The radial part r |a_i x u| >= 0 only lowers the gap: computed
-  // only when the rest would beat g.
+  // (B). Every gap computed and the largest kept without a branch (which
+  // of them wins is data, and a branch on it was mispredicted about once a
+  // bound); the three square roots are independent and overlap.
   for (int i = 0; i < 3; ++i) {
     if constexpr (kAligned) {
-      const double gi = std::fabs(d[i]) - (e[i] + k.support[i]);
-      if (gt(gi, g)) g = gi;
+      g = keepLarger(g, std::fabs(d[i]) - (e[i] + k.support[i]));
     } else {
       const double gi = std::fabs(n.p[i]) - (e[i] + k.h * ua[i]);
-      if (!gt(gi, g)) continue;
-      const double gr = gi - k.r * radialFactor(n, i);
-      if (gt(gr, g)) g = gr;
+      g = keepLarger(g, gi - k.r * radialFactor(n, i));
     }
   }
-  // (C), with its two square roots only when it can beat the others: |e|
-  // >= max e_i, so |q| <= g + r + max e_i means gc <= g. (Leaving a gap out
-  // only weakens the bound, never invalidates it, so the rounding of this
-  // pre-test does not matter.)
+  // (C), with its two square roots (taken always, as (B)'s: a pre-test
+  // that skipped them when they could not beat g was mispredicted as
+  // often).
   //
   // (A) and (C) at once: in the cylinder's frame the cylinder is a disc
   // times an interval, so a point's distance to it is sqrt(dz^2 + dxy^2)
@@ -544,26 +561,19 @@ lowerBound(const Box& x, const Local& k) {
   // less m (a lower bound of the exact gap, above) and both positive, the
   // root of the sum of squares is a lower bound; its rounding (relative, a
   // few ulps) is covered by the factor 1 - 2^-50 and the underflow of the
-  // squares by 2^-500 (m >= 2^-500 too). Worth computing when (A) proves a
-  // gap: (C)'s roots are then taken whenever the box is off the line.
+  // squares by 2^-500 (m >= 2^-500 too).
   const double q[3] = {d[0] - ud * k.u[0], d[1] - ud * k.u[1],
                        d[2] - ud * k.u[2]};
   const double q2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
-  const double e01 = gt(e[1], e[0]) ? e[1] : e[0];
-  const double emax = gt(e[2], e01) ? e[2] : e01;
   const double ga = g_axis - m;
-  const double reach = (gt(ga, 0) ? 0 : g) + k.r + emax;
-  double lb = g - m;
-  if (!(std::islessequal(0.0, reach) && std::islessequal(q2, reach * reach))) {
-    const double gc = sqrtNonNegative(q2) - k.r -
-                      sqrtNonNegative(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-    if (gt(gc - m, lb)) lb = gc - m;
-    const double gcm = gc - m;
-    if (gt(ga, 0) && gt(gcm, 0)) {
-      const double both =
-          sqrtNonNegative(ga * ga + gcm * gcm) * (1 - 0x1p-50) - 0x1p-500;
-      if (gt(both, lb)) lb = both;
-    }
+  const double gcm = sqrtNonNegative(q2) - k.r -
+                     sqrtNonNegative(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) -
+                     m;
+  const double lb = keepLarger(g - m, gcm);
+  if (gt(ga, 0) && gt(gcm, 0)) {
+    const double both =
+        sqrtNonNegative(ga * ga + gcm * gcm) * (1 - 0x1p-50) - 0x1p-500;
+    return keepLarger(lb, both);
   }
   return lb;
 }
@@ -728,7 +738,7 @@ inline double originToTriangle2d(const double p[3][2]) {
     double t = 0;
     if (gt(ee, 0)) {
       t = -(a[0] * e0 + a[1] * e1) / ee;
-      t = std::isless(t, 0) ? 0 : (gt(t, 1) ? 1 : t);
+      t = clampUnit(t);
     }
     const double q0 = a[0] + t * e0, q1 = a[1] + t * e1;
     const double d2 = q0 * q0 + q1 * q1;
@@ -753,20 +763,39 @@ inline double originToTriangle2d(const double p[3][2]) {
 /// both. The plane gap is not Lipschitz for slivers: the unit normal is off
 /// by at most eps_n = 4 (E (|e1| + |e2|) + 2^-50 |e1| |e2|) / |n|; it is used
 /// only when eps_n < 2^-20, with (|y0| + r + h) eps_n + 4 E taken off.
-inline double triangleLowerBound(const double x[3][3], const double R[3][3],
-                                 const double t[3], double r, double h) {
+///
+/// The triangle in the cylinder's frame and E are computed once
+/// (toCylinderFrame) and shared with triangleSupportBound below.
+struct LocalTriangle {
+  double y[3][3];  // vertex k at y[k]
+  double E;        // 2^-44 L: each y[k] is within E of the exact one
+};
+
+inline LocalTriangle toCylinderFrame(const double x[3][3], const double R[3][3],
+                                     const double t[3], double r, double h) {
+  LocalTriangle lt;
   double L = 0;
-  double y[3][3];
   for (int k = 0; k < 3; ++k) {
     const double d[3] = {x[k][0] - t[0], x[k][1] - t[1], x[k][2] - t[2]};
     for (int i = 0; i < 3; ++i) {
-      y[k][i] = R[0][i] * d[0] + R[1][i] * d[1] + R[2][i] * d[2];
+      lt.y[k][i] = R[0][i] * d[0] + R[1][i] * d[1] + R[2][i] * d[2];
       const double a = std::fabs(x[k][i]);
       if (gt(a, L)) L = a;
     }
   }
   L += std::fabs(t[0]) + std::fabs(t[1]) + std::fabs(t[2]) + r + h;
-  const double E = 0x1p-44 * L;
+  lt.E = 0x1p-44 * L;
+  return lt;
+}
+
+inline double triangleLowerBound(const LocalTriangle& lt, double r, double h) {
+  const double(&y)[3][3] = lt.y;
+  const double E = lt.E;
+  // Coordinates up to L < 2^240: the products below (of up to three
+  // coordinates, and the squares of two) stay finite. Beyond, or for a NaN
+  // coordinate, nothing is proved (the squares overflowed from about 2^256
+  // and the face gap became Inf / Inf).
+  if (!std::isless(E, 0x1p196)) return 0;
   // Along the axis.
   // (min and max by quiet comparisons, not std::fmin/fmax, libm calls: a
   // NaN coordinate makes the bound NaN or leaves it unproved either way.)
@@ -780,7 +809,9 @@ inline double triangleLowerBound(const double x[3][3], const double R[3][3],
   // In the caps' plane.
   const double p[3][2] = {
       {y[0][0], y[0][1]}, {y[1][0], y[1][1]}, {y[2][0], y[2][1]}};
-  const double radial = originToTriangle2d(p) - r;
+  // (Its squares may underflow: the root of a sum off by 2^-1073 at most
+  // is off by 2^-536 at most, inside the 2^-530 taken off.)
+  const double radial = originToTriangle2d(p) - r - 0x1p-530;
   double g = gt(radial, axial) ? radial : axial;
   g -= 4 * E;
   // Both at once: the cylinder is a disc times an interval, so a point's
@@ -810,7 +841,11 @@ inline double triangleLowerBound(const double x[3][3], const double R[3][3],
   const double l2 =
       sqrtNonNegative(e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]);
   const double eps_n = 4 * (E * (l1 + l2) + 0x1p-50 * l1 * l2);
-  if (gt(nn, 0) && std::isless(eps_n, 0x1p-20 * nn)) {
+  // (nn >= 2^-480: a component of n whose square underflows is below
+  // 2^-511, so the roots nn and |n_xy| are off by 2^-536 at most, 2^-56 of
+  // nn, and the products' own underflow (2^-1074 each) is 2^-594 of nn: a
+  // relative error far inside 4 E over the lengths it scales.)
+  if (std::isgreaterequal(nn, 0x1p-480) && std::isless(eps_n, 0x1p-20 * nn)) {
     const double en = eps_n / nn;
     const double s =
         std::fabs(n[0] * y[0][0] + n[1] * y[0][1] + n[2] * y[0][2]) / nn;
@@ -819,10 +854,136 @@ inline double triangleLowerBound(const double x[3][3], const double R[3][3],
         nn;
     const double y0 =
         std::fabs(y[0][0]) + std::fabs(y[0][1]) + std::fabs(y[0][2]);
-    const double face = s - support - (y0 + r + h) * en - 4 * E;
+    const double face = s - support - (y0 + r + h) * en - 4 * E - 0x1p-530;
     if (gt(face, g)) g = face;
   }
   return g;
+}
+
+inline double triangleLowerBound(const double x[3][3], const double R[3][3],
+                                 const double t[3], double r, double h) {
+  return triangleLowerBound(toCylinderFrame(x, R, t, r, h), r, h);
+}
+
+/// The point of the triangle (a, b, c) nearest to p, by the region of the
+/// triangle's Voronoi diagram p falls in (a vertex, an edge or the face),
+/// read from the dot products of p - vertex with the two edge vectors (the
+/// method of Ericson, Real-Time Collision Detection, 2005, 5.1.5).
+/// Not certified: a heuristic for triangleSupportBound, whose bound holds
+/// for any direction. Inputs finite and below 2^240 in magnitude (no
+/// product overflows); a degenerate triangle gets a point of itself (each
+/// division only by a positive denominator: no FP exception).
+inline void nearestOnTriangle(const double p[3], const double a[3],
+                              const double b[3], const double c[3],
+                              double out[3]) {
+  const auto dot = [](const double* u, const double* v) {
+    return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+  };
+  // u + (num / den) (v - u), or u when den is not positive.
+  const auto onEdge = [out](const double* u, const double* v, double num,
+                            double den) {
+    const double s = gt(den, 0) ? num / den : 0.0;
+    for (int i = 0; i < 3; ++i) out[i] = u[i] + s * (v[i] - u[i]);
+  };
+  const double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double ac[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double ap[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return onEdge(a, b, 0, 0);  // vertex a
+  const double bp[3] = {p[0] - b[0], p[1] - b[1], p[2] - b[2]};
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return onEdge(b, c, 0, 0);  // vertex b
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return onEdge(a, b, d1, d1 - d3);
+  const double cp[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return onEdge(c, a, 0, 0);  // vertex c
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return onEdge(a, c, d2, d2 - d6);
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 >= d3 && d5 >= d6)
+    return onEdge(b, c, d4 - d3, (d4 - d3) + (d5 - d6));
+  const double sum = va + vb + vc;
+  if (!gt(sum, 0)) return onEdge(a, b, 0, 0);
+  const double v = vb / sum, w = vc / sum;
+  for (int i = 0; i < 3; ++i) out[i] = a[i] + v * ab[i] + w * ac[i];
+}
+
+/// The point of the solid cylinder (radius r, half length h, axis z,
+/// centred at the origin) nearest to q (finite). Not certified (a
+/// heuristic, as nearestOnTriangle).
+inline void nearestOnCylinder(const double q[3], double r, double h,
+                              double out[3]) {
+  out[2] = q[2] < -h ? -h : (q[2] > h ? h : q[2]);
+  const double rho2 = q[0] * q[0] + q[1] * q[1];
+  const double s = rho2 > r * r ? r / sqrtNonNegative(rho2) : 1.0;
+  out[0] = q[0] * s;
+  out[1] = q[1] * s;
+}
+
+/// A certified lower bound of the same distance as triangleLowerBound's
+/// (the pulled-back triangle to the solid cylinder of radius r and half
+/// length h), or 0 when none is proved; tighter where that one is loose:
+/// when the nearest points lie on an edge or a vertex of the triangle, or
+/// on the cylinder's rim (then neither the axis, the caps' plane nor the
+/// triangle's normal separates by the distance). About four times the cost
+/// of triangleLowerBound: the distance walk asks for it only for a
+/// triangle about to be measured.
+///
+/// Any direction v with |v| <= 1 gives one: every point of the triangle
+/// has v.y >= min_k v.y_k (a linear function's minimum over a triangle is
+/// at a vertex), every point of the cylinder has v.y <= h |v_z| + r |v_xy|
+/// (its support along v), so the gap between the two is at most the
+/// distance (times |v|). The direction comes from alternating projections
+/// (the triangle's point nearest to a point of the cylinder, then the
+/// cylinder's point nearest to that; for two convex sets these pairs
+/// approach a nearest pair), started from the triangle's point nearest to
+/// the cylinder's centre, three rounds. How good the direction is does not
+/// matter to the bound's validity, only to its strength.
+///
+/// Rounding. v = w / |w| (computed) has |v| <= 1 + 2^-50 and is used as an
+/// exact vector: the computed gap is that of v up to (i) the error of the
+/// local coordinates (|v| 2^-49 L, see triangleLowerBound), (ii) the
+/// rounding of the three dot products (3 ulps of |v| |y| <= 2^-50.6 L
+/// each, |y| <= sqrt(3) L), of the support (4 ulps of r + h) and of the
+/// differences: less than 2^-47 L in all, inside 4 E = 2^-42 L. The gap of
+/// the unit v / |v| is the gap of v over |v|, so (gap - 4 E) (1 - 2^-49)
+/// is a lower bound when positive (the factor also covers its own
+/// rounding). |w| >= 2^-500 is required, so its largest component's square
+/// does not underflow and |v| is as stated; the underflow of the other
+/// products (2^-1074 each) is covered by 2^-530. Inputs: the local
+/// coordinates must sum to less than 2^240 in magnitude (no overflow in
+/// the heuristic's products), else nothing is proved; a NaN coordinate
+/// fails that test too.
+constexpr int kSupportRounds = 2;
+
+inline double triangleSupportBound(const LocalTriangle& lt, double r,
+                                   double h) {
+  const double(&y)[3][3] = lt.y;
+  double size = 0;
+  for (int k = 0; k < 3; ++k)
+    size += std::fabs(y[k][0]) + std::fabs(y[k][1]) + std::fabs(y[k][2]);
+  if (!std::isless(size, 0x1p240)) return 0;
+  const double origin[3] = {0, 0, 0};
+  double q[3], p[3];
+  nearestOnTriangle(origin, y[0], y[1], y[2], q);
+  for (int round = 0; round < kSupportRounds; ++round) {
+    nearestOnCylinder(q, r, h, p);
+    nearestOnTriangle(p, y[0], y[1], y[2], q);
+  }
+  nearestOnCylinder(q, r, h, p);
+  const double w[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+  const double len = sqrtNonNegative(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  if (!gt(len, 0x1p-500)) return 0;
+  const double v[3] = {w[0] / len, w[1] / len, w[2] / len};
+  double smin = v[0] * y[0][0] + v[1] * y[0][1] + v[2] * y[0][2];
+  for (int k = 1; k < 3; ++k) {
+    const double s = v[0] * y[k][0] + v[1] * y[k][1] + v[2] * y[k][2];
+    if (s < smin) smin = s;
+  }
+  const double support =
+      h * std::fabs(v[2]) + r * sqrtNonNegative(v[0] * v[0] + v[1] * v[1]);
+  return (smin - support - 4 * lt.E) * (1 - 0x1p-49) - 0x1p-530;
 }
 
 /// Calls f(BvTag<BV>{}) for the BV type of a BVHModel<BV> of node type `t`
