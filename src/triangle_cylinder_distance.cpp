@@ -541,6 +541,96 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
   return false;
 }
 
+// The lean refinement of a face candidate: the double pass's best is the
+// face, whose plane H misses C (docs/distance.md, section 2, step 5). The
+// separating plane is H itself: with n = e_a x e_b from the double-word
+// vertices (the two shorter edges, as faceCandidate), in double-word,
+// W = +-n towards the triangle and
+//   L = (min_i W . v_i - r |W_xy| - h |W_z|) / |W|,
+// numerator in double-word, quotient in double, as in leanRefine (the
+// three W . v_i agree to the double-word rounding of n, so L is tight).
+// U is the distance of a point of T: the double pass's face point p, as
+// the barycentric coordinates (a, b) of the double triangle, rounded to
+// double and kept inside T exactly (a, b >= 0, a + b <= 1 checked with a
+// TwoSum), p = v0 + a (v1 - v0) + b (v2 - v0) in double-word. f is C^1
+// with its gradient normal to H at the face's minimiser, so p's offset in
+// the plane (a few ulps of the edges) costs U only its square. Accepted
+// as leanRefine's results (within kAcceptRel, or bounds that met where
+// the double-word allowance is the wider); an accepted result proves the
+// pair disjoint (L_lo > 0). Otherwise refineFast runs.
+template <class DDx, class VertexFn>
+TRICYL_DIST_NOINLINE bool leanFace(const Pass& pass, const Problem<double>& P,
+                                   VertexFn&& vertex, double slack_dd,
+                                   const WorldMap& wm,
+                                   DistanceResult<double>* out) {
+  if (pass.best != 3 || pass.face_cut) return false;
+  const Candidate<double>& cf = pass.cand[3];
+  if (!cf.valid) return false;
+  using detail::dist::dot;
+  // Barycentric coordinates of the double face point in the double
+  // triangle (Gram system of the edges from v0).
+  const P3<double> f1 = P.v[1] - P.v[0], f2 = P.v[2] - P.v[0],
+                   fp = cf.p - P.v[0];
+  const double d00 = dot(f1, f1), d01 = dot(f1, f2), d11 = dot(f2, f2);
+  const double d20 = dot(fp, f1), d21 = dot(fp, f2);
+  const double den = d00 * d11 - d01 * d01;
+  if (!(den > detail::dist::kTinyDen)) return false;
+  const double ba = (d11 * d20 - d01 * d21) / den;
+  const double bb = (d00 * d21 - d01 * d20) / den;
+  double bs, be;
+  detail::twoSum(ba, bb, bs, be);
+  if (!(ba >= 0 && bb >= 0 && (bs < 1 || (bs == 1 && be <= 0)))) return false;
+  const P3<DDx>& v0 = vertex(0);
+  const P3<DDx>& v1 = vertex(1);
+  const P3<DDx>& v2 = vertex(2);
+  const P3<DDx> e01 = v1 - v0, e12 = v2 - v1, e20 = v0 - v2;
+  // The longest edge from the double triangle (as faceCandidate; any two
+  // edges give the same plane, the shorter ones cancel least).
+  const P3<double> g12 = P.v[2] - P.v[1];
+  const double l0 = d00, l1 = dot(g12, g12), l2 = d11;
+  const int longest = l1 > l0 ? (l2 > l1 ? 2 : 1) : (l2 > l0 ? 2 : 0);
+  const P3<DDx> n = longest == 0   ? detail::dist::cross(e12, e20)
+                    : longest == 1 ? detail::dist::cross(e20, e01)
+                                   : detail::dist::cross(e01, e12);
+  const P3<double> nd{double(n.x), double(n.y), double(n.z)};
+  // W points from C towards the triangle, as the double pass's w.
+  const bool flip = dot(nd, cf.w) < 0;
+  const P3<DDx> W = flip ? P3<DDx>{-n.x, -n.y, -n.z} : n;
+  const P3<double> wd = flip ? P3<double>{-nd.x, -nd.y, -nd.z} : nd;
+  const double ww = dot(wd, wd);
+  if (!(ww > detail::dist::kTinyDen)) return false;
+  DDx m = dot(W, v0);
+  const DDx m1 = dot(W, v1), m2 = dot(W, v2);
+  if (m1 < m) m = m1;
+  if (m2 < m) m = m2;
+  const DDx hc = detail::mulD(sqrt(W.x * W.x + W.y * W.y), P.r) +
+                 detail::mulD(abs(W.z), P.h);
+  const double L = double(m - hc) / std::sqrt(ww);
+  if (!(L > 0)) return false;
+  const P3<DDx> p{v0.x + detail::mulD(e01.x, ba) - detail::mulD(e20.x, bb),
+                  v0.y + detail::mulD(e01.y, ba) - detail::mulD(e20.y, bb),
+                  v0.z + detail::mulD(e01.z, ba) - detail::mulD(e20.z, bb)};
+  const LeanPoint lp = leanPoint(p, P.r, P.h);
+  const double U = lp.U;
+  const double u_hi = U * (1 + kLeanU) + slack_dd;
+  const double l_lo = L * (1 - kLeanL) - slack_dd;
+  if (!(l_lo > 0) || !(l_lo <= u_hi)) return false;
+  const double dist = 0.5 * (U + L);
+  const double err = maxd(u_hi - dist, dist - l_lo) + kU * dist;
+  if (!(err <= kAcceptRel * dist ||
+        (slack_dd > kTightGap * dist &&
+         U - L <= (kLeanU + kLeanL + kTightGap) * dist)))
+    return false;
+  if (out) {
+    out->distance = dist;
+    out->error_bound = err * (1 + 0x1p-50);
+    const P3<double> pd{double(p.x), double(p.y), double(p.z)};
+    out->point_on_triangle = toWorld(wm, pd);
+    out->point_on_cylinder = toWorld(wm, pd - lp.w);
+  }
+  return true;
+}
+
 // The double-word pulled-back vertices, each formed once, when first
 // asked for (by the lean refinement, refineFast or the general one).
 template <class DDx, class MakeFn>
@@ -864,6 +954,10 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   // Accepted: L_lo > 0 proves the pair disjoint, no Boolean needed.
   if (leanRefine<DDx>(pass, P, vertex, eps_y_d, M, slack_dd, wm, out)) {
     TRICYL_DIST_PATH(3);
+    return Answer::kDisjoint;
+  }
+  if (leanFace<DDx>(pass, P, vertex, slack_dd, wm, out)) {
+    TRICYL_DIST_PATH(13);
     return Answer::kDisjoint;
   }
   if (near_c && booleanOf() == Answer::kIntersect) {
