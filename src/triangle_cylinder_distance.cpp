@@ -822,6 +822,62 @@ inline bool certainlyInside(const P3<double>& p, const Problem<double>& P,
          p.x * p.x + p.y * p.y <= rr * rr * (1 - 0x1p-50);
 }
 
+// As certainlyInside, for a point whose double z coordinate is that of the
+// exact triangle's point (zExact in solve: a triangle in a cap plane under
+// an exactly representable pose): 2 |p_z| <= lz decides the slab exactly
+// (doubling is exact; h = lz / 2 may have rounded for a subnormal lz), the
+// disk as in certainlyInside. The closed sets touch at a point on the cap
+// plane: `intersect` is true there too.
+inline bool certainlyInsideExactZ(const P3<double>& p, const Problem<double>& P,
+                                  double lz, double e) {
+  e += 0x1p-1060;
+  const double rr = P.r - 2 * e;
+  return 2 * absd(p.z) <= lz && rr >= 0x1p-500 &&
+         p.x * p.x + p.y * p.y <= rr * rr * (1 - 0x1p-50);
+}
+
+// A point of edge k of the double triangle certainly inside C (with
+// certainlyInside's allowance e for p = fl(a + s fl(b - a)), any s in
+// [0, 1]): the middle of the edge's chord through C in double, the
+// intersection of its parameter intervals in the slab (|a_z + s d_z| <= h)
+// and in the disk (A s^2 + 2 B s + C <= 0). The double pass's edge point
+// at distance 0 is a root of phi', which is 0 all along the chord, and the
+// search usually stops next to the chord's end, where certainlyInside's
+// margin fails: the chord's middle is the deepest point of the edge in
+// most crossings. A quotient that overflows (d_z tiny) gives +-inf, which
+// the clamps to [0, 1] absorb; no 0 / 0 (d_z != 0, A > kTinyDen).
+inline bool chordWitness(const Problem<double>& P, int k, double e,
+                         P3<double>* out) {
+  const P3<double>& a = P.v[detail::dist::kEdgeA[k]];
+  const P3<double> d = P.v[detail::dist::kEdgeB[k]] - a;
+  double lo = 0, hi = 1;
+  if (d.z != 0) {
+    const double t1 = (-P.h - a.z) / d.z, t2 = (P.h - a.z) / d.z;
+    lo = maxd(lo, t1 < t2 ? t1 : t2);
+    const double th = t1 < t2 ? t2 : t1;
+    hi = th < hi ? th : hi;
+  } else if (!(absd(a.z) <= P.h)) {
+    return false;
+  }
+  const double A = d.x * d.x + d.y * d.y, B = a.x * d.x + a.y * d.y;
+  const double C = a.x * a.x + a.y * a.y - P.r * P.r;
+  if (A > detail::dist::kTinyDen) {
+    const double disc = B * B - A * C;
+    if (!(disc > 0)) return false;
+    const double sq = std::sqrt(disc);
+    lo = maxd(lo, (-B - sq) / A);
+    const double th = (sq - B) / A;
+    hi = th < hi ? th : hi;
+  } else if (!(C < 0)) {
+    return false;
+  }
+  if (!(lo < hi)) return false;
+  const P3<double> p = a + d * (0.5 * (lo + hi));
+  if (!certainlyInside(p, P, e)) return false;
+  *out = p;
+  return true;
+}
+
 // The distance for valid double inputs of moderate magnitude (no
 // overflow of products of up to six lengths: every length below 2^100).
 // `booleanOf()` returns the exact Boolean (kIntersect or kDisjoint) of the
@@ -903,6 +959,49 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
     TRICYL_DIST_PATH(11);
     return intersecting(P.v[vmin], P.v[vmin]);
   }
+  // The double z coordinate of vertex v is the exact pulled-back one: x_k -
+  // t_k exact (TwoSum), each product by R_k2 exact (TwoProduct, away from
+  // underflow, where its error term could itself round), and their sum exact
+  // and equal to the double (two TwoSums with zero errors). Then a vertex,
+  // or a point of an edge whose ends have the same exact z, lies on the
+  // plane z = y_z exactly: a triangle in a cap plane under an exactly
+  // representable pose (the aligned family) is decided here, where
+  // certainlyInside's margin 2e below h cannot hold.
+  auto zExact = [&](int v) {
+    constexpr bool kF = std::is_same_v<DDx, detail::DDT<true>>;
+    const double x[3] = {X[v]->x, X[v]->y, X[v]->z};
+    double pr[3];
+    for (int k = 0; k < 3; ++k) {
+      double dx, e, q;
+      detail::twoSum(x[k], -tt[k], dx, e);
+      if (e != 0) return false;
+      detail::twoProdT<kF>(dx, pose.R[k][2], pr[k], q);
+      if (q != 0) return false;
+      if (pr[k] == 0 ? !(dx == 0 || pose.R[k][2] == 0)
+                     : !(absd(pr[k]) >= 0x1p-900))
+        return false;
+    }
+    double s1, t1, s2, t2;
+    detail::twoSum(pr[0], pr[1], s1, t1);
+    detail::twoSum(s1, pr[2], s2, t2);
+    return t1 == 0 && t2 == 0 && s2 == P.v[v].z;
+  };
+  if (vp.f[vmin] == 0 && exact_frame &&
+      certainlyInsideExactZ(P.v[vmin], P, cyl.lz, eps_y_d * (1 + 0x1p-50)) &&
+      zExact(vmin)) {
+    TRICYL_DIST_PATH(14);
+    return intersecting(P.v[vmin], P.v[vmin]);
+  }
+  // A vertex on C's boundary in double: an edge's chord may still be deep
+  // inside (chordWitness).
+  if (vp.f[vmin] == 0 && exact_frame) {
+    P3<double> p;
+    for (int k = 0; k < 3; ++k)
+      if (chordWitness(P, k, (eps_y_d + 8 * kU * Mx) * (1 + 0x1p-50), &p)) {
+        TRICYL_DIST_PATH(16);
+        return intersecting(p, p);
+      }
+  }
   if (vp.f[vmin] == 0 && booleanOf() == Answer::kIntersect) {
     TRICYL_DIST_PATH(1);
     return intersecting(P.v[vmin], P.v[vmin]);
@@ -944,6 +1043,31 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
                       (eps_y_d + 8 * kU * Mx) * (1 + 0x1p-50))) {
     TRICYL_DIST_PATH(12);
     return intersectingBest();
+  }
+  // The same for a point on a cap plane (zExact): a vertex, or an edge
+  // point between two vertices of the same exact z (then fl(b_z - a_z) = 0
+  // and p_z = a_z, the exact point's z at every parameter).
+  if (near_c && pass.cand[pass.best].f == 0 && exact_frame && pass.best < 3) {
+    const Candidate<double>& c = pass.cand[pass.best];
+    const int vb = vertexOf(c);
+    const int ia = vb >= 0 ? vb : detail::dist::kEdgeA[c.kind];
+    const int ib = vb >= 0 ? vb : detail::dist::kEdgeB[c.kind];
+    if (P.v[ia].z == P.v[ib].z &&
+        certainlyInsideExactZ(c.p, P, cyl.lz,
+                              (eps_y_d + 8 * kU * Mx) * (1 + 0x1p-50)) &&
+        zExact(ia) && (ib == ia || zExact(ib))) {
+      TRICYL_DIST_PATH(15);
+      return intersectingBest();
+    }
+  }
+  if (near_c && pass.cand[pass.best].f == 0 && exact_frame) {
+    P3<double> p;
+    for (int k = 0; k < 3; ++k)
+      if (pass.cand[k].f == 0 &&
+          chordWitness(P, k, (eps_y_d + 8 * kU * Mx) * (1 + 0x1p-50), &p)) {
+        TRICYL_DIST_PATH(17);
+        return intersecting(p, p);
+      }
   }
   if (near_c && pass.cand[pass.best].f == 0 &&
       booleanOf() == Answer::kIntersect) {
