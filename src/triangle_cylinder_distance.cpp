@@ -117,7 +117,12 @@ Vec3<double> scaled(const Vec3<double>& v, int e) {
 }
 
 struct Pass {
-  Candidate<double> cand[4];  // edges 0..2, face 3
+  // Edges 0..2 (each written whole by doublePass), face 3 (by addFace, or
+  // invalid): not zeroed first.
+  Candidate<double> cand[4] = {Candidate<double>(Candidate<double>::Unset{}),
+                               Candidate<double>(Candidate<double>::Unset{}),
+                               Candidate<double>(Candidate<double>::Unset{}),
+                               Candidate<double>(Candidate<double>::Unset{})};
   bool face_cut = false;
   bool face_pending = false;  // cand[3] not computed yet (addFace)
   int best = -1;
