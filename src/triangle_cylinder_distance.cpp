@@ -854,7 +854,17 @@ inline bool certainlyInsideExactZ(const P3<double>& p, const Problem<double>& P,
 inline bool chordWitness(const Problem<double>& P, int k, double e,
                          P3<double>* out) {
   const P3<double>& a = P.v[detail::dist::kEdgeA[k]];
-  const P3<double> d = P.v[detail::dist::kEdgeB[k]] - a;
+  const P3<double>& b = P.v[detail::dist::kEdgeB[k]];
+  // Cheap rejections first (tried on every query that has no vertex in
+  // C): both ends beyond the same cap, or both outside the disk's
+  // cylinder with the quadratic's minimum at an end (B >= 0 or A + B <= 0).
+  // (Rejecting only costs the witness: the double pass and the Boolean
+  // follow.)
+  if ((a.z > P.h && b.z > P.h) || (a.z < -P.h && b.z < -P.h)) return false;
+  const P3<double> d = b - a;
+  const double A = d.x * d.x + d.y * d.y, B = a.x * d.x + a.y * d.y;
+  const double C = a.x * a.x + a.y * a.y - P.r * P.r;
+  if (C > 0 && C + 2 * B + A > 0 && (B >= 0 || A + B <= 0)) return false;
   double lo = 0, hi = 1;
   if (d.z != 0) {
     const double t1 = (-P.h - a.z) / d.z, t2 = (P.h - a.z) / d.z;
@@ -864,8 +874,6 @@ inline bool chordWitness(const Problem<double>& P, int k, double e,
   } else if (!(absd(a.z) <= P.h)) {
     return false;
   }
-  const double A = d.x * d.x + d.y * d.y, B = a.x * d.x + a.y * d.y;
-  const double C = a.x * a.x + a.y * a.y - P.r * P.r;
   if (A > detail::dist::kTinyDen) {
     const double disc = B * B - A * C;
     if (!(disc > 0)) return false;
@@ -997,9 +1005,11 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
     TRICYL_DIST_PATH(14);
     return intersecting(P.v[vmin], P.v[vmin]);
   }
-  // A vertex on C's boundary in double: an edge's chord may still be deep
-  // inside (chordWitness).
-  if (vp.f[vmin] == 0 && exact_frame) {
+  // An edge's chord through C deep inside it (chordWitness): tried before
+  // the double pass, whose edge point at distance 0 would usually lie
+  // next to the chord's end (phi' vanishes all along the chord), and for
+  // a vertex on C's boundary in double.
+  if (exact_frame) {
     P3<double> p;
     for (int k = 0; k < 3; ++k)
       if (chordWitness(P, k, (eps_y_d + 8 * kU * Mx) * (1 + 0x1p-50), &p)) {
@@ -1064,15 +1074,6 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
       TRICYL_DIST_PATH(15);
       return intersectingBest();
     }
-  }
-  if (near_c && pass.cand[pass.best].f == 0 && exact_frame) {
-    P3<double> p;
-    for (int k = 0; k < 3; ++k)
-      if (pass.cand[k].f == 0 &&
-          chordWitness(P, k, (eps_y_d + 8 * kU * Mx) * (1 + 0x1p-50), &p)) {
-        TRICYL_DIST_PATH(17);
-        return intersecting(p, p);
-      }
   }
   if (near_c && pass.cand[pass.best].f == 0 &&
       booleanOf() == Answer::kIntersect) {
