@@ -335,6 +335,45 @@ LeanPoint leanPoint(const P3<DDx>& p, double r, double h) {
 constexpr double kLeanU = 4 * kU;  // relative error of LeanPoint::U
 constexpr double kLeanL = 3 * kU;  // of the quotient num / |w| (leanRefine)
 
+// The lean bounds' verdict (leanRefine, leanFace) for an upper bound U and
+// a lower bound L of d, with their relative roundings (kLeanU, kLeanL) and
+// the double-word allowance slack_dd: `consistent` when L_lo > 0 (the
+// result proves the pair disjoint: the caller may not have asked the
+// Boolean) and L_lo <= U_hi; then d = (U + L) / 2 with the bound
+// max(U_hi - d, d - L_lo) + u d, `accepted` within kAcceptRel, or, as in
+// refineFast, when U and L met (to their own final roundings) and it is
+// the a-priori double-word allowance that is wider (d below about
+// 2^-45 Mx).
+struct LeanVerdict {
+  bool consistent, accepted;
+  double dist, err;
+};
+inline LeanVerdict leanVerdict(double U, double L, double slack_dd) {
+  LeanVerdict v{false, false, 0, 0};
+  const double u_hi = U * (1 + kLeanU) + slack_dd;
+  const double l_lo = L * (1 - kLeanL) - slack_dd;
+  if (!(l_lo > 0) || !(l_lo <= u_hi)) return v;
+  v.consistent = true;
+  v.dist = 0.5 * (U + L);
+  v.err = maxd(u_hi - v.dist, v.dist - l_lo) + kU * v.dist;
+  v.accepted = v.err <= kAcceptRel * v.dist ||
+               (slack_dd > kTightGap * v.dist &&
+                U - L <= (kLeanU + kLeanL + kTightGap) * v.dist);
+  return v;
+}
+
+// An accepted lean result into *out: the point pd of T and pd - w of C
+// (w = pd - P(pd), leanPoint) mapped to the world.
+inline void writeLean(const LeanVerdict& v, const P3<double>& pd,
+                      const P3<double>& w, const WorldMap& wm,
+                      DistanceResult<double>* out) {
+  if (!out) return;
+  out->distance = v.dist;
+  out->error_bound = v.err * (1 + 0x1p-50);
+  out->point_on_triangle = toWorld(wm, pd);
+  out->point_on_cylinder = toWorld(wm, pd - w);
+}
+
 // The lean refinement (the usual case, no iteration in double-word): the
 // double pass's best candidate re-evaluated at its double parameter with
 // the double-word vertices: U = leanPoint(p).U, an upper bound (p is a
@@ -508,21 +547,9 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
     if (!(L > 0)) {
       continue;
     }
-    const double u_hi = U * (1 + kLeanU) + slack_dd;
-    const double l_lo = L * (1 - kLeanL) - slack_dd;
-    // Not accepted unless it proves the pair disjoint (l_lo > 0: the
-    // caller may not have asked the Boolean), nor for inconsistent bounds.
-    if (!(l_lo > 0) || !(l_lo <= u_hi)) {
-      continue;
-    }
-    const double dist = 0.5 * (U + L);
-    const double err = maxd(u_hi - dist, dist - l_lo) + kU * dist;
-    // As in refineFast: accepted within kAcceptRel, or when U and L met (to
-    // their own final roundings, kLeanU + kLeanL) and it is the a-priori
-    // double-word allowance that is wider (d below about 2^-45 Mx).
-    if (!(err <= kAcceptRel * dist ||
-          (slack_dd > kTightGap * dist &&
-           U - L <= (kLeanU + kLeanL + kTightGap) * dist))) {
+    const LeanVerdict lv = leanVerdict(U, L, slack_dd);
+    if (!lv.consistent) continue;
+    if (!lv.accepted) {
       if (vb >= 0 || attempt != 1) continue;
       const int ki = detail::dist::kEdgeA[cb.kind];
       const P3<double> dd = P.v[detail::dist::kEdgeB[cb.kind]] - P.v[ki];
@@ -534,13 +561,7 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
       newton_open = absd(sc) < 0x1p-20;
       continue;
     }
-    if (out) {
-      out->distance = dist;
-      out->error_bound = err * (1 + 0x1p-50);
-      const P3<double> pd{double(p.x), double(p.y), double(p.z)};
-      out->point_on_triangle = toWorld(wm, pd);
-      out->point_on_cylinder = toWorld(wm, pd - lq.w);
-    }
+    writeLean(lv, {double(p.x), double(p.y), double(p.z)}, lq.w, wm, out);
     return true;
   }
   return false;
@@ -616,23 +637,9 @@ TRICYL_DIST_NOINLINE bool leanFace(const Pass& pass, const Problem<double>& P,
                   v0.y + detail::mulD(e01.y, ba) - detail::mulD(e20.y, bb),
                   v0.z + detail::mulD(e01.z, ba) - detail::mulD(e20.z, bb)};
   const LeanPoint lp = leanPoint(p, P.r, P.h);
-  const double U = lp.U;
-  const double u_hi = U * (1 + kLeanU) + slack_dd;
-  const double l_lo = L * (1 - kLeanL) - slack_dd;
-  if (!(l_lo > 0) || !(l_lo <= u_hi)) return false;
-  const double dist = 0.5 * (U + L);
-  const double err = maxd(u_hi - dist, dist - l_lo) + kU * dist;
-  if (!(err <= kAcceptRel * dist ||
-        (slack_dd > kTightGap * dist &&
-         U - L <= (kLeanU + kLeanL + kTightGap) * dist)))
-    return false;
-  if (out) {
-    out->distance = dist;
-    out->error_bound = err * (1 + 0x1p-50);
-    const P3<double> pd{double(p.x), double(p.y), double(p.z)};
-    out->point_on_triangle = toWorld(wm, pd);
-    out->point_on_cylinder = toWorld(wm, pd - lp.w);
-  }
+  const LeanVerdict lv = leanVerdict(lp.U, L, slack_dd);
+  if (!lv.accepted) return false;
+  writeLean(lv, {double(p.x), double(p.y), double(p.z)}, lp.w, wm, out);
   return true;
 }
 
