@@ -29,7 +29,7 @@
 #include "walk.h"
 
 #ifdef TRICYL_DIST_COUNT_PATHS
-static long g_path[16];
+static long g_path[24];
 static int g_last = 0;  // the last step other than 10 (the Boolean's call)
 #define TRICYL_DIST_PATH(k) (++g_path[k], g_last = (k) == 10 ? g_last : (k))
 #include "../src/triangle_cylinder_distance.cpp"
@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
   std::printf("%s: %ld queries (%ld intersecting), checksum %.17g\n", argv[1],
               queries, zero, sink);
 #ifdef TRICYL_DIST_COUNT_PATHS
-  for (int i = 0; i < 16; ++i)
+  for (int i = 0; i < 24; ++i)
     if (g_path[i]) std::printf("  path %d: %ld\n", i, g_path[i]);
 #endif
   return 0;

@@ -117,7 +117,12 @@ Vec3<double> scaled(const Vec3<double>& v, int e) {
 }
 
 struct Pass {
-  Candidate<double> cand[4];  // edges 0..2, face 3
+  // Edges 0..2 (each written whole by doublePass), face 3 (by addFace, or
+  // invalid): not zeroed first.
+  Candidate<double> cand[4] = {Candidate<double>(Candidate<double>::Unset{}),
+                               Candidate<double>(Candidate<double>::Unset{}),
+                               Candidate<double>(Candidate<double>::Unset{}),
+                               Candidate<double>(Candidate<double>::Unset{})};
   bool face_cut = false;
   bool face_pending = false;  // cand[3] not computed yet (addFace)
   int best = -1;
@@ -330,6 +335,45 @@ LeanPoint leanPoint(const P3<DDx>& p, double r, double h) {
 constexpr double kLeanU = 4 * kU;  // relative error of LeanPoint::U
 constexpr double kLeanL = 3 * kU;  // of the quotient num / |w| (leanRefine)
 
+// The lean bounds' verdict (leanRefine, leanFace) for an upper bound U and
+// a lower bound L of d, with their relative roundings (kLeanU, kLeanL) and
+// the double-word allowance slack_dd: `consistent` when L_lo > 0 (the
+// result proves the pair disjoint: the caller may not have asked the
+// Boolean) and L_lo <= U_hi; then d = (U + L) / 2 with the bound
+// max(U_hi - d, d - L_lo) + u d, `accepted` within kAcceptRel, or, as in
+// refineFast, when U and L met (to their own final roundings) and it is
+// the a-priori double-word allowance that is wider (d below about
+// 2^-45 Mx).
+struct LeanVerdict {
+  bool consistent, accepted;
+  double dist, err;
+};
+inline LeanVerdict leanVerdict(double U, double L, double slack_dd) {
+  LeanVerdict v{false, false, 0, 0};
+  const double u_hi = U * (1 + kLeanU) + slack_dd;
+  const double l_lo = L * (1 - kLeanL) - slack_dd;
+  if (!(l_lo > 0) || !(l_lo <= u_hi)) return v;
+  v.consistent = true;
+  v.dist = 0.5 * (U + L);
+  v.err = maxd(u_hi - v.dist, v.dist - l_lo) + kU * v.dist;
+  v.accepted = v.err <= kAcceptRel * v.dist ||
+               (slack_dd > kTightGap * v.dist &&
+                U - L <= (kLeanU + kLeanL + kTightGap) * v.dist);
+  return v;
+}
+
+// An accepted lean result into *out: the point pd of T and pd - w of C
+// (w = pd - P(pd), leanPoint) mapped to the world.
+inline void writeLean(const LeanVerdict& v, const P3<double>& pd,
+                      const P3<double>& w, const WorldMap& wm,
+                      DistanceResult<double>* out) {
+  if (!out) return;
+  out->distance = v.dist;
+  out->error_bound = v.err * (1 + 0x1p-50);
+  out->point_on_triangle = toWorld(wm, pd);
+  out->point_on_cylinder = toWorld(wm, pd - w);
+}
+
 // The lean refinement (the usual case, no iteration in double-word): the
 // double pass's best candidate re-evaluated at its double parameter with
 // the double-word vertices: U = leanPoint(p).U, an upper bound (p is a
@@ -503,21 +547,9 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
     if (!(L > 0)) {
       continue;
     }
-    const double u_hi = U * (1 + kLeanU) + slack_dd;
-    const double l_lo = L * (1 - kLeanL) - slack_dd;
-    // Not accepted unless it proves the pair disjoint (l_lo > 0: the
-    // caller may not have asked the Boolean), nor for inconsistent bounds.
-    if (!(l_lo > 0) || !(l_lo <= u_hi)) {
-      continue;
-    }
-    const double dist = 0.5 * (U + L);
-    const double err = maxd(u_hi - dist, dist - l_lo) + kU * dist;
-    // As in refineFast: accepted within kAcceptRel, or when U and L met (to
-    // their own final roundings, kLeanU + kLeanL) and it is the a-priori
-    // double-word allowance that is wider (d below about 2^-45 Mx).
-    if (!(err <= kAcceptRel * dist ||
-          (slack_dd > kTightGap * dist &&
-           U - L <= (kLeanU + kLeanL + kTightGap) * dist))) {
+    const LeanVerdict lv = leanVerdict(U, L, slack_dd);
+    if (!lv.consistent) continue;
+    if (!lv.accepted) {
       if (vb >= 0 || attempt != 1) continue;
       const int ki = detail::dist::kEdgeA[cb.kind];
       const P3<double> dd = P.v[detail::dist::kEdgeB[cb.kind]] - P.v[ki];
@@ -529,16 +561,86 @@ TRICYL_DIST_NOINLINE bool leanRefine(const Pass& pass, const Problem<double>& P,
       newton_open = absd(sc) < 0x1p-20;
       continue;
     }
-    if (out) {
-      out->distance = dist;
-      out->error_bound = err * (1 + 0x1p-50);
-      const P3<double> pd{double(p.x), double(p.y), double(p.z)};
-      out->point_on_triangle = toWorld(wm, pd);
-      out->point_on_cylinder = toWorld(wm, pd - lq.w);
-    }
+    writeLean(lv, {double(p.x), double(p.y), double(p.z)}, lq.w, wm, out);
     return true;
   }
   return false;
+}
+
+// The lean refinement of a face candidate: the double pass's best is the
+// face, whose plane H misses C (docs/distance.md, section 2, step 5). The
+// separating plane is H itself: with n = e_a x e_b from the double-word
+// vertices (the two shorter edges, as faceCandidate), in double-word,
+// W = +-n towards the triangle and
+//   L = (min_i W . v_i - r |W_xy| - h |W_z|) / |W|,
+// numerator in double-word, quotient in double, as in leanRefine (the
+// three W . v_i agree to the double-word rounding of n, so L is tight).
+// U is the distance of a point of T: the double pass's face point p, as
+// the barycentric coordinates (a, b) of the double triangle, rounded to
+// double and kept inside T exactly (a, b >= 0, a + b <= 1 checked with a
+// TwoSum), p = v0 + a (v1 - v0) + b (v2 - v0) in double-word. f is C^1
+// with its gradient normal to H at the face's minimiser, so p's offset in
+// the plane (a few ulps of the edges) costs U only its square. Accepted
+// as leanRefine's results (within kAcceptRel, or bounds that met where
+// the double-word allowance is the wider); an accepted result proves the
+// pair disjoint (L_lo > 0). Otherwise refineFast runs.
+template <class DDx, class VertexFn>
+TRICYL_DIST_NOINLINE bool leanFace(const Pass& pass, const Problem<double>& P,
+                                   VertexFn&& vertex, double slack_dd,
+                                   const WorldMap& wm,
+                                   DistanceResult<double>* out) {
+  if (pass.best != 3 || pass.face_cut) return false;
+  const Candidate<double>& cf = pass.cand[3];
+  if (!cf.valid) return false;
+  using detail::dist::dot;
+  // Barycentric coordinates of the double face point in the double
+  // triangle (Gram system of the edges from v0).
+  const P3<double> f1 = P.v[1] - P.v[0], f2 = P.v[2] - P.v[0],
+                   fp = cf.p - P.v[0];
+  const double d00 = dot(f1, f1), d01 = dot(f1, f2), d11 = dot(f2, f2);
+  const double d20 = dot(fp, f1), d21 = dot(fp, f2);
+  const double den = d00 * d11 - d01 * d01;
+  if (!(den > detail::dist::kTinyDen)) return false;
+  const double ba = (d11 * d20 - d01 * d21) / den;
+  const double bb = (d00 * d21 - d01 * d20) / den;
+  double bs, be;
+  detail::twoSum(ba, bb, bs, be);
+  if (!(ba >= 0 && bb >= 0 && (bs < 1 || (bs == 1 && be <= 0)))) return false;
+  const P3<DDx>& v0 = vertex(0);
+  const P3<DDx>& v1 = vertex(1);
+  const P3<DDx>& v2 = vertex(2);
+  const P3<DDx> e01 = v1 - v0, e12 = v2 - v1, e20 = v0 - v2;
+  // The longest edge from the double triangle (as faceCandidate; any two
+  // edges give the same plane, the shorter ones cancel least).
+  const P3<double> g12 = P.v[2] - P.v[1];
+  const double l0 = d00, l1 = dot(g12, g12), l2 = d11;
+  const int longest = l1 > l0 ? (l2 > l1 ? 2 : 1) : (l2 > l0 ? 2 : 0);
+  const P3<DDx> n = longest == 0   ? detail::dist::cross(e12, e20)
+                    : longest == 1 ? detail::dist::cross(e20, e01)
+                                   : detail::dist::cross(e01, e12);
+  const P3<double> nd{double(n.x), double(n.y), double(n.z)};
+  // W points from C towards the triangle, as the double pass's w.
+  const bool flip = dot(nd, cf.w) < 0;
+  const P3<DDx> W = flip ? P3<DDx>{-n.x, -n.y, -n.z} : n;
+  const P3<double> wd = flip ? P3<double>{-nd.x, -nd.y, -nd.z} : nd;
+  const double ww = dot(wd, wd);
+  if (!(ww > detail::dist::kTinyDen)) return false;
+  DDx m = dot(W, v0);
+  const DDx m1 = dot(W, v1), m2 = dot(W, v2);
+  if (m1 < m) m = m1;
+  if (m2 < m) m = m2;
+  const DDx hc = detail::mulD(sqrt(W.x * W.x + W.y * W.y), P.r) +
+                 detail::mulD(abs(W.z), P.h);
+  const double L = double(m - hc) / std::sqrt(ww);
+  if (!(L > 0)) return false;
+  const P3<DDx> p{v0.x + detail::mulD(e01.x, ba) - detail::mulD(e20.x, bb),
+                  v0.y + detail::mulD(e01.y, ba) - detail::mulD(e20.y, bb),
+                  v0.z + detail::mulD(e01.z, ba) - detail::mulD(e20.z, bb)};
+  const LeanPoint lp = leanPoint(p, P.r, P.h);
+  const LeanVerdict lv = leanVerdict(lp.U, L, slack_dd);
+  if (!lv.accepted) return false;
+  writeLean(lv, {double(p.x), double(p.y), double(p.z)}, lp.w, wm, out);
+  return true;
 }
 
 // The double-word pulled-back vertices, each formed once, when first
@@ -732,6 +834,70 @@ inline bool certainlyInside(const P3<double>& p, const Problem<double>& P,
          p.x * p.x + p.y * p.y <= rr * rr * (1 - 0x1p-50);
 }
 
+// As certainlyInside, for a point whose double z coordinate is that of the
+// exact triangle's point (zExact in solve: a triangle in a cap plane under
+// an exactly representable pose): 2 |p_z| <= lz decides the slab exactly
+// (doubling is exact; h = lz / 2 may have rounded for a subnormal lz), the
+// disk as in certainlyInside. The closed sets touch at a point on the cap
+// plane: `intersect` is true there too.
+inline bool certainlyInsideExactZ(const P3<double>& p, const Problem<double>& P,
+                                  double lz, double e) {
+  e += 0x1p-1060;
+  const double rr = P.r - 2 * e;
+  return 2 * absd(p.z) <= lz && rr >= 0x1p-500 &&
+         p.x * p.x + p.y * p.y <= rr * rr * (1 - 0x1p-50);
+}
+
+// A point of edge k of the double triangle certainly inside C (with
+// certainlyInside's allowance e for p = fl(a + s fl(b - a)), any s in
+// [0, 1]): the middle of the edge's chord through C in double, the
+// intersection of its parameter intervals in the slab (|a_z + s d_z| <= h)
+// and in the disk (A s^2 + 2 B s + C <= 0). The double pass's edge point
+// at distance 0 is a root of phi', which is 0 all along the chord, and the
+// search usually stops next to the chord's end, where certainlyInside's
+// margin fails: the chord's middle is the deepest point of the edge in
+// most crossings. A quotient that overflows (d_z tiny) gives +-inf, which
+// the clamps to [0, 1] absorb; no 0 / 0 (d_z != 0, A > kTinyDen).
+inline bool chordWitness(const Problem<double>& P, int k, double e,
+                         P3<double>* out) {
+  const P3<double>& a = P.v[detail::dist::kEdgeA[k]];
+  const P3<double>& b = P.v[detail::dist::kEdgeB[k]];
+  // Cheap rejections first (tried on every query that has no vertex in
+  // C): both ends beyond the same cap, or both outside the disk's
+  // cylinder with the quadratic's minimum at an end (B >= 0 or A + B <= 0).
+  // (Rejecting only costs the witness: the double pass and the Boolean
+  // follow.)
+  if ((a.z > P.h && b.z > P.h) || (a.z < -P.h && b.z < -P.h)) return false;
+  const P3<double> d = b - a;
+  const double A = d.x * d.x + d.y * d.y, B = a.x * d.x + a.y * d.y;
+  const double C = a.x * a.x + a.y * a.y - P.r * P.r;
+  if (C > 0 && C + 2 * B + A > 0 && (B >= 0 || A + B <= 0)) return false;
+  double lo = 0, hi = 1;
+  if (d.z != 0) {
+    const double t1 = (-P.h - a.z) / d.z, t2 = (P.h - a.z) / d.z;
+    lo = maxd(lo, t1 < t2 ? t1 : t2);
+    const double th = t1 < t2 ? t2 : t1;
+    hi = th < hi ? th : hi;
+  } else if (!(absd(a.z) <= P.h)) {
+    return false;
+  }
+  if (A > detail::dist::kTinyDen) {
+    const double disc = B * B - A * C;
+    if (!(disc > 0)) return false;
+    const double sq = std::sqrt(disc);
+    lo = maxd(lo, (-B - sq) / A);
+    const double th = (sq - B) / A;
+    hi = th < hi ? th : hi;
+  } else if (!(C < 0)) {
+    return false;
+  }
+  if (!(lo < hi)) return false;
+  const P3<double> p = a + d * (0.5 * (lo + hi));
+  if (!certainlyInside(p, P, e)) return false;
+  *out = p;
+  return true;
+}
+
 // The distance for valid double inputs of moderate magnitude (no
 // overflow of products of up to six lengths: every length below 2^100).
 // `booleanOf()` returns the exact Boolean (kIntersect or kDisjoint) of the
@@ -813,6 +979,51 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
     TRICYL_DIST_PATH(11);
     return intersecting(P.v[vmin], P.v[vmin]);
   }
+  // The double z coordinate of vertex v is the exact pulled-back one: x_k -
+  // t_k exact (TwoSum), each product by R_k2 exact (TwoProduct, away from
+  // underflow, where its error term could itself round), and their sum exact
+  // and equal to the double (two TwoSums with zero errors). Then a vertex,
+  // or a point of an edge whose ends have the same exact z, lies on the
+  // plane z = y_z exactly: a triangle in a cap plane under an exactly
+  // representable pose (the aligned family) is decided here, where
+  // certainlyInside's margin 2e below h cannot hold.
+  auto zExact = [&](int v) {
+    constexpr bool kF = std::is_same_v<DDx, detail::DDT<true>>;
+    const double x[3] = {X[v]->x, X[v]->y, X[v]->z};
+    double pr[3];
+    for (int k = 0; k < 3; ++k) {
+      double dx, e, q;
+      detail::twoSum(x[k], -tt[k], dx, e);
+      if (e != 0) return false;
+      detail::twoProdT<kF>(dx, pose.R[k][2], pr[k], q);
+      if (q != 0) return false;
+      if (pr[k] == 0 ? !(dx == 0 || pose.R[k][2] == 0)
+                     : !(absd(pr[k]) >= 0x1p-900))
+        return false;
+    }
+    double s1, t1, s2, t2;
+    detail::twoSum(pr[0], pr[1], s1, t1);
+    detail::twoSum(s1, pr[2], s2, t2);
+    return t1 == 0 && t2 == 0 && s2 == P.v[v].z;
+  };
+  if (vp.f[vmin] == 0 && exact_frame &&
+      certainlyInsideExactZ(P.v[vmin], P, cyl.lz, eps_y_d * (1 + 0x1p-50)) &&
+      zExact(vmin)) {
+    TRICYL_DIST_PATH(14);
+    return intersecting(P.v[vmin], P.v[vmin]);
+  }
+  // An edge's chord through C deep inside it (chordWitness): tried before
+  // the double pass, whose edge point at distance 0 would usually lie
+  // next to the chord's end (phi' vanishes all along the chord), and for
+  // a vertex on C's boundary in double.
+  if (exact_frame) {
+    P3<double> p;
+    for (int k = 0; k < 3; ++k)
+      if (chordWitness(P, k, (eps_y_d + 8 * kU * Mx) * (1 + 0x1p-50), &p)) {
+        TRICYL_DIST_PATH(16);
+        return intersecting(p, p);
+      }
+  }
   if (vp.f[vmin] == 0 && booleanOf() == Answer::kIntersect) {
     TRICYL_DIST_PATH(1);
     return intersecting(P.v[vmin], P.v[vmin]);
@@ -855,6 +1066,22 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
     TRICYL_DIST_PATH(12);
     return intersectingBest();
   }
+  // The same for a point on a cap plane (zExact): a vertex, or an edge
+  // point between two vertices of the same exact z (then fl(b_z - a_z) = 0
+  // and p_z = a_z, the exact point's z at every parameter).
+  if (near_c && pass.cand[pass.best].f == 0 && exact_frame && pass.best < 3) {
+    const Candidate<double>& c = pass.cand[pass.best];
+    const int vb = vertexOf(c);
+    const int ia = vb >= 0 ? vb : detail::dist::kEdgeA[c.kind];
+    const int ib = vb >= 0 ? vb : detail::dist::kEdgeB[c.kind];
+    if (P.v[ia].z == P.v[ib].z &&
+        certainlyInsideExactZ(c.p, P, cyl.lz,
+                              (eps_y_d + 8 * kU * Mx) * (1 + 0x1p-50)) &&
+        zExact(ia) && (ib == ia || zExact(ib))) {
+      TRICYL_DIST_PATH(15);
+      return intersectingBest();
+    }
+  }
   if (near_c && pass.cand[pass.best].f == 0 &&
       booleanOf() == Answer::kIntersect) {
     TRICYL_DIST_PATH(2);
@@ -864,6 +1091,10 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
   // Accepted: L_lo > 0 proves the pair disjoint, no Boolean needed.
   if (leanRefine<DDx>(pass, P, vertex, eps_y_d, M, slack_dd, wm, out)) {
     TRICYL_DIST_PATH(3);
+    return Answer::kDisjoint;
+  }
+  if (leanFace<DDx>(pass, P, vertex, slack_dd, wm, out)) {
+    TRICYL_DIST_PATH(13);
     return Answer::kDisjoint;
   }
   if (near_c && booleanOf() == Answer::kIntersect) {

@@ -297,11 +297,16 @@ inline int edgeKinks(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
 /// and the direction w whose separating plane certifies it.
 template <class T>
 struct Candidate {
-  bool valid = false;
-  int kind = -1;  // 0, 1, 2: edge kind (kEdgeA, kEdgeB); 3: face
-  T s{};          // edge parameter
-  P3<T> p{}, q{}, w{};
-  T f{};
+  /// Tag of the constructor that leaves the numbers unset (the double
+  /// pass's slots, each written whole before it is read, or invalid).
+  struct Unset {};
+  bool valid;
+  int kind;  // 0, 1, 2: edge kind (kEdgeA, kEdgeB); 3: face
+  T s;       // edge parameter
+  P3<T> p, q, w;
+  T f;
+  Candidate() : valid(false), kind(-1), s(), p(), q(), w(), f() {}
+  explicit Candidate(Unset) : valid(false), kind(-1) {}
 };
 
 /// The candidate of edge k (kEdgeA, kEdgeB) at parameter s; w made
