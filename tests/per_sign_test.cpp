@@ -99,8 +99,8 @@ void checkPredicate(const Q& q, const P& pred, long* certified) {
   const typename Q::template Frame<DwPrioriArith<kPlainFma>> fp(q);
   const DwPt<kPlainFma> dp = pred(fp);
   EXPECT_TRUE(withinPrioriBound(dp, mag, exact))
-      << "a-priori compensated " << dp.h << " + " << dp.l
-      << ", magnitude " << mag;
+      << "a-priori compensated " << dp.h << " + " << dp.l << ", magnitude "
+      << mag;
   const Sign sp = detail::dwPrioriSign(dp, mag);
   if (sp != Sign::kUnknown) {
     EXPECT_EQ(signOf(sp), truth);
