@@ -360,8 +360,9 @@ struct DwArith {
 // 2^-1074 absolutely each when subnormal (the double filter's kDwTiny per
 // operation, amplified by at most the predicate's magnitude under the
 // range gate: below 2^-600, the same allowance as before). So the sign of
-// X is certain where |h| > 2^-90 m^ + 2^-600 + |l| (the 2^-90 leaves a
-// factor 3.4 for the roundings of the bound itself, a few u). It decides
+// X is certain where |fl(h + l)| > 2^-90 m^ + 2^-600 (dwPrioriSign; the
+// 2^-90 leaves a factor 3.4 over the bound, which the few roundings of the
+// test need only to the extent of a few u). It decides
 // every sign whose value is not below about 2^-90 of its magnitude: an
 // offset of one ulp (2^-52 relative) is far inside it, and the double
 // filter's pessimism after a cancellation (a line given by two points far
@@ -411,12 +412,18 @@ inline DwPt<kFma> times4(const DwPt<kFma>& a) {
   return {a.h * 4, a.l * 4};
 }
 /// The certified sign of an a-priori compensated value whose predicate has
-/// the double filter's magnitude m (see above), or kUnknown.
+/// the double filter's magnitude m (see above), or kUnknown: the sign of
+/// s = fl(h + l) where |s| > b = fl(fl(m 2^-90) + 2^-600). Then |h + l| >=
+/// |s| / (1 + u) > (2^-90 m + 2^-600)(1 - 3u), more than |X - (h + l)|
+/// (< 0x1.2p-92 m plus the underflow allowance), so X has s's sign. (Not
+/// |h| > b + |l|: h is the double evaluation, whose error l is often larger
+/// than a near-tie's value; h + l is accurate to about 2^-92 of m.)
 template <bool kFma>
 inline Sign dwPrioriSign(const DwPt<kFma>& d, double m) {
-  const double b = (m * 0x1p-90 + 0x1p-600) + std::fabs(d.l);
-  if (d.h > b) return Sign::kPos;
-  if (d.h < -b) return Sign::kNeg;
+  const double b = m * 0x1p-90 + 0x1p-600;
+  const double s = d.h + d.l;
+  if (s > b) return Sign::kPos;
+  if (s < -b) return Sign::kNeg;
   return Sign::kUnknown;
 }
 template <bool kFma>
