@@ -33,17 +33,19 @@
 //   1. for a double value that is exactly 0 (most often a true tie), the
 //      double evaluation re-done with every operation checked for
 //      exactness (Xd below);
-//   2. double word (about 106 bits, src/eft.h), first certified by an
-//      a-priori bound from the filter's magnitude of the same predicate
-//      (DwPt below: no bookkeeping per operation), then, for what that
-//      leaves, by the running bound of the adaptive kernel
+//   2. double word (about 106 bits, src/eft.h): first a compensated
+//      evaluation on the double-word frame (the double value and its
+//      error estimate side by side, not renormalised: DwPt below),
+//      certified by an a-priori bound from the filter's magnitude of the
+//      same predicate; then, for what that leaves, renormalised double
+//      words with the running bound of the adaptive kernel
 //      (src/adaptive.cpp); with the CPU's FMA chosen at run time on x86-64
 //      builds without it (the same bits either way);
 //   3. exact stack expansions (src/expansion.h);
 //   4. GMP dyadics (ExactKernel), where the expansions give up.
 // (A double stage with a running bound between the filter and double word,
 // RunningDoubleKernel, decided half of the escalated signs but cost about
-// as much as the a-priori double word that decides them all: dropped.)
+// as much as the a-priori stage that decides them all: dropped.)
 // Outside the range gate the query runs on GMP dyadics alone
 // (KernelCtx<ExactKernel>), as in runStages (src/stages.h). KernelCtx<K>
 // runs the same query code with one kernel K of src/filter.h, for
@@ -839,7 +841,7 @@ class PerSign {
     if (s != Sign::kUnknown) return s;
     return escalate(pred, v);
   }
-  /// resolve for a sign whose a-priori double word is known to fail (a
+  /// resolve for a sign whose a-priori stage is known to fail (a
   /// square of a term that cancels far below its magnitude: the a-priori
   /// bound is relative to the magnitude squared): the same stages without
   /// that one. Only the order of stages changes, never a sign.
@@ -875,10 +877,10 @@ class PerSign {
         return s;
       }
     }
-    // Double word, first with the a-priori bound from the filter's
-    // magnitude (it decides nearly every sign that is not a tie: about 2^-90
-    // of the magnitude against the filter's 2^-49), then with the running
-    // bound.
+    // Double word: first the compensated evaluation with the a-priori
+    // bound from the filter's magnitude (it decides nearly every sign that
+    // is not a tie: about 2^-90 of the magnitude against the filter's
+    // 2^-49), then renormalised double words with the running bound.
     if (level_ < 1) level_ = 1;
     if constexpr (kPriori) {
 #if TRICYL_FMA_DISPATCH
@@ -932,7 +934,7 @@ class PerSign {
   }
   std::optional<Frame<ExactDoubleArithT<true>>> xdf_;
 #endif
-  /// The double-word stage with the a-priori bound (with FMA or not), on a
+  /// The compensated stage with the a-priori bound (with FMA or not), on a
   /// frame built when first needed; m: the filter's magnitude of pred.
   template <bool kFma, class P>
   Sign dwPrioriSignWith(const P& pred, double m,
