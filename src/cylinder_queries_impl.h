@@ -515,7 +515,7 @@ struct DirY {
 /// L is a sum of squares, so L > 0 iff e_x != 0 or e_y != 0, exactly. The
 /// two signs of degree 2 decide where L's own sign (degree 4) would take
 /// the running double word: a direction nearly along the axis has L near
-/// 1e-32 of its magnitude, below the a-priori double word's 2^-90.
+/// 1e-32 of its magnitude, below the a-priori stage's 2^-90.
 template <class C>
 inline bool axisLenPositive(C& c, const Fp& len_value) {
   return shallowSign(toFd(len_value)) == Sign::kPos ||
@@ -912,7 +912,7 @@ TRICYL_PER_SIGN_INLINE Tri lineCylinder(C& c, bool* early) {
     }
     // r^2 L - c^2 with c = x_a e_y - y_a e_x cancelling far below its
     // magnitude (p far along the line from its closest approach to the
-    // axis): the a-priori double word, whose bound is relative to c's
+    // axis): the a-priori stage (PerSign), whose bound is relative to c's
     // magnitude squared, cannot decide it below a relative offset of about
     // 2^-90 (m_c / |c|)^2, i.e. for no offset below 2^-42 once
     // m_c > 2^24 |c| (the filter's c is then within 2^-25 of its value);

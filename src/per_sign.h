@@ -33,17 +33,19 @@
 //   1. for a double value that is exactly 0 (most often a true tie), the
 //      double evaluation re-done with every operation checked for
 //      exactness (Xd below);
-//   2. double word (about 106 bits, src/eft.h), first certified by an
-//      a-priori bound from the filter's magnitude of the same predicate
-//      (DwPt below: no bookkeeping per operation), then, for what that
-//      leaves, by the running bound of the adaptive kernel
+//   2. double word (about 106 bits, src/eft.h): first a compensated
+//      evaluation on the double-word frame (the double value and its
+//      error estimate side by side, not renormalised: DwPt below),
+//      certified by an a-priori bound from the filter's magnitude of the
+//      same predicate; then, for what that leaves, renormalised double
+//      words with the running bound of the adaptive kernel
 //      (src/adaptive.cpp); with the CPU's FMA chosen at run time on x86-64
 //      builds without it (the same bits either way);
 //   3. exact stack expansions (src/expansion.h);
 //   4. GMP dyadics (ExactKernel), where the expansions give up.
 // (A double stage with a running bound between the filter and double word,
 // RunningDoubleKernel, decided half of the escalated signs but cost about
-// as much as the a-priori double word that decides them all: dropped.)
+// as much as the a-priori stage that decides them all: dropped.)
 // Outside the range gate the query runs on GMP dyadics alone
 // (KernelCtx<ExactKernel>), as in runStages (src/stages.h). KernelCtx<K>
 // runs the same query code with one kernel K of src/filter.h, for
@@ -307,85 +309,132 @@ struct DwArith {
 };
 
 // ---------------------------------------------------------------------------
-// Double-word values with an a-priori bound: the same double words as
-// DwEt's (the same operations in the same order), no running bound. A
-// sign escalated from the double filter carries the filter's magnitude m^
-// of its predicate (FilterKernel: the same expression on the absolute
-// values of its leaves, each local coordinate with its one magnitude
-// rho (|d_0| + |d_1| + |d_2|), computed in double). Bound, for a
-// predicate evaluated as a tree of N operations with K local coordinates
-// among its leaves (both counted with multiplicity, as written: at most
-// N = 45 and K = 10 for the sphere's 16 r^2 G - T^2, N = 23 and K = 18 for
-// the cap crossing): a local coordinate is within eta M_c + kDwTiny of its
-// exact value (DwArith::local, eta = 2^-100), M_c = sum_k |R_kj| |D_k| <=
-// m^_c (1 - u)^-3 (rho >= |R_kj|), and the other leaves (r, lz, the
-// sphere's radius) are exact; dwAdd errs by at most 4u^2 (|x_h| + |y_h|)
-// and dwMul by 7u^2 |x y| (src/eft.h), both within eps = 8u^2 = 2^-103 of
-// the operands' magnitudes. By induction over the tree, with M a node's
-// magnitude polynomial at the exact leaf magnitudes, |V - E| <= c M + t
-// where 1 + c <= (1 + eta)^K (1 + eps)^N for both + and * (a product:
-// |V_a V_b - E_a E_b| <= |V_a| c_b M_b + |E_b| c_a M_a, plus eps |V_a V_b|),
-// so c <= 24 * 2^-99.9 + 48 * 2^-103 < 2^-94.9 (with room for larger
-// predicates), and M <= m^ (1 - u)^-(N + 3).
-// The underflow term t is the double filter's (kDwTiny per operation,
-// amplified by at most the predicate's magnitude under the range gate:
-// below 2^-600). So the sign of V = hi + lo is certain where
-// |hi| > 2^-90 m^ + 2^-600 + |lo| (the 2^-90 leaves a factor 20 for the
-// roundings of the bound itself). It decides every sign whose value is
-// not below about 2^-90 of its magnitude: an offset of one ulp (2^-52
-// relative) is far inside it, and the double filter's pessimism after a
-// cancellation (a line given by two points far from the cylinder) does
-// not matter at this precision. What it leaves (true ties, second-order
-// values) goes to the running bound (DwEt), then expansions.
+// Compensated values with an a-priori bound (the double-word stage's first
+// attempt). Each value is an unevaluated pair h + l: h is the predicate
+// evaluated in double on the leaves' high words, l a running double
+// estimate of h's error, built from the error-free transformations of each
+// operation (TwoSum, TwoProduct; the compensated evaluation of Ogita, Rump
+// and Oishi's Sum2/Dot2 and of Graillat, Langlois and Louvet's compensated
+// Horner scheme, applied node by node to the predicate's tree):
+//   x + y:  (h, t) = TwoSum(x_h, y_h),  l = fl(fl(x_l + y_l) + t);
+//   x * y:  (h, t) = TwoProduct(x_h, y_h),
+//           l = fl(t + fl(fl(x_h y_l) + fl(x_l y_h)))   (x_l y_l dropped);
+//   -x, times4 (exact scalings of both words), |x| (the sign of fl(h + l),
+//   which is the sign of h + l, so ||X| - |h + l|| <= |X - (h + l)|).
+// No renormalisation: the h chain is the double evaluation's (one IEEE
+// operation per node), the l chain two to three operations per node
+// beside it, where a double-word operation chains six to eleven dependent
+// operations (its TwoSums and the final renormalisation). The escalated
+// sign's latency, not its instruction count, is what the near families
+// pay (bench/results/2026-11-26-queries-3x-d.md).
+//
+// Bound. A sign escalated from the double filter carries the filter's
+// magnitude m^ of its predicate (FilterKernel: the same expression on the
+// absolute values of its leaves, each local coordinate with its one
+// magnitude rho (|d_0| + |d_1| + |d_2|), computed in double). For a node
+// with exact value X and magnitude M (the magnitude polynomial at the
+// exact leaf magnitudes; M <= m^ (1 - u)^-(N + 3), rho >= |R_kj|) write
+// |l| <= a M and |X - (h + l)| <= b M (+ the underflow term below), so
+// |h| <= (1 + a + b) M. Leaves: a local coordinate is DwArith's double
+// word (hi, lo) = (h, l) (dwLocal: normalised, within eta M_c + kDwTiny of
+// the exact value, eta = 2^-100), so a <= u (1 + 2^-50), b = eta; r, lz
+// and the sphere's radius are exact (a = b = 0). With A >= every a and u
+// = 2^-53, one rounding each of the operations that build l:
+//   sum:     X + Y - (h + l) = dX + dY + (x_l + y_l - s) + (s + t - l),
+//            |t| <= u (|x_h| + |y_h|):
+//            a_z <= max(a_x, a_y) + u (1 + 3A) (1 + 3u),
+//            b_z <= max(b_x, b_y) + u A (1 + u) + u a_z;
+//   product: X Y - (h + l) = X dY + dX (y_h + y_l) + x_l y_l
+//            + (x_h y_l + x_l y_h - s) + (t + s - l), |t| <= u |x_h y_h|:
+//            a_z <= a_x + a_y + u + 3 A^2 + 9 u A,
+//            b_z <= b_x + b_y + b_x b_y + a_x a_y + 6 u A + 2 u^2.
+// So a node's a is at most u (1 + 2^-30) times the number n of operations
+// and coordinate leaves in its subtree, and for a predicate with N
+// operations and K local coordinates among its leaves (with
+// multiplicity, as written: N = 45 and K = 10 for the sphere's
+// 16 r^2 G - T^2, N = 23 and K = 18 for the cap crossing; n = N + K <= 55),
+// summing the increments over the tree: b <= K eta + sum over products of
+// a_x a_y (each pair of the n operations and leaves meets at most at one
+// product: <= n^2 / 2 u^2 = 1513 u^2) + N (6 * 55 + 2) u^2 (<= 14940 u^2):
+// b <= 18 * 2^-100 + 16453 u^2 < 2^-91.9, and b M < 0x1.2p-92 m^
+// (2^-91.83; tests/per_sign_test.cpp checks the error against it).
+// Underflow: the t of a product and the roundings of l lose at most
+// 2^-1074 absolutely each when subnormal (the double filter's kDwTiny per
+// operation, amplified by at most the predicate's magnitude under the
+// range gate: below 2^-600, the same allowance as before). So the sign of
+// X is certain where |fl(h + l)| > 2^-90 m^ + 2^-600 (dwPrioriSign; the
+// 2^-90 leaves a factor 3.4 over the bound, which the few roundings of the
+// test need only to the extent of a few u). It decides
+// every sign whose value is not below about 2^-90 of its magnitude: an
+// offset of one ulp (2^-52 relative) is far inside it, and the double
+// filter's pessimism after a cancellation (a line given by two points far
+// from the cylinder) does not matter at this precision. What it leaves
+// (true ties, second-order values) goes to the running bound (DwEt), then
+// expansions. kFma: the TwoProduct by FMA or by Dekker's splits, exact
+// either way, so the same pairs (tests/per_sign_test.cpp compares them).
 template <bool kFma>
 struct DwPt {
-  DW v;
+  double h, l;
 };
 template <bool kFma>
 inline DwPt<kFma> operator+(const DwPt<kFma>& a, const DwPt<kFma>& b) {
-  return {dwAdd(a.v, b.v)};
+  DwPt<kFma> z;
+  double t;
+  twoSum(a.h, b.h, z.h, t);
+  z.l = (a.l + b.l) + t;
+  return z;
 }
 template <bool kFma>
 inline DwPt<kFma> operator-(const DwPt<kFma>& a) {
-  return {dwNeg(a.v)};
+  return {-a.h, -a.l};
 }
 template <bool kFma>
 inline DwPt<kFma> operator-(const DwPt<kFma>& a, const DwPt<kFma>& b) {
-  return {dwAdd(a.v, dwNeg(b.v))};
+  return a + (-b);
 }
 template <bool kFma>
 inline DwPt<kFma> operator*(const DwPt<kFma>& a, const DwPt<kFma>& b) {
-  return {dwMulT<kFma>(a.v, b.v)};
+  DwPt<kFma> z;
+  double t;
+  twoProdT<kFma>(a.h, b.h, z.h, t);
+  z.l = t + (a.h * b.l + a.l * b.h);
+  return z;
 }
 template <bool kFma>
 inline DwPt<kFma> absolute(const DwPt<kFma>& a) {
-  return a.v.hi < 0 ? -a : a;
+  return a.h + a.l < 0 ? -a : a;
 }
 /// 4 x (times4 of src/cylinder_queries_impl.h, (x + x) + (x + x)): both
 /// words scaled by 4, exact (no overflow under the range gate; a subnormal
-/// low word scales exactly). The same double word as the two double-word
-/// additions, which double hi and lo exactly (hi = fl(hi + lo), so
-/// fl(2 hi + 2 lo) = 2 hi), up to the sign of a zero low word; and no
-/// error term where the a-priori bound below counts one per addition.
+/// low word scales exactly), the exact value and magnitude scaled by 4: the
+/// invariants above hold with the same a and b, and no error term is added
+/// where the count above charges two additions.
 template <bool kFma>
 inline DwPt<kFma> times4(const DwPt<kFma>& a) {
-  return {{a.v.hi * 4, a.v.lo * 4}};
+  return {a.h * 4, a.l * 4};
 }
-/// The certified sign of an a-priori double-word value whose predicate has
-/// the double filter's magnitude m (see above), or kUnknown.
+/// The certified sign of an a-priori compensated value whose predicate has
+/// the double filter's magnitude m (see above), or kUnknown: the sign of
+/// s = fl(h + l) where |s| > b = fl(fl(m 2^-90) + 2^-600). Then |h + l| >=
+/// |s| / (1 + u) > (2^-90 m + 2^-600)(1 - 3u), more than |X - (h + l)|
+/// (< 0x1.2p-92 m plus the underflow allowance), so X has s's sign. (Not
+/// |h| > b + |l|: h is the double evaluation, whose error l is often larger
+/// than a near-tie's value; h + l is accurate to about 2^-92 of m.)
 template <bool kFma>
 inline Sign dwPrioriSign(const DwPt<kFma>& d, double m) {
-  const double b = (m * 0x1p-90 + 0x1p-600) + std::fabs(d.v.lo);
-  if (d.v.hi > b) return Sign::kPos;
-  if (d.v.hi < -b) return Sign::kNeg;
+  const double b = m * 0x1p-90 + 0x1p-600;
+  const double s = d.h + d.l;
+  if (s > b) return Sign::kPos;
+  if (s < -b) return Sign::kNeg;
   return Sign::kUnknown;
 }
 template <bool kFma>
 struct DwPrioriArith {
   using Num = DwPt<kFma>;
   static constexpr bool kExact = false;
-  static Num lift(double x) { return {{x, 0.0}}; }
-  /// DwArith's values (its bound is the eta above; not computed here).
+  static Num lift(double x) { return {x, 0.0}; }
+  /// DwArith's double words as leaves (h, l) = (hi, lo) (its bound is the
+  /// eta above; not computed here).
   static Pt<Num> local(const Pose<double>& pose, const Vec3<double>& p,
                        double rho) {
     return localFrom(pose, pose.t, p, rho);
@@ -394,7 +443,7 @@ struct DwPrioriArith {
                            const Vec3<double>& p, double /*rho*/) {
     DW v[3];
     dwLocal<kFma, false>(pose, origin, p, v, nullptr);
-    return {{v[0]}, {v[1]}, {v[2]}};
+    return {{v[0].hi, v[0].lo}, {v[1].hi, v[1].lo}, {v[2].hi, v[2].lo}};
   }
 };
 
@@ -792,7 +841,7 @@ class PerSign {
     if (s != Sign::kUnknown) return s;
     return escalate(pred, v);
   }
-  /// resolve for a sign whose a-priori double word is known to fail (a
+  /// resolve for a sign whose a-priori stage is known to fail (a
   /// square of a term that cancels far below its magnitude: the a-priori
   /// bound is relative to the magnitude squared): the same stages without
   /// that one. Only the order of stages changes, never a sign.
@@ -828,10 +877,10 @@ class PerSign {
         return s;
       }
     }
-    // Double word, first with the a-priori bound from the filter's
-    // magnitude (it decides nearly every sign that is not a tie: about 2^-90
-    // of the magnitude against the filter's 2^-49), then with the running
-    // bound.
+    // Double word: first the compensated evaluation with the a-priori
+    // bound from the filter's magnitude (it decides nearly every sign that
+    // is not a tie: about 2^-90 of the magnitude against the filter's
+    // 2^-49), then renormalised double words with the running bound.
     if (level_ < 1) level_ = 1;
     if constexpr (kPriori) {
 #if TRICYL_FMA_DISPATCH
@@ -885,7 +934,7 @@ class PerSign {
   }
   std::optional<Frame<ExactDoubleArithT<true>>> xdf_;
 #endif
-  /// The double-word stage with the a-priori bound (with FMA or not), on a
+  /// The compensated stage with the a-priori bound (with FMA or not), on a
   /// frame built when first needed; m: the filter's magnitude of pred.
   template <bool kFma, class P>
   Sign dwPrioriSignWith(const P& pred, double m,

@@ -57,17 +57,18 @@ bool withinBound(const DwEt<kFma>& d, const detail::Dyadic& exact) {
   return sgn((slack - diff).m) >= 0 && sgn((slack + diff).m) >= 0;
 }
 
-/// |dw - exact| <= the a-priori bound of dwPrioriSign for the filter's
-/// magnitude m, without its 2^5 room (2^-95 m + 2^-600), decided exactly:
-/// the derivation's bound itself, not only the signs it certifies.
+/// |h + l - exact| <= the a-priori bound of dwPrioriSign for the filter's
+/// magnitude m, without its room (0x1.2p-92 m + 2^-600, src/per_sign.h),
+/// decided exactly: the derivation's bound itself, not only the signs it
+/// certifies.
 template <bool kFma>
 bool withinPrioriBound(const detail::DwPt<kFma>& d, double m,
                        const detail::Dyadic& exact) {
   using detail::ExactKernel;
   const detail::Dyadic diff =
-      ExactKernel::lift(d.v.hi) + ExactKernel::lift(d.v.lo) - exact;
+      ExactKernel::lift(d.h) + ExactKernel::lift(d.l) - exact;
   const detail::Dyadic slack =
-      ExactKernel::lift(m * 0x1p-95) + ExactKernel::lift(0x1p-600);
+      ExactKernel::lift(m * 0x1.2p-92) + ExactKernel::lift(0x1p-600);
   return sgn((slack - diff).m) >= 0 && sgn((slack + diff).m) >= 0;
 }
 
@@ -98,8 +99,8 @@ void checkPredicate(const Q& q, const P& pred, long* certified) {
   const typename Q::template Frame<DwPrioriArith<kPlainFma>> fp(q);
   const DwPt<kPlainFma> dp = pred(fp);
   EXPECT_TRUE(withinPrioriBound(dp, mag, exact))
-      << "a-priori double word " << dp.v.hi << " + " << dp.v.lo
-      << ", magnitude " << mag;
+      << "a-priori compensated " << dp.h << " + " << dp.l << ", magnitude "
+      << mag;
   const Sign sp = detail::dwPrioriSign(dp, mag);
   if (sp != Sign::kUnknown) {
     EXPECT_EQ(signOf(sp), truth);
@@ -110,8 +111,8 @@ void checkPredicate(const Q& q, const P& pred, long* certified) {
     const typename Q::template Frame<DwPrioriArith<true>> fpm(q);
     const DwPt<true> pm = pred(fpm);
     EXPECT_EQ(std::memcmp(&pm, &dp, sizeof pm), 0)
-        << "FMA path " << pm.v.hi << " + " << pm.v.lo << " vs " << dp.v.hi
-        << " + " << dp.v.lo;
+        << "FMA path " << pm.h << " + " << pm.l << " vs " << dp.h << " + "
+        << dp.l;
   }
 #endif
   // Double word: the bound holds; a certified sign is the true one.
