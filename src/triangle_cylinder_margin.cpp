@@ -1226,6 +1226,32 @@ bool torusExcluded(const TorusInput<ZKernel>& t, bool top) {
          all([&](int i) { return t.Y[i] < -rad; });
 }
 
+/// A cheap hit certificate on the exact torus input `t` (torusExactInput(q,
+/// 1): doubled local coordinates, C = lz, M = 2m): the triangle meets the
+/// axis at a point with |z| <= h + m, which lies in Cyl(r, h + m), a part
+/// of C + B_m. With the vertices' projections p_a, p_b, p_c on the plane
+/// z = 0 and w_a = p_b x p_c, w_b = p_c x p_a, w_c = p_a x p_b (so
+/// d = w_a + w_b + w_c is twice the projected signed area), the axis meets
+/// the closed triangle iff d != 0 and the three w have no two of opposite
+/// signs, at Z = (w_a Z_a + w_b Z_b + w_c Z_c) / d; then |Z| <= C + M.
+/// Integer products of the inputs' size (nine, and one for the bound); a
+/// triangle parallel to the axis (d = 0) is left to the parts.
+bool axisHit(const TorusInput<ZKernel>& t) {
+  mpz_class w[3];
+  int pos = 0, neg = 0;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    w[i] = t.X[j] * t.Y[k] - t.Y[j] * t.X[k];
+    pos += sgn(w[i]) > 0;
+    neg += sgn(w[i]) < 0;
+  }
+  if (pos > 0 && neg > 0) return false;  // the axis misses the triangle
+  const mpz_class d = w[0] + w[1] + w[2];
+  if (sgn(d) == 0) return false;
+  const mpz_class n = w[0] * t.Z[0] + w[1] * t.Z[1] + w[2] * t.Z[2];
+  return abs(n) <= (t.C + t.M) * abs(d);
+}
+
 /// A sized part (grow_radius: Cyl(r + m, h), else Cyl(r, h + m)).
 /// `stage` accumulates the strongest stage used; `wide` is wideSpread(q).
 bool cylinderPart(const Query& q, bool grow_radius, bool wide, Stage* stage) {
@@ -1383,6 +1409,10 @@ Decision decide(Query& q) {
     // Wide inputs, by cost: the ball test, the sized parts (when not run
     // first), the bounding sets (products of the inputs' size), the
     // quartics (twice that size), the wide quartics' local certificate.
+    if (!sized_first) {
+      if (!exact_top) exact_top = torusExactInput(q, 1);
+      if (axisHit(*exact_top)) return yes(stronger(stage, Stage::kExactGmp));
+    }
     if (ball_first)
       for (int i = 0; i < 2; ++i) {
         if (!anyOpen(i)) continue;
