@@ -475,19 +475,17 @@ inline int signProductDifference(std::initializer_list<const mpz_class*> a,
   return sgn(product(a, sa - m) - product(b, sb - m));
 }
 
-/// The sign of c_1^2 + ... + c_n^2 + k_1 ... k_m (n <= 3, 1 <= m <= 4),
-/// leading bits first (the product as in leadingProduct).
-/// The sum of squares has no cancellation: with each |c_i| = g_i 2^k_i
-/// (1 + d_i) as in leadingProduct, the terms g_i^2 2^(2 k_i - E) (E the
-/// largest 2 k_i; each term at most 1, the largest at least 1/4) summed in
-/// double are the sum over 2^E up to a factor in (1 - 2^-50, 1 + 2^-49)
+/// c_1^2 + ... + c_n^2 (n <= 3) from leading bits, as f 2^e with f in
+/// [1/2, 1); false if every c is 0. The sum has no cancellation: with each
+/// |c_i| = g_i 2^k_i (1 + d_i) as in leadingProduct, the terms g_i^2 2^(2 k_i -
+/// E) (E the largest 2 k_i; each term at most 1, the largest at least 1/4)
+/// summed in double are the sum over 2^E up to a factor in (1 - 2^-50, 1 +
+/// 2^-49)
 /// ((1 + 2^-52)^2 per square, 2^-53 per rounding, at most 5 roundings;
 /// a term that underflows loses below 2^-1074, far below 2^-60 of the
 /// sum); frexp brings it to [1/2, 1) exactly.
-inline int signSquaresPlusProduct(std::initializer_list<const mpz_class*> c,
-                                  std::initializer_list<const mpz_class*> k,
-                                  bool* exact = nullptr) {
-  if (exact != nullptr) *exact = false;
+inline bool leadingSquares(std::initializer_list<const mpz_class*> c, double* f,
+                           long* e) {
   long e_max = std::numeric_limits<long>::min();
   double g[3] = {0, 0, 0};
   long e2[3] = {0, 0, 0};
@@ -501,21 +499,68 @@ inline int signSquaresPlusProduct(std::initializer_list<const mpz_class*> c,
     e_max = std::max(e_max, e2[n]);
     ++n;
   }
-  double ft = 0;
-  long et = 0;
-  const int st = leadingProduct(k, &ft, &et);
-  if (n == 0) return st;  // the squares are 0
-  if (st >= 0) return 1;  // a positive sum and a term >= 0
+  if (n == 0) return false;
   double sum = 0;
   for (int i = 0; i < n; ++i)
     sum += std::ldexp(g[i], int(std::max(e2[i] - e_max, -2000L)));
   int fe = 0;
-  const double fs = std::frexp(sum, &fe);
-  const int cmp = compareLeading(fs, e_max + fe, ft, et);
+  *f = std::frexp(sum, &fe);
+  *e = e_max + fe;
+  return true;
+}
+
+/// The sign of c_1^2 + ... + c_n^2 + k_1 ... k_m (n <= 3, 1 <= m <= 4),
+/// leading bits first (leadingSquares, leadingProduct, compareLeading),
+/// exact where the two sides agree to about 2^-45.
+inline int signSquaresPlusProduct(std::initializer_list<const mpz_class*> c,
+                                  std::initializer_list<const mpz_class*> k,
+                                  bool* exact = nullptr) {
+  if (exact != nullptr) *exact = false;
+  double ft = 0, fs = 0;
+  long et = 0, es = 0;
+  const int st = leadingProduct(k, &ft, &et);
+  if (!leadingSquares(c, &fs, &es)) return st;  // the squares are 0
+  if (st >= 0) return 1;  // a positive sum and a term >= 0
+  const int cmp = compareLeading(fs, es, ft, et);
   if (cmp != 0) return cmp;
   if (exact != nullptr) *exact = true;
   mpz_class v = 1;
   for (const mpz_class* x : k) v *= *x;
+  for (const mpz_class* x : c) v += *x * *x;
+  return sgn(v);
+}
+
+/// The sign of c_1^2 + ... + c_n^2 + k_1 ... k_m (e_1^2 + ... + e_l^2)
+/// (n, l <= 3, 1 <= m <= 4), leading bits first: as signSquaresPlusProduct
+/// with the product's last factor a sum of squares that is never formed
+/// unless the two sides agree to about 2^-45 (for |A x E|^2 + K |E|^2 it
+/// saves the three squares of |E|^2, each of the inputs' size squared).
+/// The product side is k's leading product (relative error below 2^-49,
+/// in [2^-4, 1)) times e's leading sum (below 2^-49, in [1/2, 1)), rounded
+/// once (2^-53) and brought to [1/2, 1) by frexp (exact): its error is
+/// below (1 + 2^-49)^2 (1 + 2^-53) - 1 < 2^-47.9, and compareLeading's
+/// slack of 2^-45 still separates (1 + 2^-45) (1 - 2^-47.9) > 1 + 2^-47.9;
+/// its shortcut for exponents 5 apart holds a fortiori.
+inline int signSquaresPlusProductSquares(
+    std::initializer_list<const mpz_class*> c,
+    std::initializer_list<const mpz_class*> k,
+    std::initializer_list<const mpz_class*> e, bool* exact = nullptr) {
+  if (exact != nullptr) *exact = false;
+  double ft = 0, fe = 0, fs = 0;
+  long et = 0, ee = 0, es = 0;
+  const int sk = leadingProduct(k, &ft, &et);
+  const int st = leadingSquares(e, &fe, &ee) ? sk : 0;
+  if (!leadingSquares(c, &fs, &es)) return st;  // the squares are 0
+  if (st >= 0) return 1;  // a positive sum and a term >= 0
+  int fp = 0;
+  const double f = std::frexp(ft * fe, &fp);
+  const int cmp = compareLeading(fs, es, f, et + ee + fp);
+  if (cmp != 0) return cmp;
+  if (exact != nullptr) *exact = true;
+  mpz_class v = 1, w = 0;
+  for (const mpz_class* x : k) v *= *x;
+  for (const mpz_class* x : e) w += *x * *x;
+  v *= w;
   for (const mpz_class* x : c) v += *x * *x;
   return sgn(v);
 }

@@ -513,6 +513,7 @@ Tri edgeFilter(const TorusInput<K>& t, int a, int b,
 // ---- The exact stage: GMP integers, Sturm sequence ------------------------
 
 using detail::sturm::cert::signSquaresPlusProduct;
+using detail::sturm::cert::signSquaresPlusProductSquares;
 
 /// The exact stage of one edge (GMP integers). With p(s) = A + s E,
 /// rho^2 = p0 + p1 s + p2 s^2 and z - C = za + ez s, in this order:
@@ -574,12 +575,14 @@ struct ExactEdge {
 /// the exact coordinates rounded once, torusWideInput): kTrue if the
 /// vertex of L is certainly inside (0, 1) with |A x E|^2 + K |E|^2 < 0
 /// (a hit), kFalse if the vertex is certainly outside or that value
-/// certainly > 0, kUnknown else (the exact test decides). Where the edge's
+/// certainly > 0, kUnknown else (the exact test decides; `inside`, if
+/// given, is set where the vertex is certainly inside (0, 1)). Where the edge's
 /// line passes far from o compared with the ball's radius, nothing here
 /// cancels and the fifteen products of integers of thousands of bits are
 /// not formed.
 template <class K>
-Tri edgeBallVertex(const TorusInput<K>& t, int a, int b) {
+Tri edgeBallVertex(const TorusInput<K>& t, int a, int b,
+                   bool* inside = nullptr) {
   using N = typename K::Num;
   const N za = t.Z[a] - t.C, zb = t.Z[b] - t.C;
   const N ex = t.X[b] - t.X[a], ey = t.Y[b] - t.Y[a], ez = t.Z[b] - t.Z[a];
@@ -589,6 +592,7 @@ Tri edgeBallVertex(const TorusInput<K>& t, int a, int b) {
       sb == Sign::kZero)
     return Tri::kFalse;
   if (sa == Sign::kUnknown || sb == Sign::kUnknown) return Tri::kUnknown;
+  if (inside != nullptr) *inside = true;
   // A x E = A x B: the latter does not cancel where B is far smaller
   // than A (a vertex near o, the other far away).
   const N cx = t.Y[a] * zb - za * t.Y[b], cy = za * t.X[b] - t.X[a] * zb,
@@ -601,40 +605,57 @@ Tri edgeBallVertex(const TorusInput<K>& t, int a, int b) {
   return Tri::kUnknown;
 }
 
-/// Step 1 alone, cheaply: does L = |p(s) - o|^2 + R^2 - M^2 take a value
-/// <= 0 on [0, 1] (the edge meets the ball |p - o|^2 <= M^2 - R^2 about the
-/// rim's centre o, inside the torus)? Never for R > M. Else, with
-/// A = p(0) - o, B = p(1) - o, E = B - A and K = R^2 - M^2 = (R - M)(R + M):
-/// at an end iff |A|^2 + K <= 0 or |B|^2 + K <= 0; inside iff the vertex
+/// Step 1 alone: does L = |p(s) - o|^2 + R^2 - M^2 take a value <= 0 on
+/// [0, 1] (the edge meets the ball |p - o|^2 <= M^2 - R^2 about the rim's
+/// centre o, inside the torus)? Never for R > M. Else, with A = p(0) - o,
+/// B = p(1) - o, E = B - A and K = R^2 - M^2 = (R - M)(R + M): at an end
+/// iff |A|^2 + K <= 0 or |B|^2 + K <= 0; inside iff the vertex
 /// -A.E / |E|^2 is in (0, 1) (A.E < 0 < B.E) and |A x E|^2 + K |E|^2 <= 0
-/// (Lagrange's identity, as distancePositive). Each a sum of squares
-/// against a product, on leading bits first (signSquaresPlusProduct): no
-/// product of the inputs is formed at the ends, six for the dot products
-/// and nine for |E|^2 and the cross product at most. The same answer as
-/// step 1 of edgeExactBounds, which decide() skips after it.
+/// (Lagrange's identity, as distancePositive). Cheapest first: the cube
+/// |x|, |y|, |z - C| <= M about o holds the ball (its radius
+/// sqrt(M^2 - R^2) is at most M), so both ends beyond one of its faces is
+/// a miss (comparisons); the ends, sums of squares against a product on
+/// leading bits (signSquaresPlusProduct); the vertex in long double
+/// (`vertexHint(&inside)`: edgeBallVertex). Where the hint abstains the
+/// edge's line passes close to o compared with |A| (A x B cancels in
+/// floating point) and the exact cross product is formed: six products of
+/// the inputs' size, against K |E|^2 on leading bits
+/// (signSquaresPlusProductSquares: |E|^2 itself is not formed), the dot
+/// products only where the hint could not place the vertex. On the
+/// random-exponent inputs outside the range gate, where for r <= m this
+/// test runs before a sized part that then hits, the dot products and
+/// |E|^2 were most of its cost. The same answer as step 1 of
+/// edgeExactBounds, which decide() skips after it.
 template <class VertexHint>
 bool edgeBallHit(const TorusInput<ZKernel>& t, int a, int b,
                  VertexHint&& vertexHint) {
   if (t.R > t.M) return false;  // L >= R^2 - M^2 > 0
-  const mpz_class km = t.R - t.M, kp = t.R + t.M;
   const mpz_class za = t.Z[a] - t.C, zb = t.Z[b] - t.C;
+  auto beyond = [&t](const mpz_class& u, const mpz_class& v) {
+    return (u > t.M && v > t.M) || (u < -t.M && v < -t.M);
+  };
+  if (beyond(t.X[a], t.X[b]) || beyond(t.Y[a], t.Y[b]) || beyond(za, zb))
+    return false;
+  const mpz_class km = t.R - t.M, kp = t.R + t.M;
   if (signSquaresPlusProduct({&t.X[a], &t.Y[a], &za}, {&km, &kp}) <= 0 ||
       signSquaresPlusProduct({&t.X[b], &t.Y[b], &zb}, {&km, &kp}) <= 0)
     return true;
-  const Tri hint = vertexHint();
+  bool inside = false;
+  const Tri hint = vertexHint(&inside);
   if (hint != Tri::kUnknown) return hint == Tri::kTrue;
   const mpz_class ex = t.X[b] - t.X[a], ey = t.Y[b] - t.Y[a], ez = zb - za;
-  if (sgn(t.X[a] * ex + t.Y[a] * ey + za * ez) >= 0 ||
-      sgn(t.X[b] * ex + t.Y[b] * ey + zb * ez) <= 0)
+  if (!inside && (sgn(t.X[a] * ex + t.Y[a] * ey + za * ez) >= 0 ||
+                  sgn(t.X[b] * ex + t.Y[b] * ey + zb * ez) <= 0))
     return false;  // the least value is at an end
-  const mpz_class e2 = ex * ex + ey * ey + ez * ez;
   const mpz_class c[3] = {t.Y[a] * zb - za * t.Y[b], za * t.X[b] - t.X[a] * zb,
                           t.X[a] * t.Y[b] - t.Y[a] * t.X[b]};  // A x B
-  return signSquaresPlusProduct({&c[0], &c[1], &c[2]}, {&km, &kp, &e2}) <= 0;
+  return signSquaresPlusProductSquares({&c[0], &c[1], &c[2]}, {&km, &kp},
+                                       {&ex, &ey, &ez}) <= 0;
 }
 
 /// Phase 1 of the exact stage (steps 1 and 2 above; step 1 not again if
-/// `ball_done`: edgeBallHit said no): products of the inputs' size only.
+/// `ball_done`: edgeBallHit said no, or a filter certified L > 0):
+/// products of the inputs' size only.
 /// 1: the edge meets the torus, 0: it does not; -1: not decided, L and P
 /// left in *e for edgeExactQuartic.
 int edgeExactBounds(const TorusInput<ZKernel>& t, int a, int b, ExactEdge* e,
@@ -1205,6 +1226,32 @@ bool torusExcluded(const TorusInput<ZKernel>& t, bool top) {
          all([&](int i) { return t.Y[i] < -rad; });
 }
 
+/// A cheap hit certificate on the exact torus input `t` (torusExactInput(q,
+/// 1): doubled local coordinates, C = lz, M = 2m): the triangle meets the
+/// axis at a point with |z| <= h + m, which lies in Cyl(r, h + m), a part
+/// of C + B_m. With the vertices' projections p_a, p_b, p_c on the plane
+/// z = 0 and w_a = p_b x p_c, w_b = p_c x p_a, w_c = p_a x p_b (so
+/// d = w_a + w_b + w_c is twice the projected signed area), the axis meets
+/// the closed triangle iff d != 0 and the three w have no two of opposite
+/// signs, at Z = (w_a Z_a + w_b Z_b + w_c Z_c) / d; then |Z| <= C + M.
+/// Integer products of the inputs' size (nine, and one for the bound); a
+/// triangle parallel to the axis (d = 0) is left to the parts.
+bool axisHit(const TorusInput<ZKernel>& t) {
+  mpz_class w[3];
+  int pos = 0, neg = 0;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    w[i] = t.X[j] * t.Y[k] - t.Y[j] * t.X[k];
+    pos += sgn(w[i]) > 0;
+    neg += sgn(w[i]) < 0;
+  }
+  if (pos > 0 && neg > 0) return false;  // the axis misses the triangle
+  const mpz_class d = w[0] + w[1] + w[2];
+  if (sgn(d) == 0) return false;
+  const mpz_class n = w[0] * t.Z[0] + w[1] * t.Z[1] + w[2] * t.Z[2];
+  return abs(n) <= (t.C + t.M) * abs(d);
+}
+
 /// A sized part (grow_radius: Cyl(r + m, h), else Cyl(r, h + m)).
 /// `stage` accumulates the strongest stage used; `wide` is wideSpread(q).
 bool cylinderPart(const Query& q, bool grow_radius, bool wide, Stage* stage) {
@@ -1254,8 +1301,9 @@ Decision decide(Query& q) {
   // or one adaptive run on wide inputs) the sized parts first, as they
   // decide most queries. Outside the gate on wide inputs (wideSpread) each
   // is one exact kernel run on dyadics of thousands of bits, and for
-  // r <= m the edges' ball test (edgeBallHit, products of the inputs' size
-  // at most) runs first: on the hostile thresholds every hit of the edges'
+  // r <= m the edges' ball test (edgeBallHit: comparisons and leading
+  // bits, six products of the inputs' size where the long double hint
+  // abstains) runs first: on the hostile thresholds every hit of the edges'
   // exact stage comes from it. Then the sized parts that the slab and
   // half-plane tests do not exclude, the rest of the edges, the faces
   // (docs/margin.md, "Wide inputs: the parts by cost").
@@ -1325,8 +1373,10 @@ Decision decide(Query& q) {
   };
   // The edges the rescaled double filter left open: the same filter in
   // long double on the exact coordinates (torusWideInput; it needs the
-  // exact input, so it runs after the sized parts where those go first
-  // in the wide order). True: a hit.
+  // exact input, so it runs after the sized parts where those go first;
+  // where the ball test goes first it runs after the ball test and the
+  // sized parts: before them it cost the queries a sized part decides as
+  // much as it saved the ball test). True: a hit.
   bool wide_filter_done = s.ok;
   auto wideFilter = [&]() {
     wide_filter_done = true;
@@ -1343,8 +1393,7 @@ Decision decide(Query& q) {
     }
     return false;
   };
-  if (!wide_filter_done && (sized_first || ball_first) && wideFilter())
-    return yes(stage);
+  if (!wide_filter_done && sized_first && wideFilter()) return yes(stage);
   bool slab_out[2] = {false, false};  // the triangle beyond a torus's slab
   if (!wide) {
     // The exact stage of the open edges, edge by edge.
@@ -1360,6 +1409,10 @@ Decision decide(Query& q) {
     // Wide inputs, by cost: the ball test, the sized parts (when not run
     // first), the bounding sets (products of the inputs' size), the
     // quartics (twice that size), the wide quartics' local certificate.
+    if (!sized_first) {
+      if (!exact_top) exact_top = torusExactInput(q, 1);
+      if (axisHit(*exact_top)) return yes(stronger(stage, Stage::kExactGmp));
+    }
     if (ball_first)
       for (int i = 0; i < 2; ++i) {
         if (!anyOpen(i)) continue;
@@ -1367,9 +1420,9 @@ Decision decide(Query& q) {
         stage = Stage::kExactGmp;
         for (int e = 0; e < 3; ++e)
           if (open[i][e] && !l_pos[i][e] &&
-              edgeBallHit(t, kEdge[e][0], kEdge[e][1], [&] {
+              edgeBallHit(t, kEdge[e][0], kEdge[e][1], [&](bool* inside) {
                 return edgeBallVertex<Ul>(wideTorus(i), kEdge[e][0],
-                                          kEdge[e][1]);
+                                          kEdge[e][1], inside);
               }))
             return yes(stage);
       }
@@ -1391,7 +1444,7 @@ Decision decide(Query& q) {
       for (int e = 0; e < 3; ++e) {
         if (!open[i][e]) continue;
         const int r = edgeExactBounds(t, kEdge[e][0], kEdge[e][1], &edge[i][e],
-                                      ball_first);
+                                      ball_first || l_pos[i][e]);
         if (r == 1) return yes(stage);
         open[i][e] = r < 0;
       }

@@ -154,7 +154,8 @@ mpz_class randomInteger(scenes::Rng& g, int max_bits) {
   return g.integer(2) == 0 ? z : mpz_class(-z);
 }
 
-// signProductDifference and signSquaresPlusProduct (the leading-bits
+// signProductDifference, signSquaresPlusProduct and
+// signSquaresPlusProductSquares (the leading-bits
 // filters in front of the torus edges' exact products) against the exact
 // signs: random integers of up to 6,000 bits, and near-ties made exactly
 // (one side equal to the other plus a tiny integer, or exactly equal)
@@ -165,8 +166,9 @@ TEST(MarginSturm, LeadingBitsSignsAgreeWithExact) {
   scenes::Rng g(seed ^ 0x6c656164u);
   using detail::sturm::cert::signProductDifference;
   using detail::sturm::cert::signSquaresPlusProduct;
+  using detail::sturm::cert::signSquaresPlusProductSquares;
   const long n = test::scaled(6000);
-  long fallbacks[2] = {0, 0}, filtered[2] = {0, 0};
+  long fallbacks[3] = {0, 0, 0}, filtered[3] = {0, 0, 0};
   for (long i = 0; i < n; ++i) {
     const int bits = i % 3 == 0 ? 64 : 6000;
     // 2^sa a0 a1 a2 - 2^sb b0 b1.
@@ -205,15 +207,34 @@ TEST(MarginSturm, LeadingBitsSignsAgreeWithExact) {
               want)
         << "i = " << i << ", kind " << kind;
     (exact ? fallbacks : filtered)[1]++;
+    // c0^2 + c1^2 + c2^2 + k l (e0^2 + e1^2 + e2^2); for kind >= 2,
+    // c = t e and k l = -t^2 (an exact 0), then k moved by -3 .. 3.
+    mpz_class e[3];
+    for (auto& x : e) x = randomInteger(g, bits);
+    if (kind >= 2) {
+      const mpz_class t = randomInteger(g, bits);
+      for (int j = 0; j < 3; ++j) c[j] = t * e[j];
+      l = 1;
+      k = -t * t;
+      if (kind == 3) k += g.integer(7) - 3;
+    }
+    const mpz_class se = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+    const mpz_class sc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    ASSERT_EQ(signSquaresPlusProductSquares({&c[0], &c[1], &c[2]}, {&k, &l},
+                                            {&e[0], &e[1], &e[2]}, &exact),
+              sgn(sc + k * l * se))
+        << "i = " << i << ", kind " << kind;
+    (exact ? fallbacks : filtered)[2]++;
   }
   std::printf(
-      "[ stats ] leading bits decided %ld and %ld, exact fallback %ld and "
-      "%ld\n",
-      filtered[0], filtered[1], fallbacks[0], fallbacks[1]);
-  EXPECT_GT(fallbacks[0], n / 10);
-  EXPECT_GT(fallbacks[1], n / 10);
-  EXPECT_GT(filtered[0], n / 4);
-  EXPECT_GT(filtered[1], n / 4);
+      "[ stats ] leading bits decided %ld, %ld and %ld, exact fallback %ld, "
+      "%ld and %ld\n",
+      filtered[0], filtered[1], filtered[2], fallbacks[0], fallbacks[1],
+      fallbacks[2]);
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_GT(fallbacks[j], n / 10) << "helper " << j;
+    EXPECT_GT(filtered[j], n / 4) << "helper " << j;
+  }
 }
 
 /// The torus quartic Q = L^2 - 4 R^2 P from the quadratics L, P (lowest

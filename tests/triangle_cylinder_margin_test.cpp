@@ -405,6 +405,28 @@ TEST(Margin, HostileExponentsAgreeWithOracle) {
   }
 }
 
+/// A double in [1, 2) with `bits` significant bits.
+double randomMantissa(scenes::Rng& g, int bits) {
+  return 1.0 + std::ldexp(double(g.next() >> (64 - (bits - 1))), 1 - bits);
+}
+
+/// Margins at the distance d of case k (known by construction) and 1, 4
+/// ulps either side: true iff >= d, by the oracle and by the kernel.
+void checkMarginsAroundDistance(const TriCase& k, double d, long i,
+                                test::StageCounts* stages, long* checked) {
+  for (std::int64_t u : {0, -1, 1, -4, 4}) {
+    const double m = ulpsFrom(d, u);
+    const bool want = u >= 0;
+    SCOPED_TRACE("case " + std::to_string(i) + " ulps " + std::to_string(u) +
+                 " " + describe(k, m));
+    ASSERT_EQ(oracleWithin(k, m), want) << "oracle";
+    const Decision dec = decideWithinDistance(k.cyl, k.pose, k.tri, m);
+    stages->add(dec.stage);
+    ASSERT_EQ(dec.answer, want ? Answer::kIntersect : Answer::kDisjoint);
+    ++*checked;
+  }
+}
+
 // ---------------------------------------------------------------------------
 // Ties whose coordinates span 2000 binary orders (outside the range gate:
 // the torus edges' exact stage in GMP integers, the quartic's coefficients
@@ -429,9 +451,7 @@ TEST(Margin, WideSpreadTiesAgreeWithConstruction) {
   const std::uint64_t seed = test::baseSeed();
   SCOPED_TRACE(test::seedTrace(seed));
   scenes::Rng g(seed ^ 0x57696465u);
-  auto mantissa = [&g](int bits) {  // in [1, 2), `bits` significant bits
-    return 1.0 + std::ldexp(double(g.next() >> (64 - (bits - 1))), 1 - bits);
-  };
+  auto mantissa = [&g](int bits) { return randomMantissa(g, bits); };
   const long n = test::scaled(24);
   long checked = 0;
   test::StageCounts stages;
@@ -458,21 +478,48 @@ TEST(Margin, WideSpreadTiesAgreeWithConstruction) {
       k.tri = {{r, -A, h}, {r, A, h}, {r, A, h + std::max(lz, r)}};
     else
       k.tri = {{r, 0, 0}, {r, A, A}, {r, -A, A}};
-    const double d = 5 * e;
-    for (std::int64_t u : {0, -1, 1, -4, 4}) {
-      const double m = ulpsFrom(d, u);
-      const bool want = u >= 0;
-      SCOPED_TRACE("case " + std::to_string(i) + " ulps " + std::to_string(u) +
-                   " " + describe(k, m));
-      ASSERT_EQ(oracleWithin(k, m), want) << "oracle";
-      const Decision dec = decideWithinDistance(k.cyl, k.pose, k.tri, m);
-      stages.add(dec.stage);
-      ASSERT_EQ(dec.answer, want ? Answer::kIntersect : Answer::kDisjoint);
-      ++checked;
-    }
+    checkMarginsAroundDistance(k, 5 * e, i, &stages, &checked);
+    if (HasFatalFailure()) return;
   }
   std::printf("[ stats ] wide-spread ties: %ld margins checked; %s\n", checked,
               stages.summary(checked).c_str());
+}
+
+// A wide horizontal triangle (corners 2^900 .. 2^1020 away) over a tiny
+// cylinder whose axis passes through it, at height z0 = h + e above the
+// centre: every point of the triangle is at least z0 - h = e from the
+// cylinder (its plane is), and the point over the axis is exactly e from
+// the top face, so the distance is e (h and e chosen so that z0 - h is
+// exact). Margins e and 1, 4 ulps either side: true iff >= e. At e the
+// axis certificate of the wide path (axisHit: the triangle meets the axis
+// within |z| <= h + m) decides; below, every part must miss. The radius
+// is far below or far above the margin (the ball test first or not).
+TEST(Margin, WideTrianglesOverTheAxisAgreeWithConstruction) {
+  const std::uint64_t seed = test::baseSeed();
+  SCOPED_TRACE(test::seedTrace(seed));
+  scenes::Rng g(seed ^ 0x41786973u);
+  test::StageCounts stages;
+  long checked = 0;
+  for (long i = 0, n = test::scaled(8); i < n; ++i) {
+    // h's last bit and e's are both 2^-429: z0 = h + e is exact.
+    const double h = std::ldexp(randomMantissa(g, 30), -400);
+    const double e = std::ldexp(randomMantissa(g, 20), -410);
+    const double z0 = h + e;
+    const double r =
+        std::ldexp(randomMantissa(g, 53), i % 2 == 0 ? -500 : -300);
+    const double A =
+        std::ldexp(randomMantissa(g, 53), 900 + int(g.next() % 121));
+    TriCase k;
+    k.cyl = {r, 2 * h};
+    k.pose = identityPose<double>();
+    k.feature = "wide triangle over the axis";
+    k.tri = {{-A, -A, z0}, {A, -randomMantissa(g, 53) * A, z0}, {0, A, z0}};
+    checkMarginsAroundDistance(k, e, i, &stages, &checked);
+    if (HasFatalFailure()) return;
+  }
+  std::printf(
+      "[ stats ] wide triangles over the axis: %ld margins checked; %s\n",
+      checked, stages.summary(checked).c_str());
 }
 
 // Margins at the exact threshold of hostile inputs outside the range gate:
