@@ -986,13 +986,10 @@ inline void refineSlow(const Pass& pass, const Problem<double>& P,
   }
 }
 
-// Whether DDx is the FMA kernel's double-word type.
 #if TRICYL_DIST_FMA_DISPATCH
+// Whether DDx is the FMA kernel's double-word type.
 template <class DDx>
 constexpr bool kFmaKernel = std::is_same_v<DDx, detail::DDT<true>>;
-#else
-template <class DDx>
-constexpr bool kFmaKernel = false;
 #endif
 
 // refineSlow out of line, one copy per kernel (TRICYL_DIST_RARE).
