@@ -992,39 +992,26 @@ template <class DDx>
 constexpr bool kFmaKernel = std::is_same_v<DDx, detail::DDT<true>>;
 #endif
 
-// refineSlow out of line, one copy per kernel (TRICYL_DIST_RARE).
-template <class DDx, class VertexFn>
-TRICYL_DIST_RARE void refineSlowPlain(const Pass& pass,
-                                      const Problem<double>& P,
-                                      VertexFn& vertex, double U, double tie,
-                                      double eps_y_d, double M, double slack_dd,
-                                      const WorldMap& wm,
-                                      DistanceResult<double>* out) {
-  refineSlow<DDx>(pass, P, vertex, U, tie, eps_y_d, M, slack_dd, wm, out);
+// f() out of line, one copy per kernel (TRICYL_DIST_RARE): f's body is
+// flattened into a function compiled for the kernel's target.
+template <class F>
+TRICYL_DIST_RARE auto rarePlain(F& f) {
+  return f();
 }
 #if TRICYL_DIST_FMA_DISPATCH
-template <class DDx, class VertexFn>
-TRICYL_DIST_RARE_FMA void refineSlowFma(const Pass& pass,
-                                        const Problem<double>& P,
-                                        VertexFn& vertex, double U, double tie,
-                                        double eps_y_d, double M,
-                                        double slack_dd, const WorldMap& wm,
-                                        DistanceResult<double>* out) {
-  refineSlow<DDx>(pass, P, vertex, U, tie, eps_y_d, M, slack_dd, wm, out);
+template <class F>
+TRICYL_DIST_RARE_FMA auto rareFma(F& f) {
+  return f();
 }
 #endif
-template <class DDx, class VertexFn>
-inline void refineSlowOut(const Pass& pass, const Problem<double>& P,
-                          VertexFn& vertex, double U, double tie,
-                          double eps_y_d, double M, double slack_dd,
-                          const WorldMap& wm, DistanceResult<double>* out) {
+template <class DDx, class F>
+inline auto outOfLine(F&& f) {
 #if TRICYL_DIST_FMA_DISPATCH
-  if constexpr (kFmaKernel<DDx>) {
-    refineSlowFma<DDx>(pass, P, vertex, U, tie, eps_y_d, M, slack_dd, wm, out);
-    return;
-  }
+  if constexpr (kFmaKernel<DDx>)
+    return rareFma(f);
+  else
 #endif
-  refineSlowPlain<DDx>(pass, P, vertex, U, tie, eps_y_d, M, slack_dd, wm, out);
+    return rarePlain(f);
 }
 
 // The distance for valid double inputs of moderate magnitude (no
@@ -1269,8 +1256,10 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
     return Answer::kDisjoint;
   }
 
-  refineSlowOut<DDx>(pass, P, vertex, U, 2 * err_d, eps_y_d, M, slack_dd, wm,
-                     out);
+  outOfLine<DDx>([&] {
+    refineSlow<DDx>(pass, P, vertex, U, 2 * err_d, eps_y_d, M, slack_dd, wm,
+                    out);
+  });
   return Answer::kDisjoint;
 }
 
@@ -1331,40 +1320,6 @@ inline Answer distanceWide(const Cylinder<double>& cyl,
   return a;
 }
 
-// distanceWide out of line, one copy per kernel (TRICYL_DIST_RARE).
-template <class DDx, class BooleanFn>
-TRICYL_DIST_RARE Answer distanceWidePlain(const Cylinder<double>& cyl,
-                                          const Pose<double>& pose,
-                                          const Triangle<double>& tri,
-                                          double mr, double mw, double mc,
-                                          BooleanFn& booleanOf,
-                                          DistanceResult<double>* out) {
-  return distanceWide<DDx>(cyl, pose, tri, mr, mw, mc, booleanOf, out);
-}
-#if TRICYL_DIST_FMA_DISPATCH
-template <class DDx, class BooleanFn>
-TRICYL_DIST_RARE_FMA Answer distanceWideFma(const Cylinder<double>& cyl,
-                                            const Pose<double>& pose,
-                                            const Triangle<double>& tri,
-                                            double mr, double mw, double mc,
-                                            BooleanFn& booleanOf,
-                                            DistanceResult<double>* out) {
-  return distanceWide<DDx>(cyl, pose, tri, mr, mw, mc, booleanOf, out);
-}
-#endif
-template <class DDx, class BooleanFn>
-inline Answer distanceWideOut(const Cylinder<double>& cyl,
-                              const Pose<double>& pose,
-                              const Triangle<double>& tri, double mr, double mw,
-                              double mc, BooleanFn& booleanOf,
-                              DistanceResult<double>* out) {
-#if TRICYL_DIST_FMA_DISPATCH
-  if constexpr (kFmaKernel<DDx>)
-    return distanceWideFma<DDx>(cyl, pose, tri, mr, mw, mc, booleanOf, out);
-#endif
-  return distanceWidePlain<DDx>(cyl, pose, tri, mr, mw, mc, booleanOf, out);
-}
-
 template <class DDx>
 Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
                       const Triangle<double>& tri,
@@ -1412,7 +1367,9 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   if (small && aboveOrZero(mr, 0x1p-30) && aboveOrZero(mw, 0x1p-60) &&
       aboveOrZero(mc, 0x1p-60))
     return solve<DDx>(cyl, pose, tri, booleanOf, 0, true, out);
-  return distanceWideOut<DDx>(cyl, pose, tri, mr, mw, mc, booleanOf, out);
+  return outOfLine<DDx>([&] {
+    return distanceWide<DDx>(cyl, pose, tri, mr, mw, mc, booleanOf, out);
+  });
 }
 
 // The same computation with a fused multiply-add for the double-word
