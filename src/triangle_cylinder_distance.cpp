@@ -1148,14 +1148,18 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
 
   // Double-word refinement. x - t is exact as a pair (TwoSum); the sum
   // of three double-word products is within 2^-101 S (dd.h).
+  // Formed out of line (one copy, not one at each of the lean steps' uses):
+  // a smaller kernel for calls that start with a cold instruction cache.
   auto ddVertex = [&](int v) {
-    const double x[3] = {X[v]->x, X[v]->y, X[v]->z};
-    double ds[3], de[3];
-    for (int k = 0; k < 3; ++k) detail::twoSum(x[k], -tt[k], ds[k], de[k]);
-    return P3<DDx>{
-        pullBackDW<DDx>(ds, de, pose.R[0][0], pose.R[1][0], pose.R[2][0]),
-        pullBackDW<DDx>(ds, de, pose.R[0][1], pose.R[1][1], pose.R[2][1]),
-        pullBackDW<DDx>(ds, de, pose.R[0][2], pose.R[1][2], pose.R[2][2])};
+    return outOfLine<DDx>([&] {
+      const double x[3] = {X[v]->x, X[v]->y, X[v]->z};
+      double ds[3], de[3];
+      for (int k = 0; k < 3; ++k) detail::twoSum(x[k], -tt[k], ds[k], de[k]);
+      return P3<DDx>{
+          pullBackDW<DDx>(ds, de, pose.R[0][0], pose.R[1][0], pose.R[2][0]),
+          pullBackDW<DDx>(ds, de, pose.R[0][1], pose.R[1][1], pose.R[2][1]),
+          pullBackDW<DDx>(ds, de, pose.R[0][2], pose.R[1][2], pose.R[2][2])};
+    });
   };
   const double slack_dd = 2 * kUdd * S + kAlg * kUdd * Mx;
   // A best candidate of the double pass within its error of C: at
