@@ -47,6 +47,26 @@
 #define TRICYL_DIST_NOINLINE
 #endif
 
+// The FMA copy of the kernel (distanceDoubleFma below), and the rare steps
+// kept out of line from the flattened kernel (TRICYL_DIST_RARE): each is
+// its own function, flattened in turn and compiled for the same target as
+// the kernel that calls it (FMA for detail::DDT<true>), so the kernel's
+// usual path (validation, the double pass, the double-word vertices and
+// the lean bound) stays compact in the instruction cache, and every step
+// computes the same bits as when it was inlined (-ffp-contract=off: each
+// operation is rounded as written wherever it is compiled).
+#if TRICYL_FMA_DISPATCH && !defined(TRICYL_DIST_NO_FLATTEN)
+#define TRICYL_DIST_FMA_DISPATCH 1
+#else
+#define TRICYL_DIST_FMA_DISPATCH 0
+#endif
+#if defined(TRICYL_DIST_NO_FLATTEN)
+#define TRICYL_DIST_RARE __attribute__((noinline))
+#define TRICYL_DIST_RARE_FMA __attribute__((noinline))
+#else
+#define TRICYL_DIST_RARE __attribute__((noinline, flatten))
+#define TRICYL_DIST_RARE_FMA __attribute__((noinline, flatten, target("fma")))
+#endif
 // Which step answered a query, for a profiling driver that defines it
 // (docs/distance.md, section 8): empty otherwise.
 #ifndef TRICYL_DIST_PATH
@@ -898,6 +918,102 @@ inline bool chordWitness(const Problem<double>& P, int k, double e,
   return true;
 }
 
+// The rare refinements (section 2, steps 6 and 7): refineFast, then the
+// general refinement when refineFast does not certify; the pair is
+// disjoint. `tie`: twice the double pass's error.
+template <class DDx, class VertexFn>
+inline void refineSlow(const Pass& pass, const Problem<double>& P,
+                       VertexFn& vertex, double U, double tie, double eps_y_d,
+                       double M, double slack_dd, const WorldMap& wm,
+                       DistanceResult<double>* out) {
+  if (refineFast<DDx>(pass, P, vertex, U, tie, eps_y_d, M, slack_dd, wm, out)) {
+    TRICYL_DIST_PATH(6);
+    return;
+  }
+  TRICYL_DIST_PATH(7);
+
+  // The general refinement: every candidate within the double pass's
+  // error of the best, each edge re-solved in a bracket.
+  Problem<DDx> Q;
+  Q.r = DDx(P.r);
+  Q.h = DDx(P.h);
+  for (int v = 0; v < 3; ++v) Q.v[v] = vertex(v);
+  DDx Ubest(std::numeric_limits<double>::infinity());
+  DDx Lbest(0);
+  Candidate<DDx> best;
+  bool face_cut = false;
+  const Candidate<DDx> face = detail::dist::faceCandidate(Q, &face_cut);
+  if (!face_cut) Lbest = detail::dist::certify(Q, face.w);
+  if (face.valid) {
+    Ubest = face.f;
+    best = face;
+  }
+  for (int k = 0; k < 3; ++k) {
+    const Candidate<double>& c = pass.cand[k];
+    if (!c.valid || !(c.f <= U + tie)) continue;
+    const P3<DDx>& a = Q.v[detail::dist::kEdgeA[k]];
+    const P3<DDx> d = Q.v[detail::dist::kEdgeB[k]] - a;
+    DDx at[7] = {DDx(0), DDx(0), DDx(1)};
+    const int n = 3 + detail::dist::edgeKinks(a, d, Q.r, Q.h, at + 3);
+    at[0] = detail::dist::edgeRefine(a, d, Q.r, Q.h, DDx(c.s), DDx(0x1p-24),
+                                     kRefineIter, DDx(0x1p-104), at + 3, n - 3);
+    for (int i = 0; i < n; ++i) {
+      const Candidate<DDx> e = detail::dist::edgeCandidate(Q, k, at[i]);
+      const DDx l = detail::dist::certify(Q, e.w);
+      if (l > Lbest) Lbest = l;
+      if (e.f < Ubest) {
+        Ubest = e.f;
+        best = e;
+      }
+    }
+  }
+  if (!best.valid) {  // cannot happen: the double best is refined
+    best = detail::dist::edgeCandidate(Q, 0, DDx(0));
+    Ubest = best.f;
+  }
+  double dist = double(Ubest);
+  const double gap = double(Ubest - Lbest);
+  double err = (gap > 0 ? gap : 0) + slack_dd + kU * dist;
+  if (!(dist > 0)) {  // below double-word resolution: still positive
+    err += std::numeric_limits<double>::denorm_min();
+    dist = std::numeric_limits<double>::denorm_min();
+  }
+  if (out) {
+    out->distance = dist;
+    out->error_bound = err * (1 + 0x1p-50);
+    out->point_on_triangle = toWorld(wm, best.p);
+    out->point_on_cylinder = toWorld(wm, best.q);
+  }
+}
+
+#if TRICYL_DIST_FMA_DISPATCH
+// Whether DDx is the FMA kernel's double-word type.
+template <class DDx>
+constexpr bool kFmaKernel = std::is_same_v<DDx, detail::DDT<true>>;
+#endif
+
+// f() out of line, one copy per kernel (TRICYL_DIST_RARE): f's body is
+// flattened into a function compiled for the kernel's target.
+template <class F>
+TRICYL_DIST_RARE auto rarePlain(F& f) {
+  return f();
+}
+#if TRICYL_DIST_FMA_DISPATCH
+template <class F>
+TRICYL_DIST_RARE_FMA auto rareFma(F& f) {
+  return f();
+}
+#endif
+template <class DDx, class F>
+inline auto outOfLine(F&& f) {
+#if TRICYL_DIST_FMA_DISPATCH
+  if constexpr (kFmaKernel<DDx>)
+    return rareFma(f);
+  else
+#endif
+    return rarePlain(f);
+}
+
 // The distance for valid double inputs of moderate magnitude (no
 // overflow of products of up to six lengths: every length below 2^100).
 // `booleanOf()` returns the exact Boolean (kIntersect or kDisjoint) of the
@@ -1032,14 +1148,18 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
 
   // Double-word refinement. x - t is exact as a pair (TwoSum); the sum
   // of three double-word products is within 2^-101 S (dd.h).
+  // Formed out of line (one copy, not one at each of the lean steps' uses):
+  // a smaller kernel for calls that start with a cold instruction cache.
   auto ddVertex = [&](int v) {
-    const double x[3] = {X[v]->x, X[v]->y, X[v]->z};
-    double ds[3], de[3];
-    for (int k = 0; k < 3; ++k) detail::twoSum(x[k], -tt[k], ds[k], de[k]);
-    return P3<DDx>{
-        pullBackDW<DDx>(ds, de, pose.R[0][0], pose.R[1][0], pose.R[2][0]),
-        pullBackDW<DDx>(ds, de, pose.R[0][1], pose.R[1][1], pose.R[2][1]),
-        pullBackDW<DDx>(ds, de, pose.R[0][2], pose.R[1][2], pose.R[2][2])};
+    return outOfLine<DDx>([&] {
+      const double x[3] = {X[v]->x, X[v]->y, X[v]->z};
+      double ds[3], de[3];
+      for (int k = 0; k < 3; ++k) detail::twoSum(x[k], -tt[k], ds[k], de[k]);
+      return P3<DDx>{
+          pullBackDW<DDx>(ds, de, pose.R[0][0], pose.R[1][0], pose.R[2][0]),
+          pullBackDW<DDx>(ds, de, pose.R[0][1], pose.R[1][1], pose.R[2][1]),
+          pullBackDW<DDx>(ds, de, pose.R[0][2], pose.R[1][2], pose.R[2][2])};
+    });
   };
   const double slack_dd = 2 * kUdd * S + kAlg * kUdd * Mx;
   // A best candidate of the double pass within its error of C: at
@@ -1140,66 +1260,68 @@ TRICYL_DIST_NOINLINE Answer solve(const Cylinder<double>& cyl,
     return Answer::kDisjoint;
   }
 
-  const double tie = 2 * err_d;
-  if (refineFast<DDx>(pass, P, vertex, U, tie, eps_y_d, M, slack_dd, wm, out)) {
-    TRICYL_DIST_PATH(6);
-    return Answer::kDisjoint;
-  }
-  TRICYL_DIST_PATH(7);
-
-  // The general refinement: every candidate within the double pass's
-  // error of the best, each edge re-solved in a bracket.
-  Problem<DDx> Q;
-  Q.r = DDx(P.r);
-  Q.h = DDx(P.h);
-  for (int v = 0; v < 3; ++v) Q.v[v] = vertex(v);
-  DDx Ubest(std::numeric_limits<double>::infinity());
-  DDx Lbest(0);
-  Candidate<DDx> best;
-  bool face_cut = false;
-  const Candidate<DDx> face = detail::dist::faceCandidate(Q, &face_cut);
-  if (!face_cut) Lbest = detail::dist::certify(Q, face.w);
-  if (face.valid) {
-    Ubest = face.f;
-    best = face;
-  }
-  for (int k = 0; k < 3; ++k) {
-    const Candidate<double>& c = pass.cand[k];
-    if (!c.valid || !(c.f <= U + tie)) continue;
-    const P3<DDx>& a = Q.v[detail::dist::kEdgeA[k]];
-    const P3<DDx> d = Q.v[detail::dist::kEdgeB[k]] - a;
-    DDx at[7] = {DDx(0), DDx(0), DDx(1)};
-    const int n = 3 + detail::dist::edgeKinks(a, d, Q.r, Q.h, at + 3);
-    at[0] = detail::dist::edgeRefine(a, d, Q.r, Q.h, DDx(c.s), DDx(0x1p-24),
-                                     kRefineIter, DDx(0x1p-104), at + 3, n - 3);
-    for (int i = 0; i < n; ++i) {
-      const Candidate<DDx> e = detail::dist::edgeCandidate(Q, k, at[i]);
-      const DDx l = detail::dist::certify(Q, e.w);
-      if (l > Lbest) Lbest = l;
-      if (e.f < Ubest) {
-        Ubest = e.f;
-        best = e;
-      }
-    }
-  }
-  if (!best.valid) {  // cannot happen: the double best is refined
-    best = detail::dist::edgeCandidate(Q, 0, DDx(0));
-    Ubest = best.f;
-  }
-  double dist = double(Ubest);
-  const double gap = double(Ubest - Lbest);
-  double err = (gap > 0 ? gap : 0) + slack_dd + kU * dist;
-  if (!(dist > 0)) {  // below double-word resolution: still positive
-    err += std::numeric_limits<double>::denorm_min();
-    dist = std::numeric_limits<double>::denorm_min();
-  }
-  if (out) {
-    out->distance = dist;
-    out->error_bound = err * (1 + 0x1p-50);
-    out->point_on_triangle = toWorld(wm, best.p);
-    out->point_on_cylinder = toWorld(wm, best.q);
-  }
+  outOfLine<DDx>([&] {
+    refineSlow<DDx>(pass, P, vertex, U, 2 * err_d, eps_y_d, M, slack_dd, wm,
+                    out);
+  });
   return Answer::kDisjoint;
+}
+
+// The inputs outside the usual case (distanceDouble): validated, scaled
+// by powers of two when they need it. mr, mw, mc: the largest |R_ij|,
+// world coordinate and cylinder length.
+template <class DDx, class BooleanFn>
+inline Answer distanceWide(const Cylinder<double>& cyl,
+                           const Pose<double>& pose,
+                           const Triangle<double>& tri, double mr, double mw,
+                           double mc, BooleanFn& booleanOf,
+                           DistanceResult<double>* out) {
+  if (!validInputs(cyl, pose, tri)) return Answer::kInvalidInput;
+  int ea = 0, ew = 0, ec = 0;
+  if (mr > 0) (void)std::frexp(mr, &ea);
+  if (mw > 0) (void)std::frexp(mw, &ew);
+  (void)std::frexp(mc, &ec);
+  int eM = mr > 0 && mw > 0 ? ea + 2 + ew : -2000;
+  if (!(mr > 0)) ea = 0;
+  if (mc > 0 && ec > eM) eM = ec;
+  if (eM == -2000) eM = 0;  // everything 0: nothing to scale
+  if (eM >= -80 && eM <= 80 && ea >= -40 && ea <= 40)
+    return solve<DDx>(cyl, pose, tri, booleanOf, 0, true, out);
+  // The world lengths' scale, kept so that they stay within 2^+-100 (with
+  // R = 0, or a tiny R, the world lengths hardly matter); the local
+  // frame's scale is then 2^-(ea + el) (>= 2^-eM).
+  int el = eM - ea;
+  if (mw > 0 && el < ew - 100) el = ew - 100;
+  if (mw > 0 && el > ew + 100) el = ew + 100;
+  eM = ea + el;
+  // r and lz are capped at 2^110: beyond the clamp above they can only
+  // exceed the local triangle's extent (|y| < 2^104), where C's barrel
+  // (or slab) constraint is slack for every point of the triangle and the
+  // distance does not depend on them.
+  const Cylinder<double> c2{std::fmin(std::ldexp(cyl.radius, -eM), 0x1p110),
+                            std::fmin(std::ldexp(cyl.lz, -eM), 0x1p111)};
+  Pose<double> p2;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) p2.R[i][j] = std::ldexp(pose.R[i][j], -ea);
+  p2.t = scaled(pose.t, -el);
+  const Triangle<double> t2{scaled(tri.a, -el), scaled(tri.b, -el),
+                            scaled(tri.c, -el)};
+  DistanceResult<double> r2{};
+  // The scaled problem may lose parts below the underflow threshold, so its
+  // double pass cannot prove separation for the inputs as given: the
+  // Boolean (of the unscaled inputs) comes first here.
+  const Answer exact = booleanOf();
+  const Answer a = solve<DDx>(
+      c2, p2, t2, [exact]() { return exact; }, 2 * ea, false, &r2);
+  if (out) {
+    out->distance = std::ldexp(r2.distance, eM);
+    out->error_bound = std::ldexp(r2.error_bound, eM);
+    out->point_on_cylinder = scaled(r2.point_on_cylinder, el);
+    out->point_on_triangle = scaled(r2.point_on_triangle, el);
+    if (a == Answer::kDisjoint && !(out->distance > 0))
+      out->distance = std::numeric_limits<double>::denorm_min();
+  }
+  return a;
 }
 
 template <class DDx>
@@ -1249,52 +1371,9 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
   if (small && aboveOrZero(mr, 0x1p-30) && aboveOrZero(mw, 0x1p-60) &&
       aboveOrZero(mc, 0x1p-60))
     return solve<DDx>(cyl, pose, tri, booleanOf, 0, true, out);
-  if (!validInputs(cyl, pose, tri)) return Answer::kInvalidInput;
-  int ea = 0, ew = 0, ec = 0;
-  if (mr > 0) (void)std::frexp(mr, &ea);
-  if (mw > 0) (void)std::frexp(mw, &ew);
-  (void)std::frexp(mc, &ec);
-  int eM = mr > 0 && mw > 0 ? ea + 2 + ew : -2000;
-  if (!(mr > 0)) ea = 0;
-  if (mc > 0 && ec > eM) eM = ec;
-  if (eM == -2000) eM = 0;  // everything 0: nothing to scale
-  if (eM >= -80 && eM <= 80 && ea >= -40 && ea <= 40)
-    return solve<DDx>(cyl, pose, tri, booleanOf, 0, true, out);
-  // The world lengths' scale, kept so that they stay within 2^+-100 (with
-  // R = 0, or a tiny R, the world lengths hardly matter); the local
-  // frame's scale is then 2^-(ea + el) (>= 2^-eM).
-  int el = eM - ea;
-  if (mw > 0 && el < ew - 100) el = ew - 100;
-  if (mw > 0 && el > ew + 100) el = ew + 100;
-  eM = ea + el;
-  // r and lz are capped at 2^110: beyond the clamp above they can only
-  // exceed the local triangle's extent (|y| < 2^104), where C's barrel
-  // (or slab) constraint is slack for every point of the triangle and the
-  // distance does not depend on them.
-  const Cylinder<double> c2{std::fmin(std::ldexp(cyl.radius, -eM), 0x1p110),
-                            std::fmin(std::ldexp(cyl.lz, -eM), 0x1p111)};
-  Pose<double> p2;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) p2.R[i][j] = std::ldexp(pose.R[i][j], -ea);
-  p2.t = scaled(pose.t, -el);
-  const Triangle<double> t2{scaled(tri.a, -el), scaled(tri.b, -el),
-                            scaled(tri.c, -el)};
-  DistanceResult<double> r2{};
-  // The scaled problem may lose parts below the underflow threshold, so its
-  // double pass cannot prove separation for the inputs as given: the
-  // Boolean (of the unscaled inputs) comes first here.
-  const Answer exact = booleanOf();
-  const Answer a = solve<DDx>(
-      c2, p2, t2, [exact]() { return exact; }, 2 * ea, false, &r2);
-  if (out) {
-    out->distance = std::ldexp(r2.distance, eM);
-    out->error_bound = std::ldexp(r2.error_bound, eM);
-    out->point_on_cylinder = scaled(r2.point_on_cylinder, el);
-    out->point_on_triangle = scaled(r2.point_on_triangle, el);
-    if (a == Answer::kDisjoint && !(out->distance > 0))
-      out->distance = std::numeric_limits<double>::denorm_min();
-  }
-  return a;
+  return outOfLine<DDx>([&] {
+    return distanceWide<DDx>(cyl, pose, tri, mr, mw, mc, booleanOf, out);
+  });
 }
 
 // The same computation with a fused multiply-add for the double-word
@@ -1304,15 +1383,12 @@ Answer distanceDouble(const Cylinder<double>& cyl, const Pose<double>& pose,
 // as written); `flatten` inlines the whole query into this one function,
 // compiled for the FMA target. Chosen as the other double-word stages'
 // (fmaAtRunTime, src/eft.h: TRICYL_SCALAR_BASELINE=1 keeps the portable one).
-#if TRICYL_FMA_DISPATCH && !defined(TRICYL_DIST_NO_FLATTEN)
-#define TRICYL_DIST_FMA_DISPATCH 1
+#if TRICYL_DIST_FMA_DISPATCH
 __attribute__((target("fma") TRICYL_DIST_FLATTEN)) Answer distanceDoubleFma(
     const Cylinder<double>& cyl, const Pose<double>& pose,
     const Triangle<double>& tri, DistanceResult<double>* out) {
   return distanceDouble<detail::DDT<true>>(cyl, pose, tri, out);
 }
-#else
-#define TRICYL_DIST_FMA_DISPATCH 0
 #endif
 
 // The portable path, also inlined into one function.
