@@ -96,7 +96,8 @@ constexpr double kInfl = 1 + 0x1p-40;
 ///   |Q - a.v/b.v| = |A b.v - a.v B| / (|B| |b.v|)
 ///                <= (a.e |b.v| + |a.v| b.e) / ((|b.v| - b.e) |b.v|)
 ///                 = (a.e + |a.v / b.v| b.e) / (|b.v| - b.e),
-/// plus the rounding of the division, u' |v| (+ the underflow allowance).
+/// plus the rounding of the division, u' |v| (+ the underflow allowance),
+/// and the underflow of |v| b.e in the numerator (kTiny / (|b.v| - b.e)).
 /// Returns false if |b.v| <= b.e (the divisor's sign is not certain), if
 /// the quotient exceeds max/4 in magnitude (a line's parameter can be
 /// arbitrarily large; the exact stage takes it, and every later v +- e,
@@ -111,7 +112,13 @@ bool flDiv(const N& a, const N& b, N* out) {
   if (!(bv > be)) return false;
   const T v = a.v / b.v;
   if (!(std::fabs(v) <= kBig)) return false;
-  const T e = (a.e + std::fabs(v) * be) / (bv - be) +
+  // The numerator's product |v| be may underflow (a divisor and its
+  // bound both subnormal: |v| be below the smallest subnormal rounds to
+  // 0), losing at most kTiny absolutely, which the division by bv - be
+  // (itself tiny then) amplifies: kTiny is added before the division.
+  // Found by fuzz_line_cylinder (fuzz/corpus/line_cylinder/
+  // underflowed-quotient-bound: a 3.4e-9 error accepted as 2^-48).
+  const T e = (a.e + std::fabs(v) * be + Run<N>::kTiny) / (bv - be) +
               Run<N>::kU1 * std::fabs(v) + Run<N>::kTiny;
   if (!(e <= kBig)) return false;
   *out = {v, e * T(kInfl)};

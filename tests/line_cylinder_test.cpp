@@ -316,6 +316,40 @@ TYPED_TEST(LineCylinderTyped, InvalidInput) {
       Stage::kInvalid);
 }
 
+// A subnormal direction (DZ ~ 2^-1057, its bound 2^-1071) and a tiny slab:
+// the quotient H / DZ's error bound, (|v| e_DZ) / (|DZ| - e_DZ), lost its
+// numerator to underflow, so stage 1 accepted an end 3.4e-9 off (the
+// fuzz_line_cylinder case fuzz/corpus/line_cylinder/underflowed-quotient-
+// bound). The line is parallel to the axis (Dx = Dy = 0 exactly) and
+// Z0 = 0, so the ends are exactly -+H / DZ, DZ = 2 R_02 p_x exactly.
+TEST(LineCylinderRegression, UnderflowedQuotientBound) {
+  const Cylinder<double> cyl{0x0.008p-1022, 0x0.00000000002p-1022};
+  Pose<double> pose;
+  const double R[3][3] = {{0, 0, 0x1.03f20f001p-31},
+                          {0x0.04p-1022, 0x0.03ffp-1022, 0x0.0b1p-1022},
+                          {0x0.0bff0000027p-1022, 0, 0}};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) pose.R[i][j] = R[i][j];
+  pose.t = {0, 0, 0x1p-1007};
+  const Vec3<double> p{0x0.0800000000ap-1022, 0, 0}, q{0, 0, 0};
+  // s* = H / (2 R_02 p_x), H = 2^-1065. With a = 2 R_02 2^1000 and
+  // b = p_x 2^100 (exact scalings), a b = 2 R_02 p_x 2^1100 = ph + pl
+  // exactly (fma), and s* = 2^35 / (ph + pl) = (2^35 / ph)(1 - pl / ph)
+  // to about 2^-100 relative.
+  const double a = 2 * R[0][2] * 0x1p1000, b = p.x * 0x1p100;
+  const double ph = a * b;
+  const double pl = std::fma(a, b, -ph);
+  const double s = 0x1p35 / ph * (1 - pl / ph);
+  const auto rev = clip(cyl, pose, Line<double>{q, p});
+  ASSERT_TRUE(rev.has_value());
+  EXPECT_NEAR(rev->lo, -s, 1e-14);
+  EXPECT_NEAR(rev->hi, s, 1e-14);
+  const auto fwd = clip(cyl, pose, Line<double>{p, q});
+  ASSERT_TRUE(fwd.has_value());
+  EXPECT_NEAR(fwd->lo, 1 - s, 1e-14);
+  EXPECT_NEAR(fwd->hi, 1 + s, 1e-14);
+}
+
 // Freesteel's crack: lines exactly through a rim point, in every direction
 // (small integer components, so the line and the rim point are exact), in
 // exact poses (signed axis permutations, half-integer translations, a
