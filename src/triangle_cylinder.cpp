@@ -263,13 +263,6 @@ detail::TriCylLocal<K> runningFrame(const Inputs& in, const DwFrame& f) {
   return q;
 }
 
-// The whole sequence for validated inputs (src/stages.h): the double filter
-// (unless the fast path already ran it and it could not decide), the
-// degenerate hand-off, the double-word stage on the tests the filter left
-// undecided, and the tape's exact stage on what that left. `undecided`: 0,
-// or the tests the fast path's filter left undecided (detail::TestMask).
-// `fast`: the fast path's local frame when it ran (then the inputs are
-// valid and inside the gate: not validated again).
 // The local frame as toLocal<FilterKernel> computes it: one magnitude
 // m_i = rho s_i per vertex (rho = max |R_jk|), z doubled; and the cylinder.
 struct Local {
@@ -287,6 +280,13 @@ struct Local {
 detail::TriCylLocal<detail::AdaptiveKernel> adaptiveLocal(const Inputs& in,
                                                           const Local& L);
 
+// The whole sequence for validated inputs (src/stages.h): the double filter
+// (unless the fast path already ran it and it could not decide), the
+// degenerate hand-off, the running and double-word stages on the tests the
+// filter left undecided, and the tape's exact stage on what that left.
+// `undecided`: 0, or the tests the fast path's filter left undecided
+// (detail::TestMask). `fast`: the fast path's local frame when it ran (then
+// the inputs are valid and inside the gate: not validated again).
 Decision decide(const Inputs& in, std::uint32_t undecided,
                 const Local* fast = nullptr) {
   // With `fast`, max_len and max_unitless stay 0 (inside the gate) until
