@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The kernels that track exact values (Ks of src/filter.h): the
-// straight-line double-word stage (DwKernel) and the running double stage
-// for exact-looking poses (RunningExactKernel, below); no tape.
+// The kernel that tracks exact values (a K of src/filter.h): the
+// straight-line double-word stage (DwKernel); no tape.
 //
 // Where the double filter leaves some tests of a query undecided, the query
 // re-runs THOSE TESTS (its predicates, not the whole query) with DwKernel:
@@ -139,72 +138,6 @@ TRICYL_DW_INLINE Dwe<kFma> operator*(const Dwe<kFma>& a, const Dwe<kFma>& b) {
 /// true tie: no error bound can), so that the driver reports the query as
 /// decided exactly (Stage::kExact). Statistics only; per thread.
 inline thread_local bool tls_exact_zero = false;
-
-/// The running double kernel with exact values tracked (the triangle's
-/// running stage for exact-looking poses, src/triangle_cylinder.cpp): a
-/// bound e = 0 means v IS the exact value. Inputs are exact; a sum or
-/// product of two exact values is re-checked with TwoSum / TwoProduct
-/// (src/eft.h; the product only when no underflow can touch its error term:
-/// |v| >= kProdExactMin, or a zero factor) and stays exact when its error
-/// term is 0. Everything else follows Running's rules (src/filter.h).
-/// sign() of an exact value is its sign, kZero included: exact poses on
-/// exact data (the aligned scenes) are decided here, ties and all, at the
-/// cost of one error-free transformation per operation of exact operands;
-/// values that are not exact pay one compare.
-struct Rx {
-  double v;
-  double e;
-};
-TRICYL_DW_INLINE Rx fromRunning(Rd r) { return {r.v, r.e}; }
-TRICYL_DW_INLINE Rx operator+(Rx a, Rx b) {
-  if (a.e + b.e == 0) {  // e >= 0: both exact
-    double v, err;
-    twoSum(a.v, b.v, v, err);
-    return {v, err == 0 ? 0.0 : kU1d * std::fabs(v)};
-  }
-  return fromRunning(Rd{a.v, a.e} + Rd{b.v, b.e});
-}
-TRICYL_DW_INLINE Rx operator-(Rx a) { return {-a.v, a.e}; }
-TRICYL_DW_INLINE Rx operator-(Rx a, Rx b) { return a + (-b); }
-/// A product of two exact values of RunningExactKernel.
-/// Two factors of at most 26 significant bits each (the low 27 bits of
-/// both significands zero) have an exact product of at most 52 bits unless
-/// it underflows: checked by their bits first (the small dyadics of exact
-/// data), TwoProduct otherwise.
-TRICYL_DW_INLINE Rx mulExactOperands(Rx a, Rx b) {
-  const double p = a.v * b.v;
-  if (a.v == 0 || b.v == 0) return {p, 0.0};  // a zero factor: exact 0
-  std::uint64_t ba, bb;
-  std::memcpy(&ba, &a.v, sizeof ba);
-  std::memcpy(&bb, &b.v, sizeof bb);
-  const bool no_underflow = std::fabs(p) >= kProdExactMin;
-  if (((ba | bb) & ((std::uint64_t(1) << 27) - 1)) == 0 && no_underflow)
-    return {p, 0.0};
-  double q, err;
-  twoProd(a.v, b.v, q, err);
-  return {p, err == 0 && no_underflow ? 0.0 : kU1d * std::fabs(p) + 0x1p-1074};
-}
-
-TRICYL_DW_INLINE Rx operator*(Rx a, Rx b) {
-  if (a.e + b.e == 0) return mulExactOperands(a, b);
-  return fromRunning(Rd{a.v, a.e} * Rd{b.v, b.e});
-}
-
-struct RunningExactKernel {
-  using Num = Rx;
-  static constexpr bool kExact = false;
-  static Num lift(double x) { return {x, 0}; }
-  static Num inputDiff(double a, double b) { return lift(a) - lift(b); }
-  static Sign sign(const Num& a) {
-    // The bound's inflation and slack are RunningKernel's (src/filter.h).
-    const double bound = a.e == 0 ? 0.0 : a.e * (1 + 0x1p-40) + 0x1p-600;
-    if (a.v > bound) return Sign::kPos;
-    if (a.v < -bound) return Sign::kNeg;
-    if (a.e != 0) return Sign::kUnknown;
-    tls_exact_zero = true;
-    return Sign::kZero;
-  }
-};
 
 /// The local coordinate x = sum_k R_k d_k, d_k = p_k - t_k (R_k = R_kj for
 /// the coordinate's column j), from the exact differences d_k = D_k + l_k

@@ -26,6 +26,7 @@
 #define TRICYL_FAST_AVX2 0
 #endif
 
+#include "expansion.h"
 #include "filter.h"
 #include "line_cylinder_impl.h"
 #include "stages.h"
@@ -242,11 +243,58 @@ Tri dwStage(const Inputs& in, const DwFrame& f, std::uint32_t tests,
   return dwTestsPlain(in, f, tests, left, early);
 }
 
+// The frame again, each coordinate to within about 2^-104 of ITS OWN
+// magnitude where dwCoordinate's bound is 2^-100 of the terms' magnitude M
+// (the tape's dwCoordAccurate, src/adaptive.cpp, for the straight-line
+// stage): the exact value as a stack expansion (src/expansion.h),
+// compressed, rounded to its two largest components (hi, lo) =
+// TwoSum(c_n-1, c_n-2) with the bound e = (sum of the other components'
+// magnitudes) (1 + 2^-40) (at most 96 non-negative doubles: their rounded
+// sum is below the exact one by less than that factor). Needles and discs
+// have local coordinates far below the terms they cancel from, and their
+// near ties then fail in double word for the frame's bound alone.
+// A coordinate already exact (e = 0) is kept; so is one whose expansion
+// cannot be formed (near underflow). An exact pair with lo != 0 is not a
+// double: bound kNotDouble (DwKernel's convention, src/dw_kernel.h).
+// Returns whether some coordinate's bound shrank.
+TRICYL_NOINLINE bool dwFrameAccurate(const Inputs& in, DwFrame* f) {
+  using detail::Expansion;
+  const Vec3<double>* P[3] = {&in.tri.a, &in.tri.b, &in.tri.c};
+  bool tighter = false;
+  for (int i = 0; i < 3; ++i) {
+    const double p[3] = {P[i]->x, P[i]->y, P[i]->z};
+    const double t[3] = {in.pose.t.x, in.pose.t.y, in.pose.t.z};
+    for (int j = 0; j < 3; ++j) {
+      detail::DwRun& c = f->c[i][j];
+      if (c.e == 0) continue;
+      Expansion x;
+      for (int k = 0; k < 3; ++k)
+        x = x + Expansion(in.pose.R[k][j]) * Expansion::difference(p[k], t[k]);
+      if (j == 2) x = x + x;  // Z = 2 z, as the frame has it
+      x = x.compressed();
+      if (!x.ok()) continue;
+      const int n = x.size();
+      const double* e = x.data();
+      detail::DwRun r{{0.0, 0.0}, 0.0};
+      if (n > 0) detail::twoSum(e[n - 1], n >= 2 ? e[n - 2] : 0.0, r.v.hi, r.v.lo);
+      double rest = 0;
+      for (int m = 0; m + 2 < n; ++m) rest += std::fabs(e[m]);
+      r.e = rest * (1 + 0x1p-40);
+      if (r.e == 0 && r.v.lo != 0) r.e = detail::kNotDouble;
+      if (r.e + std::fabs(r.v.lo) < c.e + std::fabs(c.v.lo)) {
+        c = r;
+        tighter = true;
+      }
+    }
+  }
+  return tighter;
+}
+
 // The running frame from the double-word frame: each coordinate rounded to
 // its high part, with the bound e + |lo| (|E - hi| <= |E - (hi + lo)| +
 // |lo|), rounded up by the factor 1 + 2^-50 (one addition rounded by at
 // most 1 + 2^-53). An exact coordinate (e = 0, then lo = 0) keeps the
-// bound 0: RunningExactKernel reads it as exact.
+// bound 0.
 template <class K>
 detail::TriCylLocal<K> runningFrame(const Inputs& in, const DwFrame& f) {
   detail::TriCylLocal<K> q;
@@ -345,14 +393,18 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
     // rounded, are accurate to their own size, where the fast path's are
     // accurate to the vertex's world terms (a needle's local x and y, far
     // below them, are decided here instead of in double word), and it
-    // knows which coordinates are exact doubles. An exact pose
-    // (shortRotation) on exact data may make exact ties, which only a
-    // kernel that tracks exact values can decide: there RunningExactKernel,
-    // elsewhere the cheaper RunningDoubleKernel.
+    // knows which coordinates are exact doubles. The running pass ends at
+    // its first undecided test (TestMask::stop_at_unknown): the double-word
+    // stage re-runs that test and the ones after it.
+    //   An exact pose (shortRotation) skips the running pass: on exact data
+    // it makes exact ties, which only a kernel that tracks exact values
+    // decides (the double-word stage does, section 4.5 of
+    // docs/exactness.md), and near ties in an exact frame are what the
+    // running pass fails on; the running pass decided too few of the rest
+    // to pay for its failures (bench/results/2026-11-26-triangle-stages-f.md).
     using detail::RunningDoubleKernel;
-    using detail::RunningExactKernel;
     using detail::triangleCylinderUndecided;
-    std::uint32_t left = 0;
+    std::uint32_t left = undecided;
     Tri t;
     // Settled by the filter, or here: the stages skip them.
     detail::EarlyOuts early;
@@ -360,19 +412,20 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
     DwFrame frame;
     dwFrameStage(in, &frame);
     detail::tls_exact_zero = false;
-    if (shortRotation(in.pose))
-      t = triangleCylinderUndecided<RunningExactKernel>(
-          runningFrame<RunningExactKernel>(in, frame), undecided, &left,
-          &early);
-    else
+    if (!shortRotation(in.pose)) {
       t = triangleCylinderUndecided<RunningDoubleKernel>(
           runningFrame<RunningDoubleKernel>(in, frame), undecided, &left,
-          &early);
-    if (t != Tri::kUnknown)
-      return {detail::toAnswer(t),
-              detail::tls_exact_zero ? Stage::kExact : Stage::kRunning};
+          &early, /*stop_at_unknown=*/true);
+      if (t != Tri::kUnknown) return {detail::toAnswer(t), Stage::kRunning};
+    }
     undecided = left;
     t = dwStage(in, frame, undecided, &left, &early);
+    // What the frame's bound left open, once more on coordinates accurate
+    // to their own size (needles, discs), before the tape.
+    if (t == Tri::kUnknown && dwFrameAccurate(in, &frame)) {
+      undecided = left;
+      t = dwStage(in, frame, undecided, &left, &early);
+    }
     if (t != Tri::kUnknown)
       return {detail::toAnswer(t),
               detail::tls_exact_zero ? Stage::kExact : Stage::kExtended};

@@ -133,8 +133,7 @@ void framePoint(std::mt19937_64& g, long i, Pose<double>& pose,
 
 template <class K>
 struct RunningFrameTest : ::testing::Test {};
-using RunningKernels =
-    ::testing::Types<RunningDoubleKernel, detail::RunningExactKernel>;
+using RunningKernels = ::testing::Types<RunningDoubleKernel>;
 TYPED_TEST_SUITE(RunningFrameTest, RunningKernels);
 
 TYPED_TEST(RunningFrameTest, BoundEnclosesTheExactLocalCoordinates) {
@@ -520,11 +519,6 @@ void trackingArithmetic(std::uint64_t seed, Value value) {
 TEST(TrackingKernels, BoundsEncloseAndSignsAreExact) {
   const std::uint64_t seed = test::baseSeed() + 75;
   SCOPED_TRACE(test::seedTrace(seed));
-  trackingArithmetic<detail::RunningExactKernel>(
-      seed, [](const detail::Rx& r, Q* v, double* e) {
-        *v = exactly(r.v);
-        *e = r.e;
-      });
   auto dw = [](const auto& r, Q* v, double* e) {
     *v = exactly(r.v.hi) + exactly(r.v.lo);
     *e = r.e;
