@@ -26,7 +26,6 @@
 #define TRICYL_FAST_AVX2 0
 #endif
 
-#include "expansion.h"
 #include "filter.h"
 #include "line_cylinder_impl.h"
 #include "stages.h"
@@ -243,44 +242,19 @@ Tri dwStage(const Inputs& in, const DwFrame& f, std::uint32_t tests,
   return dwTestsPlain(in, f, tests, left, early);
 }
 
-// The frame again, each coordinate to within about 2^-104 of ITS OWN
-// magnitude where dwCoordinate's bound is 2^-100 of the terms' magnitude M
-// (the tape's dwCoordAccurate, src/adaptive.cpp, for the straight-line
-// stage): the exact value as a stack expansion (src/expansion.h),
-// compressed, rounded to its two largest components (hi, lo) =
-// TwoSum(c_n-1, c_n-2) with the bound e = (sum of the other components'
-// magnitudes) (1 + 2^-40) (at most 96 non-negative doubles: their rounded
-// sum is below the exact one by less than that factor). Needles and discs
-// have local coordinates far below the terms they cancel from, and their
-// near ties then fail in double word for the frame's bound alone.
-// A coordinate already exact (e = 0) is kept; so is one whose expansion
-// cannot be formed (near underflow). An exact pair with lo != 0 is not a
-// double: bound kNotDouble (DwKernel's convention, src/dw_kernel.h).
-// Returns whether some coordinate's bound shrank.
+// The frame again, each coordinate accurate to its own size
+// (dwCoordinateAccurate, src/dw_kernel.h) where that is tighter than the
+// frame's bound: exact coordinates are kept. Returns whether some bound
+// shrank (then the double-word stage runs once more).
 TRICYL_NOINLINE bool dwFrameAccurate(const Inputs& in, DwFrame* f) {
-  using detail::Expansion;
   const Vec3<double>* P[3] = {&in.tri.a, &in.tri.b, &in.tri.c};
   bool tighter = false;
   for (int i = 0; i < 3; ++i) {
-    const double p[3] = {P[i]->x, P[i]->y, P[i]->z};
-    const double t[3] = {in.pose.t.x, in.pose.t.y, in.pose.t.z};
     for (int j = 0; j < 3; ++j) {
       detail::DwRun& c = f->c[i][j];
-      if (c.e == 0) continue;
-      Expansion x;
-      for (int k = 0; k < 3; ++k)
-        x = x + Expansion(in.pose.R[k][j]) * Expansion::difference(p[k], t[k]);
-      if (j == 2) x = x + x;  // Z = 2 z, as the frame has it
-      x = x.compressed();
-      if (!x.ok()) continue;
-      const int n = x.size();
-      const double* e = x.data();
-      detail::DwRun r{{0.0, 0.0}, 0.0};
-      if (n > 0) detail::twoSum(e[n - 1], n >= 2 ? e[n - 2] : 0.0, r.v.hi, r.v.lo);
-      double rest = 0;
-      for (int m = 0; m + 2 < n; ++m) rest += std::fabs(e[m]);
-      r.e = rest * (1 + 0x1p-40);
-      if (r.e == 0 && r.v.lo != 0) r.e = detail::kNotDouble;
+      detail::DwRun r;
+      if (c.e == 0 || !detail::dwCoordinateAccurate(in.pose, *P[i], j, &r))
+        continue;
       if (r.e + std::fabs(r.v.lo) < c.e + std::fabs(c.v.lo)) {
         c = r;
         tighter = true;
