@@ -1075,14 +1075,75 @@ TorusInput<Ul> torusWideInput(const TorusInput<ZKernel>& t) {
   return w;
 }
 
+/// The window-float kernel (src/margin_sturm.h, detail::window) at P bits.
+template <int P>
+using Mk = detail::window::Kernel<P>;
+
+/// The exact torus input in window floats: each integer's leading P bits
+/// (truncated, the rest its bound). The window's precisions, tried in
+/// order: enough for most thresholds of wide inputs (the decisive
+/// quantities cancel a few hundred bits), then four times that.
+constexpr int kWindowBits[2] = {320, 1280};
+template <int P>
+TorusInput<Mk<P>> torusWindowInput(const TorusInput<ZKernel>& t) {
+  TorusInput<Mk<P>> w;
+  for (int i = 0; i < 3; ++i) {
+    w.X[i] = detail::window::fromInteger<P>(t.X[i]);
+    w.Y[i] = detail::window::fromInteger<P>(t.Y[i]);
+    w.Z[i] = detail::window::fromInteger<P>(t.Z[i]);
+  }
+  w.R = detail::window::fromInteger<P>(t.R);
+  w.M = detail::window::fromInteger<P>(t.M);
+  w.C = detail::window::fromInteger<P>(t.C);
+  return w;
+}
+
+/// A sized part (grow_radius: Cyl(r + m, h), else Cyl(r, h + m)) by the
+/// triangle kernel's predicate in window floats, on the exact torus input
+/// `t` (torusExactInput(q, 1)): the geometry scaled by 2, so that the
+/// kernel's frame (x, y, Z = 2z, H = lz, radius) is (X, Y, 2 Z, 2 C, R)
+/// with R + M for the grown radius and 2 (C + M) for the grown length
+/// (X = 2x, R = 2r, M = 2m, C = lz: a scaling leaves the test unchanged).
+/// kUnknown: the exact run decides.
+template <int P>
+Tri sizedPartWindow(const TorusInput<Mk<P>>& w, bool grow_radius) {
+  using detail::window::twice;
+  detail::TriCylLocal<Mk<P>> l;
+  for (int i = 0; i < 3; ++i) {
+    l.x[i] = w.X[i];
+    l.y[i] = w.Y[i];
+    l.Z[i] = twice(w.Z[i]);
+  }
+  l.H = twice(grow_radius ? w.C : w.C + w.M);
+  l.r = grow_radius ? w.R + w.M : w.R;
+  bool early = false;
+  return detail::triangleCylinder<Mk<P>>(l, &early);
+}
+
+/// The window stages of a sized part, at each precision in turn.
+Tri sizedPartWindows(const TorusInput<ZKernel>& t, bool grow_radius) {
+  Tri r = sizedPartWindow(torusWindowInput<kWindowBits[0]>(t), grow_radius);
+  if (r == Tri::kUnknown)
+    r = sizedPartWindow(torusWindowInput<kWindowBits[1]>(t), grow_radius);
+  return r;
+}
+
+/// The face part of one torus in window floats, at each precision in turn.
+Tri faceWindows(const TorusInput<ZKernel>& t) {
+  Tri r = faceFeet<Mk<kWindowBits[0]>>(torusWindowInput<kWindowBits[0]>(t));
+  if (r == Tri::kUnknown)
+    r = faceFeet<Mk<kWindowBits[1]>>(torusWindowInput<kWindowBits[1]>(t));
+  return r;
+}
+
 /// The face part of one torus through the stage driver (src/stages.h):
 /// FilterKernel, then the adaptive kernel, on the scaled inputs. Where the
 /// scaling is not exact: UnderflowKernel on the rescaled inputs, then on
 /// the exact local coordinates rounded once to long double (`wide()`, the
 /// torus's torusWideInput), then GMP dyadics on the original inputs.
-template <class Wide>
-Decision faceStage(const Query& q, const ScaledInputs& s, bool top,
-                   Wide&& wide) {
+template <class Wide, class Exact>
+Decision faceStage(const Query& q, const ScaledInputs& s, bool top, Wide&& wide,
+                   Exact&& exact) {
   auto pred = [&](auto tag, bool*) {
     using K = typename decltype(tag)::type;
     const auto l =
@@ -1097,7 +1158,8 @@ Decision faceStage(const Query& q, const ScaledInputs& s, bool top,
         return {f == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
                 Stage::kFastPath};
     }
-    const Tri f = faceFeet<Ul>(wide());
+    Tri f = faceFeet<Ul>(wide());
+    if (f == Tri::kUnknown) f = faceWindows(exact());
     if (f != Tri::kUnknown)
       return {f == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
               Stage::kExtended};
@@ -1428,12 +1490,13 @@ Decision decide(Query& q) {
       }
     if (!sized_first) {
       if (!exact_top) exact_top = torusExactInput(q, 1);
-      if (!sizedPartExcluded(*exact_top, true) &&
-          cylinderPart(q, true, true, &stage))
-        return yes(stage);
-      if (!sizedPartExcluded(*exact_top, false) &&
-          cylinderPart(q, false, true, &stage))
-        return yes(stage);
+      for (const bool grow_radius : {true, false}) {
+        if (sizedPartExcluded(*exact_top, grow_radius)) continue;
+        const Tri w = sizedPartWindows(*exact_top, grow_radius);
+        if (w == Tri::kTrue) return yes(stronger(stage, Stage::kExtended));
+        if (w == Tri::kFalse) continue;
+        if (cylinderPart(q, grow_radius, true, &stage)) return yes(stage);
+      }
     }
     if (!wide_filter_done && wideFilter()) return yes(stage);
     ExactEdge edge[2][3];
@@ -1469,7 +1532,8 @@ Decision decide(Query& q) {
   for (int i = 0; i < 2; ++i) {
     if (slab_out[i]) continue;
     const Decision d = faceStage(
-        q, s, i == 0, [&]() -> const TorusInput<Ul>& { return wideTorus(i); });
+        q, s, i == 0, [&]() -> const TorusInput<Ul>& { return wideTorus(i); },
+        [&]() { return exactTorus(i); });
     stage = stronger(stage, d.stage);
     if (d.answer == Answer::kIntersect) return yes(stage);
   }
