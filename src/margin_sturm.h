@@ -846,16 +846,44 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
             cert::ilog2(mpf_class(v - prev_v, 64)) < cert::ilog2(v) - 8;
         // A negative value needs no second level: F(x) < 0 already
         // (x's error only raises F above its minimum).
-        if (sgn(v) == 0 || cert::ilog2(v) < cert::ilog2(size) - prec + 40 ||
-            (!same && sgn(v) > 0)) {
+        // The bits s0 needs: x's error e raises F(x) by about F'' e^2 / 2,
+        // to be kept below |v|. For AM-GM's quadratic G (below) it is
+        // G's minimum that must stay positive: G touches F at s* with G'
+        // = F', and at x its minimum lies G'(x)^2 / (2 G'') below G(x),
+        // G'(x) about F'' e: F''^2 e^2 / G'' against |v|, where G''
+        // = 2 (l2 - lambda p2) <= F'' (edges close to the blind case
+        // G'' <= 0 need many more bits than F'' alone asks).
+        long kn = sgn(v) == 0 ? k : (cert::ilog2(f2) - cert::ilog2(v)) / 2 + 8;
+        bool convex = false;  // G'' > 0: AM-GM's case
+        const bool above =
+            sgn(v) != 0 && cert::ilog2(v) >= cert::ilog2(size) - prec + 40;
+        if (above && sgn(v) > 0 && on_f && sgn(pv) > 0) {
+          const mpf_class lam(R / sqrt(pv), mp_bitcnt_t(prec));
+          const mpf_class g2(2 * (mpf_class(L[2], mp_bitcnt_t(prec)) -
+                                  lam * mpf_class(P[2], mp_bitcnt_t(prec))),
+                             mp_bitcnt_t(prec));
+          convex = sgn(g2) > 0;
+          if (convex && cert::ilog2(g2) < cert::ilog2(f2))
+            kn = std::max(
+                kn,
+                (2 * cert::ilog2(f2) - cert::ilog2(g2) - cert::ilog2(v)) / 2 +
+                    8);
+        }
+        if (!above || (!same && sgn(v) > 0)) {
           prev_v = v;
           have_prev_v = sgn(v) != 0;
-          k = 2 * k - lead;  // not resolved yet
+          // Not resolved yet. Below the rounding: twice the bits. A
+          // positive value above it, where AM-GM will be tried (G convex),
+          // only waits for its confirmation at the next level: at the bits
+          // it asks (kn) and at least 32 more, not twice as many (the
+          // doubling cost up to 60 % of a wide edge's floats). Elsewhere
+          // (the quartic's bound, whose needs kn does not model) twice.
+          k = above && convex ? std::max(k + 32, std::min(kn, 2 * k - lead))
+                              : 2 * k - lead;
           continue;
         }
         resolved = true;
         expect_hit = sgn(v) < 0;
-        const long kn = (cert::ilog2(f2) - cert::ilog2(v)) / 2 + 8;
         if (kn > k) {
           k = kn;
           continue;
@@ -908,7 +936,7 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
       } else if (++tries > 2) {
         return -1;
       } else {
-        k += 16 * tries + (k - lead) / 8;
+        k += 32 * tries + (k - lead) / 4;
       }
     }
     if (!moved) return -1;
@@ -985,12 +1013,15 @@ inline Bound mul(const Bound& a, const Bound& b) {
 /// 2^x as a bound.
 inline Bound pow2(long x) { return {0.5, x + 1}; }
 
-/// A value m 2^x (m at most P bits) and the bound e of its error.
-template <int P>
+/// A value m 2^x (m at most p bits) and the bound e of its error. The
+/// window p is the inputs' (fromInteger), the larger of the operands' in
+/// an operation; p = 0 (a constant lifted from a double, 53 bits) is never
+/// truncated.
 struct Num {
   mpz_class m;
   long x = 0;
   Bound e;
+  int p = 0;
 };
 
 /// An upper bound of |m 2^x|: mpz_get_d_2exp truncates, |m| = g 2^k
@@ -1002,22 +1033,20 @@ inline Bound magnitude(const mpz_class& m, long x) {
   return up(g * (1 + 0x1p-51), k + x);
 }
 
-/// Truncates m to its leading P bits (toward zero), the error to e.
-template <int P>
-inline void fit(Num<P>* a) {
-  if (sgn(a->m) == 0) return;
+/// Truncates m to its leading p bits (toward zero), the error to e.
+inline void fit(Num* a) {
+  if (sgn(a->m) == 0 || a->p <= 0) return;
   const long n = long(mpz_sizeinbase(a->m.get_mpz_t(), 2));
-  if (n <= P) return;
-  const mp_bitcnt_t s = mp_bitcnt_t(n - P);
+  if (n <= a->p) return;
+  const mp_bitcnt_t s = mp_bitcnt_t(n - a->p);
   mpz_tdiv_q_2exp(a->m.get_mpz_t(), a->m.get_mpz_t(), s);
   a->x += long(s);
   a->e = add(a->e, pow2(a->x));
 }
 
-/// The value z 2^x (an exact integer input), truncated to P bits.
-template <int P>
-inline Num<P> fromInteger(const mpz_class& z, long x = 0) {
-  Num<P> a{z, x, {}};
+/// The value z 2^x (an exact integer input), truncated to p > 0 bits.
+inline Num fromInteger(const mpz_class& z, int p, long x = 0) {
+  Num a{z, x, {}, p};
   fit(&a);
   return a;
 }
@@ -1028,13 +1057,13 @@ inline long top(const mpz_class& m, long x) {
   return x + long(mpz_sizeinbase(m.get_mpz_t(), 2));
 }
 
-template <int P>
-inline Num<P> operator+(const Num<P>& a, const Num<P>& b) {
-  Num<P> r;
+inline Num operator+(const Num& a, const Num& b) {
+  Num r;
   const bool za = sgn(a.m) == 0, zb = sgn(b.m) == 0;
   if (za || zb) {
     r = za ? b : a;
     r.e = add(a.e, b.e);
+    r.p = std::max(a.p, b.p);
     return r;
   }
   // A term below a quarter of the other's unit: its magnitude (< 2^top)
@@ -1042,11 +1071,13 @@ inline Num<P> operator+(const Num<P>& a, const Num<P>& b) {
   if (top(b.m, b.x) < a.x - 2) {
     r = a;
     r.e = add(add(a.e, b.e), pow2(top(b.m, b.x)));
+    r.p = std::max(a.p, b.p);
     return r;
   }
   if (top(a.m, a.x) < b.x - 2) {
     r = b;
     r.e = add(add(a.e, b.e), pow2(top(a.m, a.x)));
+    r.p = std::max(a.p, b.p);
     return r;
   }
   // The shift is at most about P + 2 bits here.
@@ -1060,50 +1091,45 @@ inline Num<P> operator+(const Num<P>& a, const Num<P>& b) {
     r.x = a.x;
   }
   r.e = add(a.e, b.e);
+  r.p = std::max(a.p, b.p);
   fit(&r);
   return r;
 }
 
-template <int P>
-inline Num<P> operator-(const Num<P>& a) {
-  Num<P> r = a;
+inline Num operator-(const Num& a) {
+  Num r = a;
   mpz_neg(r.m.get_mpz_t(), r.m.get_mpz_t());
   return r;
 }
 
-template <int P>
-inline Num<P> operator-(const Num<P>& a, const Num<P>& b) {
-  return a + (-b);
-}
+inline Num operator-(const Num& a, const Num& b) { return a + (-b); }
 
-template <int P>
-inline Num<P> operator*(const Num<P>& a, const Num<P>& b) {
-  Num<P> r;
+inline Num operator*(const Num& a, const Num& b) {
+  Num r;
   mpz_mul(r.m.get_mpz_t(), a.m.get_mpz_t(), b.m.get_mpz_t());
   r.x = a.x + b.x;
   r.e = add(add(mul(magnitude(a.m, a.x), b.e), mul(magnitude(b.m, b.x), a.e)),
             mul(a.e, b.e));
+  r.p = std::max(a.p, b.p);
   fit(&r);
   return r;
 }
 
 /// a times 2 (exact: the unit and the bound move up one binary order).
-template <int P>
-inline Num<P> twice(Num<P> a) {
+inline Num twice(Num a) {
   ++a.x;
   if (a.e.f != 0) ++a.e.k;
   return a;
 }
 
 /// The kernel (the interface of src/filter.h's kernels: Num, lift, sign).
-template <int P>
 struct Kernel {
-  using Num = window::Num<P>;
+  using Num = window::Num;
   static constexpr bool kExact = false;
   static Num lift(double v) {
     int e = 0;
     const double f = std::frexp(v, &e);  // exact: v = f 2^e
-    return {mpz_class(std::ldexp(f, 53)), long(e) - 53, {}};
+    return {mpz_class(std::ldexp(f, 53)), long(e) - 53, {}, 0};
   }
   static Sign sign(const Num& a) {
     const int s = sgn(a.m);

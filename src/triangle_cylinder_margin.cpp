@@ -1075,26 +1075,21 @@ TorusInput<Ul> torusWideInput(const TorusInput<ZKernel>& t) {
   return w;
 }
 
-/// The window-float kernel (src/margin_sturm.h, detail::window) at P bits.
-template <int P>
-using Mk = detail::window::Kernel<P>;
+/// The window-float kernel (src/margin_sturm.h, detail::window).
+using Mk = detail::window::Kernel;
 
-/// The exact torus input in window floats: each integer's leading P bits
-/// (truncated, the rest its bound). The window's precisions, tried in
-/// order: enough for most thresholds of wide inputs (the decisive
-/// quantities cancel a few hundred bits), then four times that.
-constexpr int kWindowBits[2] = {320, 1280};
-template <int P>
-TorusInput<Mk<P>> torusWindowInput(const TorusInput<ZKernel>& t) {
-  TorusInput<Mk<P>> w;
+/// The exact torus input in window floats: each integer's leading p bits
+/// (truncated, the rest its bound).
+TorusInput<Mk> torusWindowInput(const TorusInput<ZKernel>& t, int p) {
+  TorusInput<Mk> w;
   for (int i = 0; i < 3; ++i) {
-    w.X[i] = detail::window::fromInteger<P>(t.X[i]);
-    w.Y[i] = detail::window::fromInteger<P>(t.Y[i]);
-    w.Z[i] = detail::window::fromInteger<P>(t.Z[i]);
+    w.X[i] = detail::window::fromInteger(t.X[i], p);
+    w.Y[i] = detail::window::fromInteger(t.Y[i], p);
+    w.Z[i] = detail::window::fromInteger(t.Z[i], p);
   }
-  w.R = detail::window::fromInteger<P>(t.R);
-  w.M = detail::window::fromInteger<P>(t.M);
-  w.C = detail::window::fromInteger<P>(t.C);
+  w.R = detail::window::fromInteger(t.R, p);
+  w.M = detail::window::fromInteger(t.M, p);
+  w.C = detail::window::fromInteger(t.C, p);
   return w;
 }
 
@@ -1105,10 +1100,9 @@ TorusInput<Mk<P>> torusWindowInput(const TorusInput<ZKernel>& t) {
 /// with R + M for the grown radius and 2 (C + M) for the grown length
 /// (X = 2x, R = 2r, M = 2m, C = lz: a scaling leaves the test unchanged).
 /// kUnknown: the exact run decides.
-template <int P>
-Tri sizedPartWindow(const TorusInput<Mk<P>>& w, bool grow_radius) {
+Tri sizedPartWindow(const TorusInput<Mk>& w, bool grow_radius) {
   using detail::window::twice;
-  detail::TriCylLocal<Mk<P>> l;
+  detail::TriCylLocal<Mk> l;
   for (int i = 0; i < 3; ++i) {
     l.x[i] = w.X[i];
     l.y[i] = w.Y[i];
@@ -1117,22 +1111,29 @@ Tri sizedPartWindow(const TorusInput<Mk<P>>& w, bool grow_radius) {
   l.H = twice(grow_radius ? w.C : w.C + w.M);
   l.r = grow_radius ? w.R + w.M : w.R;
   bool early = false;
-  return detail::triangleCylinder<Mk<P>>(l, &early);
+  return detail::triangleCylinder<Mk>(l, &early);
 }
+
+/// The window's precisions, tried in order: enough for most sized parts
+/// and faces of the hostile thresholds (the decisive quantities cancel a
+/// few hundred bits), then four times that (measured on the regression
+/// list: the least window that decides is 64 to 1,024 bits there; a
+/// window run costs mostly its operations' overhead at 320 bits, about
+/// 1.8 times that at 1,280). Where both abstain the exact stage decides.
+constexpr int kWindowBits[2] = {320, 1280};
 
 /// The window stages of a sized part, at each precision in turn.
 Tri sizedPartWindows(const TorusInput<ZKernel>& t, bool grow_radius) {
-  Tri r = sizedPartWindow(torusWindowInput<kWindowBits[0]>(t), grow_radius);
+  Tri r = sizedPartWindow(torusWindowInput(t, kWindowBits[0]), grow_radius);
   if (r == Tri::kUnknown)
-    r = sizedPartWindow(torusWindowInput<kWindowBits[1]>(t), grow_radius);
+    r = sizedPartWindow(torusWindowInput(t, kWindowBits[1]), grow_radius);
   return r;
 }
 
 /// The face part of one torus in window floats, at each precision in turn.
 Tri faceWindows(const TorusInput<ZKernel>& t) {
-  Tri r = faceFeet<Mk<kWindowBits[0]>>(torusWindowInput<kWindowBits[0]>(t));
-  if (r == Tri::kUnknown)
-    r = faceFeet<Mk<kWindowBits[1]>>(torusWindowInput<kWindowBits[1]>(t));
+  Tri r = faceFeet<Mk>(torusWindowInput(t, kWindowBits[0]));
+  if (r == Tri::kUnknown) r = faceFeet<Mk>(torusWindowInput(t, kWindowBits[1]));
   return r;
 }
 
@@ -1286,6 +1287,22 @@ bool torusExcluded(const TorusInput<ZKernel>& t, bool top) {
          all([&](int i) { return t.X[i] < -rad; }) ||
          all([&](int i) { return t.Y[i] > rad; }) ||
          all([&](int i) { return t.Y[i] < -rad; });
+}
+
+/// A torus that the other one dominates on the triangle: for a point at
+/// height z >= 0 and h >= 0, (z + h)^2 - (z - h)^2 = 4 z h >= 0, so its
+/// distance to the bottom rim circle is at least that to the top one (the
+/// radial terms are equal) and Tor(-h) meets the triangle only where
+/// Tor(+h) does, if the whole triangle (convex) lies in z >= 0; the same
+/// mirrored for z <= 0, and for h = 0 the two tori coincide. Returns the
+/// torus (0: top, 1: bottom) that can be skipped, or -1. Comparisons of
+/// the exact torus input `t` (torusExactInput(q, 1)).
+int torusDominated(const TorusInput<ZKernel>& t) {
+  if (sgn(t.C) == 0) return 1;
+  auto all = [&t](auto&& pred) { return pred(0) && pred(1) && pred(2); };
+  if (all([&](int i) { return sgn(t.Z[i]) >= 0; })) return 1;
+  if (all([&](int i) { return sgn(t.Z[i]) <= 0; })) return 0;
+  return -1;
 }
 
 /// A cheap hit certificate on the exact torus input `t` (torusExactInput(q,
@@ -1471,10 +1488,14 @@ Decision decide(Query& q) {
     // Wide inputs, by cost: the ball test, the sized parts (when not run
     // first), the bounding sets (products of the inputs' size), the
     // quartics (twice that size), the wide quartics' local certificate.
-    if (!sized_first) {
-      if (!exact_top) exact_top = torusExactInput(q, 1);
-      if (axisHit(*exact_top)) return yes(stronger(stage, Stage::kExactGmp));
-    }
+    if (!exact_top) exact_top = torusExactInput(q, 1);
+    if (!sized_first && axisHit(*exact_top))
+      return yes(stronger(stage, Stage::kExactGmp));
+    // One torus dominates the other where the triangle lies on one side of
+    // z = 0 (torusDominated): the other's edges and face are skipped.
+    const int dominated = torusDominated(*exact_top);
+    if (dominated >= 0)
+      for (bool& o : open[dominated]) o = false;
     if (ball_first)
       for (int i = 0; i < 2; ++i) {
         if (!anyOpen(i)) continue;
@@ -1523,9 +1544,8 @@ Decision decide(Query& q) {
       for (int e = 0; e < 3; ++e)
         if (open[i][e] && edgeExactWide(edge[i][e])) return yes(stage);
     // The faces' exclusion where the exact input is at hand (comparisons).
-    if (exact_top)
-      for (int i = 0; i < 2; ++i)
-        slab_out[i] = torusExcluded(*exact_top, i == 0);
+    for (int i = 0; i < 2; ++i)
+      slab_out[i] = i == dominated || torusExcluded(*exact_top, i == 0);
   }
   // The triangle misses C here (C is inside Cyl(r + m, h)), hence the rim
   // circles: the face part is complete.

@@ -238,8 +238,7 @@ TEST(MarginSturm, LeadingBitsSignsAgreeWithExact) {
 }
 
 /// A window float's value m 2^x and its bound f 2^k as rationals.
-template <int P>
-mpq_class windowValue(const detail::window::Num<P>& a) {
+mpq_class windowValue(const detail::window::Num& a) {
   mpq_class v(a.m);
   mpz_class p = 1;
   mpz_mul_2exp(p.get_mpz_t(), p.get_mpz_t(), mp_bitcnt_t(std::labs(a.x)));
@@ -249,8 +248,7 @@ mpq_class windowValue(const detail::window::Num<P>& a) {
     v /= p;
   return v;
 }
-template <int P>
-mpq_class windowBound(const detail::window::Num<P>& a) {
+mpq_class windowBound(const detail::window::Num& a) {
   mpq_class e(a.e.f);
   mpz_class p = 1;
   mpz_mul_2exp(p.get_mpz_t(), p.get_mpz_t(), mp_bitcnt_t(std::labs(a.e.k)));
@@ -273,15 +271,15 @@ TEST(MarginSturm, WindowFloatsBoundTheExactValue) {
   const std::uint64_t seed = test::baseSeed();
   SCOPED_TRACE(test::seedTrace(seed));
   scenes::Rng g(seed ^ 0x77696e64u);
-  using K = detail::window::Kernel<320>;
+  using K = detail::window::Kernel;
   using N = K::Num;
   const long n = test::scaled(4000);
   long certain = 0, unknown = 0, wrong = 0;
   auto input = [&g](mpq_class* exact) {
     const mpz_class z = randomInteger(g, 1 + g.integer(4000));
     const long x = long(g.integer(121)) - 60;
-    const N a = detail::window::fromInteger<320>(z, x);
-    *exact = windowValue(N{z, x, {}});
+    const N a = detail::window::fromInteger(z, 320, x);
+    *exact = windowValue(N{z, x, {}, 0});
     return a;
   };
   auto check = [&](const N& v, const mpq_class& exact, long i) {
@@ -312,10 +310,10 @@ TEST(MarginSturm, WindowFloatsBoundTheExactValue) {
       }
       mpz_class cz = num;
       if (kind == 2) cz += g.integer(7) - 3;
-      c = detail::window::fromInteger<320>(cz, sh - x);
-      ec = windowValue(N{cz, sh - x, {}});
-      d = detail::window::fromInteger<320>(1, x);
-      ed = windowValue(N{mpz_class(1), x, {}});
+      c = detail::window::fromInteger(cz, 320, sh - x);
+      ec = windowValue(N{cz, sh - x, {}, 0});
+      d = detail::window::fromInteger(1, 320, x);
+      ed = windowValue(N{mpz_class(1), x, {}, 0});
     }
     const N v = a * b - c * d;
     check(v, ea * eb - ec * ed, i);
