@@ -681,9 +681,25 @@ inline int taylorCertificate(const mpz_class* q, const mpz_class& m, long k,
 /// Q = L^2 - 4 R^2 P (q,
 /// lowest first, q[4] > 0): 1 if Q <= 0 somewhere on [0, 1], 0 if not, -1
 /// if not decided here (see above). `max_k` bounds the bits of s0.
+/// What one edge's certificate learnt, for the same edge against the other
+/// rim torus (the two differ only in the rim's height, and on the hostile
+/// inputs where the certificate runs the cylinder's length is often
+/// negligible: the two minima agree to many bits): the direction, the
+/// minimiser, and the bits and value at which that minimum was resolved.
+/// Only a starting point: the other torus's run uses it where its own search
+/// lands within 2^-20 of it, and resolves its own value (a level whose value
+/// agrees with the hint's to 2^-8, the test between two levels of one run).
+struct CertHint {
+  bool valid = false;
+  int dir = 0;
+  mpf_class x, v;
+  long k = 0;
+};
+
 inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
                                 const mpz_class* p, const mpz_class& R,
-                                const mpz_class& M, long max_k) {
+                                const mpz_class& M, long max_k,
+                                CertHint* hint = nullptr) {
   if (sgn(R) == 0) return 0;  // Q = L^2 > 0
   if (sgn(q[4]) <= 0) return -1;
   mpz_class qr[5], lr[3], pr[3];
@@ -757,6 +773,13 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
     }
   }
   if (dir < 0) return -1;
+  bool seeded = false;
+  if (hint != nullptr && hint->valid && hint->dir == dir && sgn(x) > 0 &&
+      cert::ilog2(mpf_class(abs(x - hint->x), 64)) < cert::ilog2(x) - 20) {
+    x.set_prec(hint->x.get_prec());
+    x = hint->x;
+    seeded = true;
+  }
   const mpz_class R2 = R * R;
   // At most two moves to another root region that the Taylor certificate
   // points at (the 128-bit search can miss a minimum inside a cluster).
@@ -785,6 +808,11 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
     int tries = 0;
     bool resolved = false, have_prev_v = false, expect_hit = false;
     mpf_class prev_v(0, 64);
+    if (seeded && attempt == 0) {  // the other torus's level and value
+      k = std::max(k, std::min(hint->k, max_k));
+      prev_v = hint->v;
+      have_prev_v = sgn(prev_v) != 0;
+    }
     while (k <= max_k && !moved) {
       // Newton on F' = L' - R P' / rho, F'' = L'' - R (P'' / rho -
       // P'^2 / (2 rho^3)), at a precision that resolves 2^-k in s after
@@ -884,6 +912,15 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
         }
         resolved = true;
         expect_hit = sgn(v) < 0;
+        if (hint != nullptr) {
+          hint->valid = true;
+          hint->dir = dir;
+          hint->x.set_prec(x.get_prec());
+          hint->x = x;
+          hint->v.set_prec(64);
+          hint->v = v;
+          hint->k = std::max(k, kn);
+        }
         if (kn > k) {
           k = kn;
           continue;

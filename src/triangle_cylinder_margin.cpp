@@ -742,9 +742,10 @@ int edgeExactQuartic(ExactEdge* e) {
 
 /// Phase 3, wide quartics: s0 gets at most a third of Q's bits (beyond
 /// that, its floats cost about what the count does).
-bool edgeExactWide(const ExactEdge& e) {
+bool edgeExactWide(const ExactEdge& e,
+                   detail::sturm::CertHint* hint = nullptr) {
   const int s = detail::sturm::torusEdgeCertificate(e.q, e.l, e.p, e.R, e.M,
-                                                    long(e.bits) / 3);
+                                                    long(e.bits) / 3, hint);
   if (s >= 0) return s == 1;
   return detail::sturm::rootsInUnitTorus(e.q, e.l[1], e.l[2]) > 0;
 }
@@ -1540,9 +1541,13 @@ Decision decide(Query& q) {
         if (r == 1) return yes(stage);
         open[i][e] = r < 0;
       }
+    // The same edge against the two tori: the second starts where the
+    // first resolved its minimum (CertHint).
+    detail::sturm::CertHint hint[3];
     for (int i = 0; i < 2; ++i)
       for (int e = 0; e < 3; ++e)
-        if (open[i][e] && edgeExactWide(edge[i][e])) return yes(stage);
+        if (open[i][e] && edgeExactWide(edge[i][e], &hint[e]))
+          return yes(stage);
     // The faces' exclusion where the exact input is at hand (comparisons).
     for (int i = 0; i < 2; ++i)
       slab_out[i] = i == dominated || torusExcluded(*exact_top, i == 0);
