@@ -1264,7 +1264,7 @@ bool wideSpread(const Query& q) {
 bool sizedPartExcluded(const TorusInput<ZKernel>& t, bool grow_radius) {
   const mpz_class half = grow_radius ? t.C : mpz_class(t.C + t.M);
   const mpz_class rad = grow_radius ? mpz_class(t.R + t.M) : t.R;
-  auto all = [&t](auto&& pred) { return pred(0) && pred(1) && pred(2); };
+  auto all = [](auto&& pred) { return pred(0) && pred(1) && pred(2); };
   return all([&](int i) { return t.Z[i] > half; }) ||
          all([&](int i) { return t.Z[i] < -half; }) ||
          all([&](int i) { return t.X[i] > rad; }) ||
@@ -1279,7 +1279,7 @@ bool sizedPartExcluded(const TorusInput<ZKernel>& t, bool grow_radius) {
 /// is a rim point plus a vector of length <= m).
 bool torusExcluded(const TorusInput<ZKernel>& t, bool top) {
   const mpz_class hi = t.C + t.M, lo = t.C - t.M, rad = t.R + t.M;
-  auto all = [&t](auto&& pred) { return pred(0) && pred(1) && pred(2); };
+  auto all = [](auto&& pred) { return pred(0) && pred(1) && pred(2); };
   // Z of the top torus's input; the bottom one's is -Z (torusExactInput).
   auto z = [&t, top](int i) { return top ? t.Z[i] : mpz_class(-t.Z[i]); };
   return all([&](int i) { return z(i) > hi; }) ||
@@ -1300,7 +1300,7 @@ bool torusExcluded(const TorusInput<ZKernel>& t, bool top) {
 /// the exact torus input `t` (torusExactInput(q, 1)).
 int torusDominated(const TorusInput<ZKernel>& t) {
   if (sgn(t.C) == 0) return 1;
-  auto all = [&t](auto&& pred) { return pred(0) && pred(1) && pred(2); };
+  auto all = [](auto&& pred) { return pred(0) && pred(1) && pred(2); };
   if (all([&](int i) { return sgn(t.Z[i]) >= 0; })) return 1;
   if (all([&](int i) { return sgn(t.Z[i]) <= 0; })) return 0;
   return -1;
