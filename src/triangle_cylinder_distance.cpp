@@ -1411,7 +1411,7 @@ Answer tightened(Answer a, const Cylinder<double>& cyl,
                  DistanceResult<double>* out) {
   if (a == Answer::kDisjoint && out != nullptr &&
       out->error_bound > 0x1p-50 * out->distance)
-    detail::dist::tightenAtVertex(cyl, pose, tri, out);
+    detail::dist::tightenTiny(cyl, pose, tri, out);
   return a;
 }
 

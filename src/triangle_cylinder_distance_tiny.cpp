@@ -104,10 +104,154 @@ VertexDistance vertexDistance(const E (&v)[3], const E& r, const E& h,
   return o;
 }
 
+/// Certified bounds lo <= d <= hi of the distance, the estimate est (the
+/// upper bound's candidate, rounded to nearest) and its local pair (p on
+/// T, q = P_C(p)); merged over the candidates: the largest lower bound,
+/// the smallest upper bound with its estimate and pair.
+struct Enclosure {
+  bool ok = false;
+  double lo = 0, hi = 0, est = 0;
+  double p[3] = {0, 0, 0}, q[3] = {0, 0, 0};
+  int vertex = -1;  // p is this vertex (its world point is exact)
+  void addLower(double l) {
+    if (!ok || l > lo) lo = l;
+  }
+  /// An upper bound U (within 2^-96 relative) with its pair; true if it
+  /// is the smallest so far.
+  bool addUpper(const DD& U) {
+    const double u = double(U), u_hi = upTwo(u);
+    if (ok && !(u_hi < hi)) return false;
+    hi = u_hi;
+    est = u;
+    return true;
+  }
+};
+
+/// The nearest vertex: U its distance, L its separating plane (see the
+/// top of this file).
+void atVertex(const E (&v)[3][3], const E& r, const E& h, double rd, double hd,
+              Enclosure* enc) {
+  int best = -1;
+  VertexDistance vd;
+  for (int k = 0; k < 3; ++k) {
+    const VertexDistance o = vertexDistance(v[k], r, h, rd);
+    if (!o.ok) return;
+    if (best < 0 || o.dist < vd.dist) {
+      best = k;
+      vd = o;
+    }
+  }
+  const E(&vb)[3] = v[best];
+  // W = v - P_C(v), as double-words: (0, 0, side ez) over a cap, (v_x,
+  // v_y, 0) beside the barrel, (er v_x / rho, er v_y / rho, side ez)
+  // beyond a rim (any positive multiple of the direction will do).
+  DD w[3] = {DD(0), DD(0), DD(0)};
+  if (vd.beside) {
+    const DD k = vd.beyond ? vd.er / vd.rho : DD(1);
+    w[0] = toDD(vb[0]) * k;
+    w[1] = toDD(vb[1]) * k;
+  }
+  if (vd.beyond) w[2] = vd.side < 0 ? -vd.ez : vd.ez;
+  const E W[3] = {fromDD(w[0]), fromDD(w[1]), fromDD(w[2])};
+  // B = min_i W.v_i - h |W_z|, exact.
+  E B;
+  for (int k = 0; k < 3; ++k) {
+    const E p = (W[0] * v[k][0] + W[1] * v[k][1] + W[2] * v[k][2]).compressed();
+    if (!p.ok()) return;
+    if (k == 0 || (p - B).sign() < 0) B = p;
+  }
+  B = (B - h * absE(W[2])).compressed();
+  const bool lower = B.ok() && B.sign() > 0;
+  const DD wz2 = w[2] * w[2];
+  if (lower && !vd.beside) {
+    enc->addLower(downTwo(double(toDD(B) / sqrt(wz2))));  // |W| = |W_z|
+  } else if (lower) {
+    const E Q = sq(W[0]) + sq(W[1]);
+    const E num = sq(B) - sq(r) * Q;
+    if (Q.ok() && num.ok() && num.sign() > 0) {
+      const DD q = toDD(Q);
+      const DD n = toDD(num) / (toDD(B) + DD(rd) * sqrt(q));
+      enc->addLower(downTwo(double(n / sqrt(q + wz2))));
+    }
+  }
+  if (!enc->addUpper(vd.dist)) return;
+  enc->ok = true;
+  enc->vertex = best;
+  for (int i = 0; i < 3; ++i) enc->p[i] = enc->q[i] = double(toDD(vb[i]));
+  if (vd.beside) {
+    const double s = rd / double(vd.rho);
+    enc->q[0] *= s;
+    enc->q[1] *= s;
+  }
+  if (vd.beyond) enc->q[2] = vd.side * hd;
+}
+
+/// Edge k beside the barrel: its line's closest approach to the axis in
+/// the xy-projection, at s* = -(a_xy . d_xy) / |d_xy|^2 (d = b - a), is
+/// rho* = |a_x d_y - a_y d_x| / |d_xy|. If s* is in [0, 1] and p(s*) in
+/// the slab |z| <= h, p(s*) is a point of T at distance rho* - r = U from
+/// C (beside the barrel: rho* > r). The horizontal W = sign (d_y, -d_x, 0)
+/// is exactly orthogonal to the edge, and W.a = W.b = |a_x d_y - a_y
+/// d_x|: its separating plane gives L = (min_i W.v_i - r |d_xy|) / |d_xy|,
+/// equal to U when the third vertex is not nearer along W (the edge is
+/// then the nearest feature). Both as exact numerators over positive
+/// denominators: U = (c^2 - r^2 |d_xy|^2) / (|d_xy| (|c| + r |d_xy|)), c
+/// = a_x d_y - a_y d_x; L the same with min_i W.v_i for |c|.
+void besideBarrel(const E (&v)[3][3], int k, const E& r, const E& h, double rd,
+                  Enclosure* enc) {
+  static constexpr int kA[3] = {0, 1, 0}, kB[3] = {1, 2, 2}, kC[3] = {2, 0, 1};
+  const E(&a)[3] = v[kA[k]];
+  const E(&b)[3] = v[kB[k]];
+  const E(&c)[3] = v[kC[k]];
+  const E d[3] = {(b[0] - a[0]).compressed(), (b[1] - a[1]).compressed(),
+                  (b[2] - a[2]).compressed()};
+  const E dxy2 = (sq(d[0]) + sq(d[1])).compressed();
+  if (!dxy2.ok() || dxy2.sign() <= 0) return;
+  const E dot = (a[0] * d[0] + a[1] * d[1]).compressed();
+  // s* in [0, 1]: -dot in [0, |d_xy|^2].
+  if (!dot.ok() || dot.sign() > 0 || (dxy2 + dot).sign() < 0) return;
+  // |z(s*)| <= h: |a_z |d_xy|^2 - dot d_z| <= h |d_xy|^2.
+  const E zn = (a[2] * dxy2 - dot * d[2]).compressed();
+  const E hd2 = (h * dxy2).compressed();
+  if (!zn.ok() || !hd2.ok() || (hd2 - zn).sign() < 0 || (hd2 + zn).sign() < 0)
+    return;
+  const E cr = (a[0] * d[1] - a[1] * d[0]).compressed();
+  const E r2d = (sq(r) * dxy2).compressed();
+  const E num = (sq(cr) - r2d).compressed();
+  if (!cr.ok() || !r2d.ok() || !num.ok() || num.sign() <= 0) return;
+  const DD len = sqrt(toDD(dxy2));
+  const DD rlen = DD(rd) * len;
+  // L: W = sign(c) (d_y, -d_x, 0); the third vertex's W.c_v.
+  const E cc = (c[0] * d[1] - c[1] * d[0]).compressed();
+  const E acr = absE(cr);
+  const E wc = cr.sign() < 0 ? -cc : cc;
+  const E m = (wc - acr).sign() < 0 ? wc : acr;
+  if (m.ok() && m.sign() > 0) {
+    const E lnum = (sq(m) - r2d).compressed();
+    if (lnum.ok() && lnum.sign() > 0)
+      enc->addLower(downTwo(double(toDD(lnum) / (len * (toDD(m) + rlen)))));
+  }
+  const DD U = toDD(num) / (len * (toDD(acr) + rlen));
+  if (!enc->addUpper(U)) return;
+  enc->ok = true;
+  enc->vertex = -1;
+  // p = a + s* d, q = its projection onto the barrel (in double).
+  const DD s = -toDD(dot) / toDD(dxy2);
+  double rho2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    enc->p[i] = double(toDD(a[i]) + s * toDD(d[i]));
+    if (i < 2) rho2 += enc->p[i] * enc->p[i];
+  }
+  const double f = rho2 > 0 ? rd / std::sqrt(rho2) : 1.0;
+  enc->q[0] = enc->p[0] * f;
+  enc->q[1] = enc->p[1] * f;
+  enc->q[2] = enc->p[2];
+}
+
 }  // namespace
 
-void tightenAtVertex(const Cylinder<double>& cyl, const Pose<double>& pose,
-                     const Triangle<double>& tri, DistanceResult<double>* out) {
+void tightenTiny(const Cylinder<double>& cyl, const Pose<double>& pose,
+                 const Triangle<double>& tri, DistanceResult<double>* out) {
   // The range in which every expansion below stays exact and every
   // double-word operation relative (squares of squares of lengths up to
   // 2^120, distances far above the underflow threshold): outside it the
@@ -141,84 +285,28 @@ void tightenAtVertex(const Cylinder<double>& cyl, const Pose<double>& pose,
     }
   }
   const E r(cyl.radius), h(hd);
-
-  // The vertex nearest to C (by its double-word distance).
-  int best = -1;
-  VertexDistance vd;
-  for (int k = 0; k < 3; ++k) {
-    const VertexDistance o = vertexDistance(v[k], r, h, cyl.radius);
-    if (!o.ok) return;
-    if (best < 0 || o.dist < vd.dist) {
-      best = k;
-      vd = o;
-    }
-  }
-  const E(&vb)[3] = v[best];
-
-  // W = v - P_C(v), as double-words: (0, 0, side) over a cap, (v_x, v_y,
-  // 0) beside the barrel, (er v_x / rho, er v_y / rho, side ez) beyond a
-  // rim (any positive multiple of the direction will do).
-  DD w[3] = {DD(0), DD(0), DD(0)};
-  if (vd.beside) {
-    const DD k = vd.beyond ? vd.er / vd.rho : DD(1);
-    w[0] = toDD(vb[0]) * k;
-    w[1] = toDD(vb[1]) * k;
-  }
-  if (vd.beyond) w[2] = vd.side < 0 ? -vd.ez : vd.ez;
-  const E W[3] = {fromDD(w[0]), fromDD(w[1]), fromDD(w[2])};
-
-  // B = min_i W.v_i - h |W_z|, exact.
-  E B;
-  for (int k = 0; k < 3; ++k) {
-    const E p = (W[0] * v[k][0] + W[1] * v[k][1] + W[2] * v[k][2]).compressed();
-    if (!p.ok()) return;
-    if (k == 0 || (p - B).sign() < 0) B = p;
-  }
-  B = (B - h * absE(W[2])).compressed();
-  if (!B.ok() || B.sign() <= 0) return;
-  const DD wz2 = w[2] * w[2];
-  DD L;
-  if (!vd.beside) {
-    L = toDD(B) / sqrt(wz2);  // W = (0, 0, +-ez): |W| = |W_z|
-  } else {
-    const E Q = sq(W[0]) + sq(W[1]);
-    const E num = sq(B) - sq(r) * Q;
-    if (!Q.ok() || !num.ok() || num.sign() <= 0) return;
-    const DD q = toDD(Q);
-    const DD n = toDD(num) / (toDD(B) + DD(cyl.radius) * sqrt(q));
-    L = n / sqrt(q + wz2);
-  }
-  // The vertex's distance U is the answer when the vertex is the nearest
-  // point (then L meets it to a second-order term): U rounded, with the
-  // certified interval [L, U] around it.
-  const double U = double(vd.dist);
-  const double U_hi = upTwo(U);
-  const double L_lo = downTwo(double(L));
+  Enclosure best;
+  atVertex(v, r, h, cyl.radius, hd, &best);
+  for (int k = 0; k < 3; ++k) besideBarrel(v, k, r, h, cyl.radius, &best);
+  if (!best.ok) return;
   const double dbl_min = std::numeric_limits<double>::min();
-  if (!(L_lo >= dbl_min && L_lo <= U_hi)) return;
-  const double d = U;
-  const double eb = std::fmax(U_hi - d, d - L_lo) * (1 + 0x1p-50);
+  if (!(best.lo >= dbl_min && best.lo <= best.hi)) return;
+  const double d = best.est;
+  const double eb = std::fmax(best.hi - d, d - best.lo) * (1 + 0x1p-50);
   if (!(eb < out->error_bound)) return;
-
-  // The nearest pair: the vertex (the world vertex itself) and its
-  // projection onto C, mapped back as x = R q + t.
-  const double yv[3] = {double(toDD(vb[0])), double(toDD(vb[1])),
-                        double(toDD(vb[2]))};
-  double q[3] = {yv[0], yv[1], yv[2]};
-  if (vd.beside) {
-    const double s = cyl.radius / double(vd.rho);
-    q[0] *= s;
-    q[1] *= s;
-  }
-  if (vd.beyond) q[2] = vd.side * hd;
-  double qw[3];
-  for (int i = 0; i < 3; ++i)
-    qw[i] =
-        pose.R[i][0] * q[0] + pose.R[i][1] * q[1] + pose.R[i][2] * q[2] + t[i];
+  // The nearest pair, mapped back as x = R y + t (a vertex: the world
+  // vertex itself).
+  auto toWorld = [&](const double(&y)[3]) {
+    double w[3];
+    for (int i = 0; i < 3; ++i)
+      w[i] = pose.R[i][0] * y[0] + pose.R[i][1] * y[1] + pose.R[i][2] * y[2] +
+             t[i];
+    return Vec3<double>{w[0], w[1], w[2]};
+  };
   out->distance = d;
   out->error_bound = eb;
-  out->point_on_triangle = *x[best];
-  out->point_on_cylinder = {qw[0], qw[1], qw[2]};
+  out->point_on_triangle = best.vertex >= 0 ? *x[best.vertex] : toWorld(best.p);
+  out->point_on_cylinder = toWorld(best.q);
 }
 
 }  // namespace tricyl::detail::dist

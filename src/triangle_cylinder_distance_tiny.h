@@ -19,7 +19,7 @@ namespace tricyl::detail::dist {
 /// point is on an edge or the face, an expansion fell outside the exact
 /// range, or the new bound is not narrower). Inputs: valid and finite,
 /// as tricyl::tryDistance has already checked.
-void tightenAtVertex(const Cylinder<double>& cyl, const Pose<double>& pose,
+void tightenTiny(const Cylinder<double>& cyl, const Pose<double>& pose,
                      const Triangle<double>& tri, DistanceResult<double>* out);
 
 }  // namespace tricyl::detail::dist
