@@ -248,6 +248,92 @@ void besideBarrel(const E (&v)[3][3], int k, const E& r, const E& h, double rd,
   enc->q[2] = enc->p[2];
 }
 
+/// Whether the xy-projection of the segment (a, b) meets the disk of
+/// radius r (exact), and then its point nearest to the axis (in double,
+/// *p_xy).
+bool segmentMeetsDisk(const E (&a)[3], const E (&b)[3], const E& r2,
+                      double p_xy[2]) {
+  const E d[2] = {(b[0] - a[0]).compressed(), (b[1] - a[1]).compressed()};
+  const E dd = (sq(d[0]) + sq(d[1])).compressed();
+  const E dot = (a[0] * d[0] + a[1] * d[1]).compressed();
+  if (!dd.ok() || !dot.ok()) return false;
+  double s = 0;
+  bool meets;
+  if (dd.sign() > 0 && dot.sign() < 0 && (dd + dot).sign() > 0) {
+    // The closest approach inside: rho*^2 = c^2 / |d|^2 <= r^2.
+    const E c = (a[0] * d[1] - a[1] * d[0]).compressed();
+    const E g = (r2 * dd - sq(c)).compressed();
+    meets = g.ok() && g.sign() >= 0;
+    s = double(-toDD(dot) / toDD(dd));
+  } else {  // an end: a (s = 0) unless b is nearer
+    const E ga = (r2 - sq(a[0]) - sq(a[1])).compressed();
+    const E gb = (r2 - sq(b[0]) - sq(b[1])).compressed();
+    if (!ga.ok() || !gb.ok()) return false;
+    meets = ga.sign() >= 0 || gb.sign() >= 0;
+    s = ga.sign() >= 0 ? 0 : 1;
+  }
+  for (int i = 0; i < 2; ++i)
+    p_xy[i] = double(toDD(a[i]) + DD(s) * toDD(b[i] - a[i]));
+  return meets;
+}
+
+/// The triangle's lowest points over a cap: W = side e_z gives L = min_i
+/// side z_i - h (exact). When two or three vertices attain that minimum
+/// exactly (an edge or the face parallel to the cap) and their segment or
+/// triangle reaches over the cap's disk in the xy-projection (exact
+/// tests), a point at that height over the disk is at distance L: U = L.
+/// (One vertex alone over the disk is atVertex's case.)
+void overCap(const E (&v)[3][3], const E& r, const E& h, double hd,
+             Enclosure* enc) {
+  for (const int side : {1, -1}) {
+    const E z[3] = {side > 0 ? v[0][2] : -v[0][2],
+                    side > 0 ? v[1][2] : -v[1][2],
+                    side > 0 ? v[2][2] : -v[2][2]};
+    int lo = 0;
+    for (int k = 1; k < 3; ++k)
+      if ((z[k] - z[lo]).sign() < 0) lo = k;
+    const E m = (z[lo] - h).compressed();
+    if (!m.ok() || m.sign() <= 0) continue;
+    const DD md = toDD(m);
+    enc->addLower(downTwo(double(md)));
+    int at[3], n = 0;
+    for (int k = 0; k < 3; ++k)
+      if ((z[k] - z[lo]).sign() == 0) at[n++] = k;
+    if (n < 2) return;
+    const E r2 = sq(r);
+    double p_xy[2];
+    bool meets = false;
+    if (n == 3) {
+      // The origin inside the projected triangle: the three orientations
+      // (v_i x v_j)_z of one sign (or zero).
+      int pos = 0, neg = 0;
+      for (int k = 0; k < 3; ++k) {
+        const E(&a)[3] = v[k];
+        const E(&b)[3] = v[(k + 1) % 3];
+        const int sg = (a[0] * b[1] - a[1] * b[0]).sign();
+        pos += sg > 0;
+        neg += sg < 0;
+      }
+      if (pos == 0 || neg == 0) {
+        meets = true;
+        p_xy[0] = p_xy[1] = 0;
+      }
+      for (int k = 0; k < 3 && !meets; ++k)
+        meets = segmentMeetsDisk(v[k], v[(k + 1) % 3], r2, p_xy);
+    } else {
+      meets = segmentMeetsDisk(v[at[0]], v[at[1]], r2, p_xy);
+    }
+    if (!meets || !enc->addUpper(md)) return;
+    enc->ok = true;
+    enc->vertex = -1;
+    enc->p[0] = enc->q[0] = p_xy[0];
+    enc->p[1] = enc->q[1] = p_xy[1];
+    enc->p[2] = double(toDD(v[lo][2]));
+    enc->q[2] = side * hd;
+    return;
+  }
+}
+
 }  // namespace
 
 void tightenTiny(const Cylinder<double>& cyl, const Pose<double>& pose,
@@ -288,6 +374,7 @@ void tightenTiny(const Cylinder<double>& cyl, const Pose<double>& pose,
   Enclosure best;
   atVertex(v, r, h, cyl.radius, hd, &best);
   for (int k = 0; k < 3; ++k) besideBarrel(v, k, r, h, cyl.radius, &best);
+  overCap(v, r, h, hd, &best);
   if (!best.ok) return;
   const double dbl_min = std::numeric_limits<double>::min();
   if (!(best.lo >= dbl_min && best.lo <= best.hi)) return;
