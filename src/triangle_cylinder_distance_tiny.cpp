@@ -334,6 +334,83 @@ void overCap(const E (&v)[3][3], const E& r, const E& h, double hd,
   }
 }
 
+/// The face in a vertical plane (normal n = e1 x e2 with n_z = 0 exactly)
+/// beside the barrel: W = sign(n.v_0) n is exactly orthogonal to the face,
+/// W.v_i = |n.v_0| = B for every vertex, and L = (B - r |n|) / |n| as the
+/// edge's (exact numerator B^2 - r^2 |n|^2). The foot f = (n.v_0) n /
+/// |n|^2 of the axis on the plane, at any height, is at distance |f| - r
+/// = L from the barrel; the vertical line through it lies in the plane and
+/// crosses T where u = (-n_y, n_x, 0).y vanishes (u(f) = 0): if T meets
+/// that line at a height within [-h, h] (exact tests on the crossings of
+/// the edges, z = (u_j z_i - u_i z_j) / (u_j - u_i)), U = L.
+void faceBesideBarrel(const E (&v)[3][3], const E& r, const E& h, double rd,
+                      double hd, Enclosure* enc) {
+  E e1[3], e2[3];
+  for (int i = 0; i < 3; ++i) {
+    e1[i] = (v[1][i] - v[0][i]).compressed();
+    e2[i] = (v[2][i] - v[0][i]).compressed();
+  }
+  const E nz = e1[0] * e2[1] - e1[1] * e2[0];
+  if (!nz.ok() || nz.sign() != 0) return;
+  const E nx = (e1[1] * e2[2] - e1[2] * e2[1]).compressed();
+  const E ny = (e1[2] * e2[0] - e1[0] * e2[2]).compressed();
+  const E n2 = (sq(nx) + sq(ny)).compressed();
+  const E b0 = (nx * v[0][0] + ny * v[0][1]).compressed();
+  if (!n2.ok() || n2.sign() <= 0 || !b0.ok()) return;
+  const E B = absE(b0);
+  const E num = (sq(B) - sq(r) * n2).compressed();
+  if (!num.ok() || num.sign() <= 0) return;
+  const DD len = sqrt(toDD(n2));
+  const DD L = toDD(num) / (len * (toDD(B) + DD(rd) * len));
+  enc->addLower(downTwo(double(L)));
+  // The crossings of the line u = 0 by T's edges: below / above [-h, h].
+  E u[3];
+  for (int k = 0; k < 3; ++k) {
+    u[k] = (ny * v[k][0] - nx * v[k][1]).compressed();
+    if (!u[k].ok()) return;
+  }
+  bool any = false, le_h = false, ge_mh = false;
+  double zmin = 0, zmax = 0;
+  auto crossing = [&](double z) {
+    zmin = any ? std::fmin(zmin, z) : z;
+    zmax = any ? std::fmax(zmax, z) : z;
+    any = true;
+  };
+  for (int k = 0; k < 3; ++k) {
+    const int i = k, j = (k + 1) % 3;
+    const int si = u[i].sign(), sj = u[j].sign();
+    if (si == 0) {  // the vertex is on the line
+      le_h |= (v[i][2] - h).sign() <= 0;
+      ge_mh |= (v[i][2] + h).sign() >= 0;
+      crossing(double(toDD(v[i][2])));
+    }
+    if (si * sj >= 0) continue;
+    // z = (u_j z_i - u_i z_j) / (u_j - u_i), the denominator of sign sj.
+    const E zn = (u[j] * v[i][2] - u[i] * v[j][2]).compressed();
+    const E den = (u[j] - u[i]).compressed();
+    const E hd_ = (h * den).compressed();
+    if (!zn.ok() || !hd_.ok()) return;
+    le_h |= (zn - hd_).sign() * sj <= 0;
+    ge_mh |= (zn + hd_).sign() * sj >= 0;
+    crossing(double(toDD(zn) / toDD(den)));
+  }
+  if (!any || !le_h || !ge_mh || !enc->addUpper(L)) return;
+  enc->ok = true;
+  enc->vertex = -1;
+  const DD f = toDD(b0) / toDD(n2);
+  const double fx = double(f * toDD(nx)), fy = double(f * toDD(ny));
+  const double z =
+      std::fmin(std::fmax(0.0, std::fmax(zmin, -hd)), std::fmin(zmax, hd));
+  const double rho = std::sqrt(fx * fx + fy * fy);
+  const double sc = rho > 0 ? rd / rho : 1.0;
+  enc->p[0] = fx;
+  enc->p[1] = fy;
+  enc->p[2] = z;
+  enc->q[0] = fx * sc;
+  enc->q[1] = fy * sc;
+  enc->q[2] = z;
+}
+
 }  // namespace
 
 void tightenTiny(const Cylinder<double>& cyl, const Pose<double>& pose,
@@ -375,6 +452,7 @@ void tightenTiny(const Cylinder<double>& cyl, const Pose<double>& pose,
   atVertex(v, r, h, cyl.radius, hd, &best);
   for (int k = 0; k < 3; ++k) besideBarrel(v, k, r, h, cyl.radius, &best);
   overCap(v, r, h, hd, &best);
+  faceBesideBarrel(v, r, h, cyl.radius, hd, &best);
   if (!best.ok) return;
   const double dbl_min = std::numeric_limits<double>::min();
   if (!(best.lo >= dbl_min && best.lo <= best.hi)) return;
