@@ -18,7 +18,6 @@
 #include "dd.h"
 #include "eft.h"
 #include "triangle_cylinder_distance_impl.h"
-#include "triangle_cylinder_distance_tiny.h"
 #include "tricyl/triangle_cylinder.h"
 
 // `flatten` (inline the whole query into one function) except under the
@@ -1403,27 +1402,12 @@ distanceDoubleGeneric(const Cylinder<double>& cyl, const Pose<double>& pose,
   return distanceDouble<DD>(cyl, pose, tri, out);
 }
 
-// Tiny distances (docs/distance.md, section 6): a bound wider than 2^-50 of
-// the distance (the double-word allowance) is tightened where the nearest
-// point is a vertex (out of line, rare). Both kernels' results go through it.
-Answer tightened(Answer a, const Cylinder<double>& cyl,
-                 const Pose<double>& pose, const Triangle<double>& tri,
-                 DistanceResult<double>* out) {
-  if (a == Answer::kDisjoint && out != nullptr &&
-      out->error_bound > 0x1p-50 * out->distance)
-    detail::dist::tightenTiny(cyl, pose, tri, out);
-  return a;
-}
-
 Answer distanceAny(const Cylinder<double>& cyl, const Pose<double>& pose,
                    const Triangle<double>& tri, DistanceResult<double>* out) {
 #if TRICYL_DIST_FMA_DISPATCH
-  if (detail::fmaAtRunTime())
-    return tightened(distanceDoubleFma(cyl, pose, tri, out), cyl, pose, tri,
-                     out);
+  if (detail::fmaAtRunTime()) return distanceDoubleFma(cyl, pose, tri, out);
 #endif
-  return tightened(distanceDoubleGeneric(cyl, pose, tri, out), cyl, pose, tri,
-                   out);
+  return distanceDoubleGeneric(cyl, pose, tri, out);
 }
 
 Vec3<double> widen(const Vec3<float>& v) {
@@ -1502,8 +1486,7 @@ Answer tryDistancePortable(const Cylinder<S>& cylinder, const Pose<S>& pose,
                            const Triangle<S>& triangle,
                            DistanceResult<S>* out) noexcept {
   static_assert(std::is_same_v<S, double>);
-  return tightened(distanceDoubleGeneric(cylinder, pose, triangle, out),
-                   cylinder, pose, triangle, out);
+  return distanceDoubleGeneric(cylinder, pose, triangle, out);
 }
 template Answer tryDistancePortable(const Cylinder<double>&,
                                     const Pose<double>&,

@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The distance's tightening step for tiny distances at a vertex
-// (triangle_cylinder_distance_tiny.h; derivation: docs/distance.md,
-// section 6, "Tiny distances at a vertex").
+// tricyl::tightenDistance: certified bounds of a few ulps for tiny
+// distances (include/tricyl/triangle_cylinder_distance.h; derivation:
+// docs/distance.md, section 6.1).
 //
 // The double-word refinement certifies its result to about 2^-95 of the
 // problem's size M (the pulled-back vertices and every operation carry an
 // absolute error of that order), which is wider than 8 ulps of the distance
 // d below d of about 2^-45 M. When the nearest point is a vertex v of the
-// triangle, both bounds of a certificate can be made relative to d itself:
+// triangle, both bounds of a certificate can be made relative to d itself
+// (the other closed-form candidates below, an edge beside the barrel, an
+// edge or the face parallel to a cap and the face in a vertical plane
+// beside the barrel, the same way):
 //
 // * v is formed exactly: each coordinate sum_j R_ji (x_j - t_j) is a
 //   floating-point expansion (x_j - t_j by TwoSum, the products by
@@ -129,11 +132,12 @@ struct Enclosure {
 
 /// The nearest vertex: U its distance, L its separating plane (see the
 /// top of this file).
-void atVertex(const E (&v)[3][3], const E& r, const E& h, double rd, double hd,
-              Enclosure* enc) {
+void atVertex(const E (&v)[3][3], const bool (&near)[3], const E& r, const E& h,
+              double rd, double hd, Enclosure* enc) {
   int best = -1;
   VertexDistance vd;
   for (int k = 0; k < 3; ++k) {
+    if (!near[k]) continue;
     const VertexDistance o = vertexDistance(v[k], r, h, rd);
     if (!o.ok) return;
     if (best < 0 || o.dist < vd.dist) {
@@ -141,6 +145,7 @@ void atVertex(const E (&v)[3][3], const E& r, const E& h, double rd, double hd,
       vd = o;
     }
   }
+  if (best < 0) return;
   const E(&vb)[3] = v[best];
   // W = v - P_C(v), as double-words: (0, 0, side ez) over a cap, (v_x,
   // v_y, 0) beside the barrel, (er v_x / rho, er v_y / rho, side ez)
@@ -411,6 +416,75 @@ void faceBesideBarrel(const E (&v)[3][3], const E& r, const E& h, double rd,
   enc->q[2] = z;
 }
 
+/// The screen in double that keeps the exact step cheap: a candidate is
+/// re-evaluated only if its distance, computed in double from the rounded
+/// pulled-back vertices y (each within a few ulps of M, the problem's
+/// magnitude, of the exact one), can be within the kernel's interval, up to
+/// tol = d0 + error_bound + 2^-40 M (far more than those roundings: a
+/// screened-out candidate cannot be the nearest, and the screen only ever
+/// skips work, never certifies anything).
+struct Screen {
+  bool vertex[3] = {false, false, false};
+  bool edge[3] = {false, false, false};
+  bool cap = false, face = false;
+  bool any() const {
+    return vertex[0] || vertex[1] || vertex[2] || edge[0] || edge[1] ||
+           edge[2] || cap || face;
+  }
+};
+
+Screen screen(const double (&y)[3][3], double r, double h, double d_hi) {
+  Screen sc;
+  double M = r + h;
+  for (const auto& p : y)
+    M = std::fmax(M, std::fabs(p[0]) + std::fabs(p[1]) + std::fabs(p[2]));
+  const double slack = 0x1p-40 * M;
+  const double tol = d_hi + slack;
+  for (int k = 0; k < 3; ++k) {
+    const double rho = std::sqrt(y[k][0] * y[k][0] + y[k][1] * y[k][1]);
+    const double er = std::fmax(rho - r, 0.0);
+    const double ez = std::fmax(std::fabs(y[k][2]) - h, 0.0);
+    sc.vertex[k] = std::sqrt(er * er + ez * ez) <= tol;
+  }
+  static constexpr int kA[3] = {0, 1, 0}, kB[3] = {1, 2, 2};
+  for (int k = 0; k < 3; ++k) {
+    const double* a = y[kA[k]];
+    const double* b = y[kB[k]];
+    const double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double dd = d[0] * d[0] + d[1] * d[1];
+    if (!(dd > 0x1p-200 * M * M)) continue;
+    const double len = std::sqrt(dd);
+    const double s = -(a[0] * d[0] + a[1] * d[1]) / dd;
+    const double ds = slack / len;  // the parameter's slack
+    if (s < -ds || s > 1 + ds) continue;
+    if (std::fabs(a[2] + s * d[2]) > h + slack) continue;
+    sc.edge[k] = std::fabs(a[0] * d[1] - a[1] * d[0]) / len - r <= tol;
+  }
+  // Two or three vertices at the same lowest height over a cap.
+  for (const double side : {1.0, -1.0}) {
+    double z[3];
+    for (int k = 0; k < 3; ++k) z[k] = side * y[k][2];
+    const double lo = std::fmin(z[0], std::fmin(z[1], z[2]));
+    int at = 0;
+    for (int k = 0; k < 3; ++k) at += z[k] - lo <= slack;
+    sc.cap = sc.cap || (at >= 2 && lo - h <= tol && lo - h >= -slack);
+  }
+  // A face in a vertical plane at about the distance from the axis.
+  const double e1[3] = {y[1][0] - y[0][0], y[1][1] - y[0][1],
+                        y[1][2] - y[0][2]};
+  const double e2[3] = {y[2][0] - y[0][0], y[2][1] - y[0][1],
+                        y[2][2] - y[0][2]};
+  const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1],
+                       e1[2] * e2[0] - e1[0] * e2[2],
+                       e1[0] * e2[1] - e1[1] * e2[0]};
+  const double nxy = std::sqrt(n[0] * n[0] + n[1] * n[1]);
+  if (nxy > 0 && std::fabs(n[2]) <= 0x1p-40 * nxy) {
+    const double plane = std::fabs(n[0] * y[0][0] + n[1] * y[0][1]) / nxy;
+    sc.face = plane - r <= tol;
+  }
+  return sc;
+}
+
 }  // namespace
 
 void tightenTiny(const Cylinder<double>& cyl, const Pose<double>& pose,
@@ -434,9 +508,20 @@ void tightenTiny(const Cylinder<double>& cyl, const Pose<double>& pose,
   const double hd = 0.5 * cyl.lz;
   if (hd * 2 != cyl.lz) return;  // (a subnormal lz: h not exact)
 
+  const double t[3] = {pose.t.x, pose.t.y, pose.t.z};
+  // The screen (in double): which candidates can be the nearest.
+  double y[3][3];
+  for (int k = 0; k < 3; ++k) {
+    const double dx[3] = {x[k]->x - t[0], x[k]->y - t[1], x[k]->z - t[2]};
+    for (int i = 0; i < 3; ++i)
+      y[k][i] =
+          pose.R[0][i] * dx[0] + pose.R[1][i] * dx[1] + pose.R[2][i] * dx[2];
+  }
+  const Screen sc = screen(y, cyl.radius, hd, d0 + out->error_bound);
+  if (!sc.any()) return;
+
   // The pulled-back vertices, exactly.
   E v[3][3];
-  const double t[3] = {pose.t.x, pose.t.y, pose.t.z};
   for (int k = 0; k < 3; ++k) {
     const double xk[3] = {x[k]->x, x[k]->y, x[k]->z};
     for (int i = 0; i < 3; ++i) {
@@ -449,10 +534,11 @@ void tightenTiny(const Cylinder<double>& cyl, const Pose<double>& pose,
   }
   const E r(cyl.radius), h(hd);
   Enclosure best;
-  atVertex(v, r, h, cyl.radius, hd, &best);
-  for (int k = 0; k < 3; ++k) besideBarrel(v, k, r, h, cyl.radius, &best);
-  overCap(v, r, h, hd, &best);
-  faceBesideBarrel(v, r, h, cyl.radius, hd, &best);
+  atVertex(v, sc.vertex, r, h, cyl.radius, hd, &best);
+  for (int k = 0; k < 3; ++k)
+    if (sc.edge[k]) besideBarrel(v, k, r, h, cyl.radius, &best);
+  if (sc.cap) overCap(v, r, h, hd, &best);
+  if (sc.face) faceBesideBarrel(v, r, h, cyl.radius, hd, &best);
   if (!best.ok) return;
   const double dbl_min = std::numeric_limits<double>::min();
   if (!(best.lo >= dbl_min && best.lo <= best.hi)) return;
@@ -461,11 +547,11 @@ void tightenTiny(const Cylinder<double>& cyl, const Pose<double>& pose,
   if (!(eb < out->error_bound)) return;
   // The nearest pair, mapped back as x = R y + t (a vertex: the world
   // vertex itself).
-  auto toWorld = [&](const double(&y)[3]) {
+  auto toWorld = [&](const double(&yl)[3]) {
     double w[3];
     for (int i = 0; i < 3; ++i)
-      w[i] = pose.R[i][0] * y[0] + pose.R[i][1] * y[1] + pose.R[i][2] * y[2] +
-             t[i];
+      w[i] = pose.R[i][0] * yl[0] + pose.R[i][1] * yl[1] +
+             pose.R[i][2] * yl[2] + t[i];
     return Vec3<double>{w[0], w[1], w[2]};
   };
   out->distance = d;
@@ -475,3 +561,19 @@ void tightenTiny(const Cylinder<double>& cyl, const Pose<double>& pose,
 }
 
 }  // namespace tricyl::detail::dist
+
+namespace tricyl {
+
+bool tightenDistance(const Cylinder<double>& cylinder, const Pose<double>& pose,
+                     const Triangle<double>& triangle,
+                     DistanceResult<double>* result) noexcept {
+  if (result == nullptr || !(result->distance > 0) ||
+      !(result->error_bound > 0x1p-50 * result->distance) ||
+      !(cylinder.radius >= 0 && cylinder.lz >= 0))
+    return false;  // (NaN and Inf fail the range checks of tightenTiny)
+  const double before = result->error_bound;
+  detail::dist::tightenTiny(cylinder, pose, triangle, result);
+  return result->error_bound < before;
+}
+
+}  // namespace tricyl

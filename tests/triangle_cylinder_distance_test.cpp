@@ -303,6 +303,8 @@ struct Tally {
   long n = 0, zero = 0, wrong_zero = 0, over8 = 0, bound_violated = 0,
        untight = 0, escalate_bound = 0;
   long bound_over8 = 0;  // error_bound wider than 8 ulps (informational)
+  long tight_over8 = 0;  // ... still, after tightenDistance
+  long tightened = 0;    // results tightenDistance replaced
   long tiny = 0;         // distances below 1e-15 of the problem's size
   double tiny_max_ulps = 0;
   double max_ulps = 0, max_pt = 0;
@@ -312,10 +314,11 @@ struct Tally {
         "ulps %ld, bound violated %ld, sign disagreements %ld, oracle "
         "not tight %ld, point off its set <= %.3g ulps of the "
         "coordinates/size, "
-        "error_bound > 8 ulps on %ld; below 1e-15 of the size: %ld cases, max "
-        "error %.3g ulps\n",
+        "error_bound > 8 ulps on %ld (after tightenDistance: %ld, %ld "
+        "tightened); below 1e-15 of the size: %ld cases, max error %.3g "
+        "ulps\n",
         name, n, zero, max_ulps, over8, bound_violated, wrong_zero, untight,
-        max_pt, bound_over8, tiny, tiny_max_ulps);
+        max_pt, bound_over8, tight_over8, tightened, tiny, tiny_max_ulps);
   }
 };
 
@@ -357,6 +360,24 @@ void judge(const scenes::TriCase& k, Tally* t) {
                   << " oracle " << e.mid_hi;
   }
   if (!e.intersect && r.error_bound > 8 * ulpOf(r.distance)) ++t->bound_over8;
+  // tightenDistance: certified on its own (checked like r's bound below).
+  DistanceResult<double> q = r;
+  if (tightenDistance(k.cyl, k.pose, k.tri, &q)) {
+    ++t->tightened;
+    if (q.distance - q.error_bound > e.hi ||
+        q.distance + q.error_bound < e.lo) {
+      ++t->bound_violated;
+      ADD_FAILURE() << "tightened error_bound " << q.error_bound
+                    << " violated: distance " << q.distance << " oracle ["
+                    << e.lo << ", " << e.hi << "]";
+    }
+    if (oracle::ulpsError(e, q.distance) > 8) {
+      ++t->over8;
+      ADD_FAILURE() << "tightened distance " << q.distance << " off by "
+                    << oracle::ulpsError(e, q.distance) << " ulps";
+    }
+  }
+  if (!e.intersect && q.error_bound > 8 * ulpOf(q.distance)) ++t->tight_over8;
   if (r.distance - r.error_bound > e.hi || r.distance + r.error_bound < e.lo) {
     ++t->bound_violated;
     ADD_FAILURE() << "error_bound " << r.error_bound << " violated: distance "
@@ -430,12 +451,13 @@ TEST(TriangleCylinderDistance, SeparationsAgainstOracle) {
 // Reported per kind and decade of distance / size: the error in ulps, and
 // error_bound in ulps of the distance (docs/distance.md, section 6). The
 // bound is certified at every separation (0 violations, asserted), and,
-// each kind being one of those src/triangle_cylinder_distance_tiny.cpp
-// re-evaluates exactly, the distance and its bound are within 8 ulps
-// (asserted: the double-word bound alone was up to 1e17 ulps wide).
+// each kind being one of those tightenDistance re-evaluates exactly, after
+// it the distance and its bound are within 8 ulps (asserted: tryDistance's
+// double-word bound alone is up to 1e17 ulps wide).
 struct TinyKindTally {
   long n = 0, over8 = 0, bound_over8 = 0, violated = 0, wrong_zero = 0;
   double max_ulps = 0, max_bound_ulps = 0;
+  double max_bound_ulps_before = 0;  // tryDistance's own, before tightening
 };
 
 scenes::TriCase tinyCase(scenes::Rng& g, int kind, double* size) {
@@ -505,10 +527,16 @@ TEST(TriangleCylinderDistance, TinySeparationsAgainstOracle) {
     double size = 0;
     const scenes::TriCase k = tinyCase(g, kind, &size);
     SCOPED_TRACE(std::string(kKinds[kind]) + " #" + std::to_string(i));
-    const DistanceResult<double> r = distance(k.cyl, k.pose, k.tri);
+    DistanceResult<double> r = distance(k.cyl, k.pose, k.tri);
+    const DistanceResult<double> before = r;
+    const bool tightened = tightenDistance(k.cyl, k.pose, k.tri, &r);
     const oracle::DistanceEnclosure e =
         oracle::distanceEnclosure(k.cyl, k.pose, k.tri);
     ASSERT_TRUE(e.tight) << e.rel_width;
+    // tryDistance's own bound holds too (it is wide: reported).
+    EXPECT_FALSE(before.distance - before.error_bound > e.hi ||
+                 before.distance + before.error_bound < e.lo);
+    EXPECT_EQ(tightened, r.error_bound < before.error_bound);
     ASSERT_FALSE(e.intersect);
     const int decade =
         std::min(kDecades - 1, int(std::floor(-std::log10(e.hi / size))));
@@ -519,6 +547,8 @@ TEST(TriangleCylinderDistance, TinySeparationsAgainstOracle) {
       ADD_FAILURE() << "distance 0 for a disjoint pair";
       continue;
     }
+    t.max_bound_ulps_before = std::max(
+        t.max_bound_ulps_before, before.error_bound / ulpOf(before.distance));
     const double ulps = oracle::ulpsError(e, r.distance);
     const double bound_ulps = r.error_bound / ulpOf(r.distance);
     t.max_ulps = std::max(t.max_ulps, ulps);
@@ -537,15 +567,15 @@ TEST(TriangleCylinderDistance, TinySeparationsAgainstOracle) {
       const TinyKindTally& t = tally[kind][d];
       if (t.n == 0) continue;
       std::printf(
-          "[ tiny  ] %-13s 1e-%02d..: %4ld cases, max error %8.3g ulps "
-          "(>8: %3ld), error_bound max %9.3g ulps (>8: %3ld), violated "
-          "%ld\n",
+          "[ tiny  ] %-13s 1e-%02d..: %4ld cases, tightened: max error "
+          "%8.3g ulps (>8: %3ld), error_bound max %9.3g ulps (>8: %3ld), "
+          "violated %ld; tryDistance's error_bound max %9.3g ulps\n",
           kKinds[kind], d + 1, t.n, t.max_ulps, t.over8, t.max_bound_ulps,
-          t.bound_over8, t.violated);
+          t.bound_over8, t.violated, t.max_bound_ulps_before);
       EXPECT_EQ(t.violated, 0);
       EXPECT_EQ(t.wrong_zero, 0);
-      // Every kind is one that src/triangle_cylinder_distance_tiny.cpp
-      // certifies exactly: within 8 ulps, and so is the bound.
+      // Every kind is one that tightenDistance certifies exactly: within
+      // 8 ulps, and so is the bound.
       EXPECT_EQ(t.over8, 0) << kKinds[kind];
       EXPECT_EQ(t.bound_over8, 0) << kKinds[kind];
     }
