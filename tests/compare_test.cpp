@@ -553,6 +553,21 @@ TEST(CompareEndToEnd, SmallRunWritesParsableReports) {
       }
     }
     EXPECT_EQ(drows, fams.size() * 4);
+    // tricyl's error_bound holds on every case, before and after
+    // tightenDistance (columns bound_violated, tight_violated).
+    std::istringstream bcsv(slurp(dir + "/distance_bound.csv"));
+    std::getline(bcsv, line);  // header
+    std::size_t brows = 0;
+    while (std::getline(bcsv, line)) {
+      ++brows;
+      std::vector<std::string> f;
+      std::stringstream ls(line);
+      for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+      ASSERT_EQ(f.size(), 9u) << line;
+      EXPECT_EQ(f[6], "0") << line;
+      EXPECT_EQ(f[8], "0") << line;
+    }
+    EXPECT_EQ(brows, fams.size());
     std::istringstream mcsv(slurp(dir + "/margin.csv"));
     std::getline(mcsv, line);
     std::size_t mrows = 0;
