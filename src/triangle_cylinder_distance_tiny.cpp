@@ -470,13 +470,12 @@ Screen screen(const double (&y)[3][3], double r, double h, double d_hi) {
     sc.cap = sc.cap || (at >= 2 && lo - h <= tol && lo - h >= -slack);
   }
   // A face in a vertical plane at about the distance from the axis.
-  const double e1[3] = {y[1][0] - y[0][0], y[1][1] - y[0][1],
-                        y[1][2] - y[0][2]};
-  const double e2[3] = {y[2][0] - y[0][0], y[2][1] - y[0][1],
-                        y[2][2] - y[0][2]};
-  const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1],
-                       e1[2] * e2[0] - e1[0] * e2[2],
-                       e1[0] * e2[1] - e1[1] * e2[0]};
+  double n[3];
+  for (int i = 0; i < 3; ++i) {  // (y1 - y0) x (y2 - y0), component i
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    n[i] = (y[1][j] - y[0][j]) * (y[2][k] - y[0][k]) -
+           (y[1][k] - y[0][k]) * (y[2][j] - y[0][j]);
+  }
   const double nxy = std::sqrt(n[0] * n[0] + n[1] * n[1]);
   if (nxy > 0 && std::fabs(n[2]) <= 0x1p-40 * nxy) {
     const double plane = std::fabs(n[0] * y[0][0] + n[1] * y[0][1]) / nxy;

@@ -104,20 +104,34 @@ void checkContract(const Cylinder<double>& cyl, const Pose<double>& pose,
       << "depth " << est.depth;
 }
 
+struct Scene {
+  Cylinder<double> cyl;
+  Pose<double> pose;
+  Triangle<double> tri;
+};
+
+/// A cylinder of size about 1, a random pose, a triangle in [-1, 1]^3.
+Scene randomScene(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  Scene s;
+  s.cyl = {0.05 + std::fabs(u(rng)), 0.05 + 2 * std::fabs(u(rng))};
+  s.pose = test::randomPose(rng, 0.3);
+  for (V* v : {&s.tri.a, &s.tri.b, &s.tri.c}) {
+    v->x = u(rng);
+    v->y = u(rng);
+    v->z = u(rng);
+  }
+  return s;
+}
+
 TEST(FclContact, RandomScenesSatisfyTheContract) {
   const std::uint64_t seed = test::baseSeed() + 101;
   SCOPED_TRACE(test::seedTrace(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
   long hits = 0;
   const long n = test::scaled(4000);
   for (long k = 0; k < n; ++k) {
-    const Cylinder<double> cyl{0.05 + std::fabs(u(rng)),
-                               0.05 + 2 * std::fabs(u(rng))};
-    const Pose<double> pose = test::randomPose(rng, 0.3);
-    const Triangle<double> tri{{u(rng), u(rng), u(rng)},
-                               {u(rng), u(rng), u(rng)},
-                               {u(rng), u(rng), u(rng)}};
+    const auto [cyl, pose, tri] = randomScene(rng);
     checkContract(cyl, pose, tri, 4);
     hits += tryIntersect(cyl, pose, tri) == Answer::kIntersect;
     if (HasFatalFailure()) return;
@@ -175,15 +189,9 @@ TEST(FclContact, HugeScenesAreTheUnitScenesScaled) {
   const std::uint64_t seed = test::baseSeed() + 107;
   SCOPED_TRACE(test::seedTrace(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
   long hits = 0;
   for (int n = 0; n < 2000; ++n) {
-    const Cylinder<double> cyl{0.05 + std::fabs(u(rng)),
-                               0.05 + 2 * std::fabs(u(rng))};
-    const Pose<double> pose = test::randomPose(rng, 0.3);
-    const Triangle<double> tri{{u(rng), u(rng), u(rng)},
-                               {u(rng), u(rng), u(rng)},
-                               {u(rng), u(rng), u(rng)}};
+    const auto [cyl, pose, tri] = randomScene(rng);
     ContactEstimate<double> unit;
     if (estimateContact(cyl, pose, tri, &unit) != Answer::kIntersect) continue;
     ++hits;
