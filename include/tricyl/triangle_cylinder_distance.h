@@ -129,7 +129,7 @@ extern template Answer tryDistancePortable(const Cylinder<double>&,
 /// true; otherwise (an edge against a rim circle, a tilted face, lengths
 /// above 2^120, a distance below 2^-300, invalid input, or no narrower
 /// bound) leaves it and returns false. The new bound is certified on its
-/// own (it does not rely on *result). Costs some 10-35 µs (expansion
+/// own (it does not rely on *result). Costs some 5-40 µs (expansion
 /// arithmetic), hence not part of tryDistance: on the bench_distance
 /// families it would run on up to a fifth of the queries (near).
 bool tightenDistance(const Cylinder<double>& cylinder, const Pose<double>& pose,
