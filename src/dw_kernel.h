@@ -276,4 +276,75 @@ struct DwKernel {
   }
 };
 
+/// The double-word FILTER (the triangle's stage between the running pass
+/// and DwKernel for rounded poses, src/triangle_cylinder.cpp):
+/// FilterKernel's rules (src/filter.h), a value and a magnitude, with the
+/// value in double word. No running bound and no exact values: a few
+/// operations per step instead of DwKernel's dozen, and a bound about 2^-94
+/// of the magnitude instead of the filter's 2^-47. What it leaves open
+/// (exact ties above all) goes on to DwKernel.
+///
+/// Invariant: |v - E| <= eps m^ and m >= m^ (1 - u)^D, E the exact value, m^
+/// the exact magnitude (the same expression on |leaves|, '-' read as '+'),
+/// D the depth. Leaves: H, r and exact coordinates with eps = 0 and
+/// m = |v|; a double-word coordinate of the frame (dwCoordinate: error <=
+/// e = 2^-100 M + kDwTiny) with m = e 2^100 + |hi| >= |E| (1 - 2^-52),
+/// so eps <= 2^-100 (the kDwTiny part is absolute: below). Steps:
+///   a +- b: dwAdd errs by <= 4u^2 (|a.hi| + |b.hi|), so eps <= max(eps_a,
+///           eps_b) + 4u^2 (1 + eps);
+///   a * b:  |ab - AB| <= |A| eps_b m_b + |B| eps_a m_a + eps_a eps_b m_a m_b,
+///           and dwMul errs by <= 7u^2 |a b|, so eps <= eps_a + eps_b +
+///           eps_a eps_b + 7u^2 (1 + eps_a)(1 + eps_b).
+/// So eps <= d 2^-100 + D 7u^2 (first order) for a polynomial of degree d
+/// in the coordinates and depth D: the triangle's tests have d <= 8 and
+/// D <= 14 (docs/exactness.md), eps <= 2^-97 + 2^-100.2 < 2^-96.5, and
+/// with m's own rounding ((1 - u)^-D < 1 + 2^-48) below 2^-96.4 m. kRel =
+/// 2^-94 leaves a factor 5 of room. Underflow: kDwTiny per leaf and per
+/// step, carried to the root by sibling magnitudes below 2^380 under the
+/// range gate (FilterKernel's argument), stays below 2^-600 = kAbs. The
+/// value's own low part is added to the bound (sign(hi) is certified when
+/// |hi| - |lo| > bound).
+template <bool kFma>
+struct Dwm {
+  DW v;
+  double m;
+};
+template <bool kFma>
+TRICYL_DW_INLINE Dwm<kFma> operator+(const Dwm<kFma>& a, const Dwm<kFma>& b) {
+  return {dwAdd(a.v, b.v), a.m + b.m};
+}
+template <bool kFma>
+TRICYL_DW_INLINE Dwm<kFma> operator-(const Dwm<kFma>& a) {
+  return {dwNeg(a.v), a.m};
+}
+template <bool kFma>
+TRICYL_DW_INLINE Dwm<kFma> operator-(const Dwm<kFma>& a, const Dwm<kFma>& b) {
+  return {dwAdd(a.v, dwNeg(b.v)), a.m + b.m};
+}
+template <bool kFma>
+TRICYL_DW_INLINE Dwm<kFma> operator*(const Dwm<kFma>& a, const Dwm<kFma>& b) {
+  return {dwMulT<kFma>(a.v, b.v), a.m * b.m};
+}
+
+template <bool kFma>
+struct DwFilterKernel {
+  using Num = Dwm<kFma>;
+  static constexpr bool kExact = false;
+  static constexpr double kRel = 0x1p-94;
+  static constexpr double kAbs = 0x1p-600;
+  static TRICYL_DW_INLINE Num lift(double x) {
+    return {{x, 0.0}, std::fabs(x)};
+  }
+  /// A coordinate of the double-word frame (value, bound e): see above.
+  static TRICYL_DW_INLINE Num leaf(const DwRun& c) {
+    return {c.v, c.e * 0x1p100 + std::fabs(c.v.hi)};
+  }
+  static TRICYL_DW_INLINE Sign sign(const Num& a) {
+    const double b = a.m * kRel + kAbs + std::fabs(a.v.lo);
+    if (a.v.hi > b) return Sign::kPos;
+    if (a.v.hi < -b) return Sign::kNeg;
+    return Sign::kUnknown;
+  }
+};
+
 }  // namespace tricyl::detail
