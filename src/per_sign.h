@@ -889,14 +889,17 @@ class PerSign {
       const Fd v = toFd(value);
       const Sign s = shallowSign(v);
       if (s != Sign::kUnknown) return s;
-      // escalate's order: an exact 0 first to the exact-in-double test
-      // (escalate itself), otherwise the a-priori compensated stage, here,
-      // then the stages after it.
-      if (v.v == 0) return p_.escalate(pred, v);
+      // escalate's order: an exact 0 first to the exact-in-double test,
+      // then the a-priori compensated stage (here, on this frame), then the
+      // stages after it.
+      if (v.v == 0) {
+        const Sign sx = p_.exactZero(pred);
+        if (sx != Sign::kUnknown) return sx;
+      }
       if (p_.level_ < 1) p_.level_ = 1;
       const Sign sp = dwPrioriSign(pred(f_), v.m);
       if (sp != Sign::kUnknown) return sp;
-      return p_.template escalate<false>(pred, v);
+      return p_.template escalate<false, false>(pred, v);
     }
     template <class P>
     Sign resolveRunning(const P& pred, const Fp& value) {
@@ -928,10 +931,25 @@ class PerSign {
   template <class A>
   using Frame = typename Q::template Frame<A>;
 
-  template <bool kPriori = true, class P>
+  /// escalate's first step for an exact 0 (out of line: the exact-in-double
+  /// frame is large).
+  template <class P>
+  TRICYL_PER_SIGN_NOINLINE Sign exactZero(const P& pred) {
+#if TRICYL_FMA_DISPATCH
+    const Sign s =
+        fmaAtRunTime() ? exactInDoubleFma(pred) : exactInDouble(pred, xd_);
+#else
+    const Sign s = exactInDouble(pred, xd_);
+#endif
+    if (s != Sign::kUnknown && level_ < 2) level_ = 2;
+    return s;
+  }
+  /// kExactZero: try the exact-in-double test on an exact 0 (false: the
+  /// caller has, OpenCtx::resolve); kPriori: the a-priori compensated stage.
+  template <bool kPriori = true, bool kExactZero = true, class P>
   TRICYL_PER_SIGN_NOINLINE Sign escalate(const P& pred, const Fd& v) {
     Sign s = Sign::kUnknown;
-    if (v.v == 0) {
+    if (kExactZero && v.v == 0) {
       // A double value that is exactly 0 is most often a true tie (exact
       // data in an exact pose), which no bound certifies: was the double
       // evaluation exact?
