@@ -926,55 +926,54 @@ TRICYL_PER_SIGN_INLINE Tri lineCylinder(C& c, bool* early) {
     }
     // Open: the signs it needs, certified one by one (PerSign::runOpen).
     // (The closure as the segment's.)
-    return c.template runOpen<true>(
-        [&v, d, approach, cross, moving, early, sep_p, len_p, foot_top,
-         foot_bot, ez_p, cap_top, cap_bot, top_p, bot_p, gap_p](auto& oc) {
-          // r^2 L - c^2 with c = x_a e_y - y_a e_x cancelling far below its
-          // magnitude (p far along the line from its closest approach to the
-          // axis): the a-priori stage (PerSign), whose bound is relative to c's
-          // magnitude squared, cannot decide it below a relative offset of
-          // about 2^-90 (m_c / |c|)^2, i.e. for no offset below 2^-42 once m_c
-          // > 2^24 |c| (the filter's c is then within 2^-25 of its value); the
-          // running bound, relative to |c|, can. A choice of stage only
-          // (measured on the line's near family: 757 -> 747 instructions a
-          // query; thresholds 2^8 .. 2^40 gave 759 .. 746).
-          auto cross_p = [](const auto& f) {
-            return f.a().x * f.e().y - f.a().y * f.e().x;
-          };
-          // A line parallel to the axis (axisParallel): r^2 L - c^2 = 0 exactly
-          // and (E) false.
-          const bool axial = toFd(v[kS]).v == 0 && axisParallel(oc);
-          auto nonNegR = [&oc](const auto& pred, const Fp& value) {
-            return oc.resolve(pred, value) != Sign::kNeg;
-          };
-          // (E), (X), (V) as below, each skipped if the filter already said
-          // false. r^2 L - c^2 >= 0 is read only by (E): the early-out it gives
-          // is implied by every term ((X) and (V) put a point of the line
-          // within r of the axis), and it is the dearest of (E)'s signs (degree
-          // 8, and the running stage where c cancels), so it is certified last,
-          // only where the others hold (measured on the line's near family: 643
-          // -> 627 instructions a query; every sep escalation that took the
-          // running stage there fell on queries whose (E) fails by a foot
-          // height).
-          if (!approach.f && !axial && axisLenPositive(oc, v[kL]) &&
-              nonNegR(foot_top, v[kHT]) && nonNegR(foot_bot, v[kHB])) {
-            const Fd cv = toFd(oc.value(cross_p));
-            const Sign sep = cv.m > 0x1p24 * std::fabs(cv.v)
-                                 ? oc.resolveRunning(sep_p, v[kS])
-                                 : oc.resolve(sep_p, v[kS]);
-            if (sep != Sign::kNeg) return Tri::kTrue;
-            *early = true;
-            return Tri::kFalse;
-          }
-          if (!cross.f && ((!d.isNeg(kXT) && nonNegR(cap_top, v[kXT])) ||
-                           (!d.isNeg(kXB) && nonNegR(cap_bot, v[kXB]))))
-            if (oc.resolve(ez_p, v[kEZ]) != Sign::kZero) return Tri::kTrue;
-          if (!moving && oc.resolve(top_p, oc.value(top_p)) != Sign::kPos &&
-              nonNegR(bot_p, oc.value(bot_p)) &&
-              nonNegR(gap_p, oc.value(gap_p)))
-            return Tri::kTrue;
-          return Tri::kFalse;
-        });
+    return c.template runOpen<true>([&v, d, approach, cross, moving, early,
+                                     sep_p, foot_top, foot_bot, ez_p, cap_top,
+                                     cap_bot, top_p, bot_p, gap_p](auto& oc) {
+      // r^2 L - c^2 with c = x_a e_y - y_a e_x cancelling far below its
+      // magnitude (p far along the line from its closest approach to the
+      // axis): the a-priori stage (PerSign), whose bound is relative to c's
+      // magnitude squared, cannot decide it below a relative offset of
+      // about 2^-90 (m_c / |c|)^2, i.e. for no offset below 2^-42 once m_c
+      // > 2^24 |c| (the filter's c is then within 2^-25 of its value); the
+      // running bound, relative to |c|, can. A choice of stage only
+      // (measured on the line's near family: 757 -> 747 instructions a
+      // query; thresholds 2^8 .. 2^40 gave 759 .. 746).
+      auto cross_p = [](const auto& f) {
+        return f.a().x * f.e().y - f.a().y * f.e().x;
+      };
+      // A line parallel to the axis (axisParallel): r^2 L - c^2 = 0 exactly
+      // and (E) false.
+      const bool axial = toFd(v[kS]).v == 0 && axisParallel(oc);
+      auto nonNegR = [&oc](const auto& pred, const Fp& value) {
+        return oc.resolve(pred, value) != Sign::kNeg;
+      };
+      // (E), (X), (V) as below, each skipped if the filter already said
+      // false. r^2 L - c^2 >= 0 is read only by (E): the early-out it gives
+      // is implied by every term ((X) and (V) put a point of the line
+      // within r of the axis), and it is the dearest of (E)'s signs (degree
+      // 8, and the running stage where c cancels), so it is certified last,
+      // only where the others hold (measured on the line's near family: 643
+      // -> 627 instructions a query; every sep escalation that took the
+      // running stage there fell on queries whose (E) fails by a foot
+      // height).
+      if (!approach.f && !axial && axisLenPositive(oc, v[kL]) &&
+          nonNegR(foot_top, v[kHT]) && nonNegR(foot_bot, v[kHB])) {
+        const Fd cv = toFd(oc.value(cross_p));
+        const Sign sep = cv.m > 0x1p24 * std::fabs(cv.v)
+                             ? oc.resolveRunning(sep_p, v[kS])
+                             : oc.resolve(sep_p, v[kS]);
+        if (sep != Sign::kNeg) return Tri::kTrue;
+        *early = true;
+        return Tri::kFalse;
+      }
+      if (!cross.f && ((!d.isNeg(kXT) && nonNegR(cap_top, v[kXT])) ||
+                       (!d.isNeg(kXB) && nonNegR(cap_bot, v[kXB]))))
+        if (oc.resolve(ez_p, v[kEZ]) != Sign::kZero) return Tri::kTrue;
+      if (!moving && oc.resolve(top_p, oc.value(top_p)) != Sign::kPos &&
+          nonNegR(bot_p, oc.value(bot_p)) && nonNegR(gap_p, oc.value(gap_p)))
+        return Tri::kTrue;
+      return Tri::kFalse;
+    });
   }
   const Sign sep = c.sign(sep_p);
   if (sep == Sign::kNeg) {
