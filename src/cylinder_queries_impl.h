@@ -671,7 +671,9 @@ struct LinearQuery {
 
    private:
     const LinearQuery& q_;
-    mutable Pt<N> a_, b_, e_;
+    // Zero until computed (have_): GCC cannot follow have_ through the
+    // flattened open path (runOpen) and would warn of a read before a write.
+    mutable Pt<N> a_{}, b_{}, e_{};
     mutable unsigned have_ = 0;
   };
   template <class A>
@@ -711,10 +713,6 @@ TRICYL_PER_SIGN_INLINE Tri segmentCylinder(C& c, bool* early) {
                     c.value(sep_p),    c.value(foot_p),  c.value(rest_p),
                     c.value(foot_top), c.value(foot_bot)};
     const Verdicts d = C::verdicts(v);
-    const Fp &vt0 = v[kT0], &vt1 = v[kT1], &vb0 = v[kB0], &vb1 = v[kB1],
-             &vg0 = v[kG0], &vg1 = v[kG1], &vxt = v[kXT], &vxb = v[kXB],
-             &vl = v[kL], &vs = v[kS], &vf = v[kF], &vr = v[kR], &vht = v[kHT],
-             &vhb = v[kHB];
     // (V) for p, (V) for q, (X) for each cap plane as two conjunctions (the
     // endpoints strictly on opposite sides of it, one way or the other: a
     // certified sign is never zero), (E).
@@ -742,56 +740,72 @@ TRICYL_PER_SIGN_INLINE Tri segmentCylinder(C& c, bool* early) {
     // Open: (V) or (X) or (E), exactly. A term whose filter verdict is
     // already false is skipped; otherwise its signs are certified one at a
     // time from their kept double values (resolve: escalated only if open),
-    // each at most once, until the term is decided.
-    Sign memo[4] = {Sign::kUnknown, Sign::kUnknown, Sign::kUnknown,
-                    Sign::kUnknown};
-    auto slab = [&](int k) {  // top0, top1, bot0, bot1, certified
-      if (memo[k] == Sign::kUnknown) {
-        switch (k) {
-          case 0:
-            memo[0] = c.resolve(top0, vt0);
-            break;
-          case 1:
-            memo[1] = c.resolve(top1, vt1);
-            break;
-          case 2:
-            memo[2] = c.resolve(bot0, vb0);
-            break;
-          default:
-            memo[3] = c.resolve(bot1, vb1);
-        }
-      }
-      return memo[k];
-    };
-    auto nonNegR = [&c](const auto& pred, const Fp& value) {
-      return c.resolve(pred, value) != Sign::kNeg;
-    };
-    auto apart = [&slab](int k0, int k1) {
-      const Sign s0 = slab(k0);
-      if (s0 == Sign::kZero) return false;
-      const Sign s1 = slab(k1);
-      return s1 != Sign::kZero && s1 != s0;
-    };
-    if (!v0_false && slab(0) != Sign::kPos && slab(2) != Sign::kNeg &&
-        nonNegR(gap0, vg0))
-      return Tri::kTrue;
-    if (!v1_false && slab(1) != Sign::kPos && slab(3) != Sign::kNeg &&
-        nonNegR(gap1, vg1))
-      return Tri::kTrue;
-    // (E) before (X): of the orders measured on the near family (callgrind),
-    // (V) (E) (X) escalates least ((V) (X) (E) 1% more, (E) (V) (X) 2%).
-    // Within (E) the low-degree conditions first (any of them may be the
-    // one that fails).
-    // A segment parallel to the axis (axisParallel, tried where the
-    // filter's g is 0): (E) false without its signs.
-    if (!e_false && !(toFd(vf).v == 0 && axisParallel(c)) &&
-        nonNegR(foot_p, vf) && nonNegR(rest_p, vr) &&
-        c.resolve(len_p, vl) == Sign::kPos && nonNegR(foot_top, vht) &&
-        nonNegR(foot_bot, vhb) && nonNegR(sep_p, vs))
-      return Tri::kTrue;
-    if (!x_top_false && apart(0, 1) && nonNegR(cap_top, vxt)) return Tri::kTrue;
-    if (!x_bot_false && apart(2, 3) && nonNegR(cap_bot, vxb)) return Tri::kTrue;
-    return Tri::kFalse;
+    // each at most once, until the term is decided. PerSign::runOpen: the
+    // compensated frame's points built when first read (an open sign of the
+    // segment reads a, b or a and e), the a-priori stage in line. (The
+    // closure holds one reference and small values: a capture by reference
+    // of everything costs a copy of each pointer on entry, about 40
+    // instructions an open query.)
+    return c.template runOpen<false>(
+        [&v, v0_false, v1_false, x_top_false, x_bot_false, e_false, top0, top1,
+         bot0, bot1, gap0, gap1, cap_top, cap_bot, len_p, sep_p, foot_p, rest_p,
+         foot_top, foot_bot](auto& oc) {
+          const Fp &vt0 = v[kT0], &vt1 = v[kT1], &vb0 = v[kB0], &vb1 = v[kB1],
+                   &vg0 = v[kG0], &vg1 = v[kG1], &vxt = v[kXT], &vxb = v[kXB],
+                   &vl = v[kL], &vs = v[kS], &vf = v[kF], &vr = v[kR],
+                   &vht = v[kHT], &vhb = v[kHB];
+          Sign memo[4] = {Sign::kUnknown, Sign::kUnknown, Sign::kUnknown,
+                          Sign::kUnknown};
+          auto slab = [&](int k) {  // top0, top1, bot0, bot1, certified
+            if (memo[k] == Sign::kUnknown) {
+              switch (k) {
+                case 0:
+                  memo[0] = oc.resolve(top0, vt0);
+                  break;
+                case 1:
+                  memo[1] = oc.resolve(top1, vt1);
+                  break;
+                case 2:
+                  memo[2] = oc.resolve(bot0, vb0);
+                  break;
+                default:
+                  memo[3] = oc.resolve(bot1, vb1);
+              }
+            }
+            return memo[k];
+          };
+          auto nonNegR = [&oc](const auto& pred, const Fp& value) {
+            return oc.resolve(pred, value) != Sign::kNeg;
+          };
+          auto apart = [&slab](int k0, int k1) {
+            const Sign s0 = slab(k0);
+            if (s0 == Sign::kZero) return false;
+            const Sign s1 = slab(k1);
+            return s1 != Sign::kZero && s1 != s0;
+          };
+          if (!v0_false && slab(0) != Sign::kPos && slab(2) != Sign::kNeg &&
+              nonNegR(gap0, vg0))
+            return Tri::kTrue;
+          if (!v1_false && slab(1) != Sign::kPos && slab(3) != Sign::kNeg &&
+              nonNegR(gap1, vg1))
+            return Tri::kTrue;
+          // (E) before (X): of the orders measured on the near family
+          // (callgrind), (V) (E) (X) escalates least ((V) (X) (E) 1% more, (E)
+          // (V) (X) 2%). Within (E) the low-degree conditions first (any of
+          // them may be the one that fails). A segment parallel to the axis
+          // (axisParallel, tried where the filter's g is 0): (E) false without
+          // its signs.
+          if (!e_false && !(toFd(vf).v == 0 && axisParallel(oc)) &&
+              nonNegR(foot_p, vf) && nonNegR(rest_p, vr) &&
+              oc.resolve(len_p, vl) == Sign::kPos && nonNegR(foot_top, vht) &&
+              nonNegR(foot_bot, vhb) && nonNegR(sep_p, vs))
+            return Tri::kTrue;
+          if (!x_top_false && apart(0, 1) && nonNegR(cap_top, vxt))
+            return Tri::kTrue;
+          if (!x_bot_false && apart(2, 3) && nonNegR(cap_bot, vxb))
+            return Tri::kTrue;
+          return Tri::kFalse;
+        });
   }
   const Sign top[2] = {c.sign(top0), c.sign(top1)};
   // Both endpoints strictly beyond the same cap plane.
@@ -910,44 +924,56 @@ TRICYL_PER_SIGN_INLINE Tri lineCylinder(C& c, bool* early) {
       *early = apart;
       return toTri(r.t);
     }
-    // r^2 L - c^2 with c = x_a e_y - y_a e_x cancelling far below its
-    // magnitude (p far along the line from its closest approach to the
-    // axis): the a-priori stage (PerSign), whose bound is relative to c's
-    // magnitude squared, cannot decide it below a relative offset of about
-    // 2^-90 (m_c / |c|)^2, i.e. for no offset below 2^-42 once
-    // m_c > 2^24 |c| (the filter's c is then within 2^-25 of its value);
-    // the running bound, relative to |c|, can. A choice of stage only
-    // (measured on the line's near family: 757 -> 747 instructions a
-    // query; thresholds 2^8 .. 2^40 gave 759 .. 746).
-    auto cross_p = [](const auto& f) {
-      return f.a().x * f.e().y - f.a().y * f.e().x;
-    };
-    // A line parallel to the axis (axisParallel): r^2 L - c^2 = 0 exactly
-    // and (E) false.
-    const bool axial = toFd(v[kS]).v == 0 && axisParallel(c);
-    const Fd cv = toFd(c.value(cross_p));
-    const Sign sep = axial ? Sign::kZero
-                     : cv.m > 0x1p24 * std::fabs(cv.v)
-                         ? c.resolveRunning(sep_p, v[kS])
-                         : c.resolve(sep_p, v[kS]);
-    if (sep == Sign::kNeg) {
-      *early = true;
+    // Open: the signs it needs, certified one by one (PerSign::runOpen).
+    // (The closure as the segment's.)
+    return c.template runOpen<true>([&v, d, approach, cross, moving, early,
+                                     sep_p, foot_top, foot_bot, ez_p, cap_top,
+                                     cap_bot, top_p, bot_p, gap_p](auto& oc) {
+      // r^2 L - c^2 with c = x_a e_y - y_a e_x cancelling far below its
+      // magnitude (p far along the line from its closest approach to the
+      // axis): the a-priori stage (PerSign), whose bound is relative to c's
+      // magnitude squared, cannot decide it below a relative offset of
+      // about 2^-90 (m_c / |c|)^2, i.e. for no offset below 2^-42 once m_c
+      // > 2^24 |c| (the filter's c is then within 2^-25 of its value); the
+      // running bound, relative to |c|, can. A choice of stage only
+      // (measured on the line's near family: 757 -> 747 instructions a
+      // query; thresholds 2^8 .. 2^40 gave 759 .. 746).
+      auto cross_p = [](const auto& f) {
+        return f.a().x * f.e().y - f.a().y * f.e().x;
+      };
+      // A line parallel to the axis (axisParallel): r^2 L - c^2 = 0 exactly
+      // and (E) false.
+      const bool axial = toFd(v[kS]).v == 0 && axisParallel(oc);
+      auto nonNegR = [&oc](const auto& pred, const Fp& value) {
+        return oc.resolve(pred, value) != Sign::kNeg;
+      };
+      // (E), (X), (V) as below, each skipped if the filter already said
+      // false. r^2 L - c^2 >= 0 is read only by (E): the early-out it gives
+      // is implied by every term ((X) and (V) put a point of the line
+      // within r of the axis), and it is the dearest of (E)'s signs (degree
+      // 8, and the running stage where c cancels), so it is certified last,
+      // only where the others hold (measured on the line's near family: 643
+      // -> 627 instructions a query; every sep escalation that took the
+      // running stage there fell on queries whose (E) fails by a foot
+      // height).
+      if (!approach.f && !axial && axisLenPositive(oc, v[kL]) &&
+          nonNegR(foot_top, v[kHT]) && nonNegR(foot_bot, v[kHB])) {
+        const Fd cv = toFd(oc.value(cross_p));
+        const Sign sep = cv.m > 0x1p24 * std::fabs(cv.v)
+                             ? oc.resolveRunning(sep_p, v[kS])
+                             : oc.resolve(sep_p, v[kS]);
+        if (sep != Sign::kNeg) return Tri::kTrue;
+        *early = true;
+        return Tri::kFalse;
+      }
+      if (!cross.f && ((!d.isNeg(kXT) && nonNegR(cap_top, v[kXT])) ||
+                       (!d.isNeg(kXB) && nonNegR(cap_bot, v[kXB]))))
+        if (oc.resolve(ez_p, v[kEZ]) != Sign::kZero) return Tri::kTrue;
+      if (!moving && oc.resolve(top_p, oc.value(top_p)) != Sign::kPos &&
+          nonNegR(bot_p, oc.value(bot_p)) && nonNegR(gap_p, oc.value(gap_p)))
+        return Tri::kTrue;
       return Tri::kFalse;
-    }
-    // (E), (X), (V) as below, each skipped if the filter already said false.
-    auto nonNegR = [&c](const auto& pred, const Fp& value) {
-      return c.resolve(pred, value) != Sign::kNeg;
-    };
-    if (!approach.f && !axial && axisLenPositive(c, v[kL]) &&
-        nonNegR(foot_top, v[kHT]) && nonNegR(foot_bot, v[kHB]))
-      return Tri::kTrue;
-    if (!cross.f && ((!d.isNeg(kXT) && nonNegR(cap_top, v[kXT])) ||
-                     (!d.isNeg(kXB) && nonNegR(cap_bot, v[kXB]))))
-      if (c.resolve(ez_p, v[kEZ]) != Sign::kZero) return Tri::kTrue;
-    if (!moving && c.resolve(top_p, c.value(top_p)) != Sign::kPos &&
-        nonNegR(bot_p, c.value(bot_p)) && nonNegR(gap_p, c.value(gap_p)))
-      return Tri::kTrue;
-    return Tri::kFalse;
+    });
   }
   const Sign sep = c.sign(sep_p);
   if (sep == Sign::kNeg) {

@@ -856,14 +856,100 @@ class PerSign {
   /// 2 expansions, 3 GMP.
   int level() const { return level_; }
 
+  /// A query's open answer (what its double test left open), run as
+  /// open(ctx) with an OpenCtx: the same resolve, value and resolveRunning,
+  /// but the compensated frame (DwPrioriArith) is built once on entry
+  /// (kEager: every point at once, Q::EagerFrame; otherwise each point when
+  /// first read) and a sign the filter leaves open is evaluated on it in
+  /// line, the later stages (escalate) called only where that fails. One
+  /// copy compiled for FMA (chosen at run time, as the double-word stage's)
+  /// and one without: the same signs from the same stages as resolve's,
+  /// without a call, a check of the frame and a check of the CPU per sign.
+  template <bool kEager, class Open>
+  Tri runOpen(const Open& open) {
+#if TRICYL_FMA_DISPATCH
+    if (fmaAtRunTime()) return runOpenFma<kEager>(open);
+    return runOpenWith<false, kEager>(open);
+#else
+    return runOpenWith<TRICYL_HAVE_FMA != 0, kEager>(open);
+#endif
+  }
+
+  template <bool kFma, bool kEager>
+  class OpenCtx {
+   public:
+    static constexpr bool kEagerFilter = true;
+    explicit OpenCtx(PerSign& p) : p_(p), f_(p.q_) {}
+    template <class P>
+    Fp value(const P& pred) const {
+      return p_.value(pred);
+    }
+    template <class P>
+    Sign resolve(const P& pred, const Fp& value) {
+      const Fd v = toFd(value);
+      const Sign s = shallowSign(v);
+      if (s != Sign::kUnknown) return s;
+      // escalate's order: an exact 0 first to the exact-in-double test,
+      // then the a-priori compensated stage (here, on this frame), then the
+      // stages after it.
+      if (v.v == 0) {
+        const Sign sx = p_.exactZero(pred);
+        if (sx != Sign::kUnknown) return sx;
+      }
+      if (p_.level_ < 1) p_.level_ = 1;
+      const Sign sp = dwPrioriSign(pred(f_), v.m);
+      if (sp != Sign::kUnknown) return sp;
+      return p_.template escalate<false, false>(pred, v);
+    }
+    template <class P>
+    Sign resolveRunning(const P& pred, const Fp& value) {
+      return p_.resolveRunning(pred, value);
+    }
+
+   private:
+    PerSign& p_;
+    std::conditional_t<kEager,
+                       typename Q::template EagerFrame<DwPrioriArith<kFma>>,
+                       typename Q::template Frame<DwPrioriArith<kFma>>>
+        f_;
+  };
+
  private:
+  template <bool kFma, bool kEager, class Open>
+  TRICYL_PER_SIGN_NOINLINE Tri runOpenWith(const Open& open) {
+    OpenCtx<kFma, kEager> ctx(*this);
+    return open(ctx);
+  }
+#if TRICYL_FMA_DISPATCH
+  template <bool kEager, class Open>
+  TRICYL_TARGET_FMA TRICYL_PER_SIGN_NOINLINE Tri runOpenFma(const Open& open) {
+    OpenCtx<true, kEager> ctx(*this);
+    return open(ctx);
+  }
+#endif
+
   template <class A>
   using Frame = typename Q::template Frame<A>;
 
-  template <bool kPriori = true, class P>
+  /// escalate's first step for an exact 0 (out of line: the exact-in-double
+  /// frame is large).
+  template <class P>
+  TRICYL_PER_SIGN_NOINLINE Sign exactZero(const P& pred) {
+#if TRICYL_FMA_DISPATCH
+    const Sign s =
+        fmaAtRunTime() ? exactInDoubleFma(pred) : exactInDouble(pred, xd_);
+#else
+    const Sign s = exactInDouble(pred, xd_);
+#endif
+    if (s != Sign::kUnknown && level_ < 2) level_ = 2;
+    return s;
+  }
+  /// kExactZero: try the exact-in-double test on an exact 0 (false: the
+  /// caller has, OpenCtx::resolve); kPriori: the a-priori compensated stage.
+  template <bool kPriori = true, bool kExactZero = true, class P>
   TRICYL_PER_SIGN_NOINLINE Sign escalate(const P& pred, const Fd& v) {
     Sign s = Sign::kUnknown;
-    if (v.v == 0) {
+    if (kExactZero && v.v == 0) {
       // A double value that is exactly 0 is most often a true tie (exact
       // data in an exact pose), which no bound certifies: was the double
       // evaluation exact?
