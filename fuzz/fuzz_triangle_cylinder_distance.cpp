@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// libFuzzer target: tricyl::distance / tryDistance
+// libFuzzer target: tricyl::distance / tryDistance (and tightenDistance)
 // (include/tricyl/triangle_cylinder_distance.h) on the triangle target's
 // input layout (fuzz_input.h, decode()). Built with
 // -fsanitize=fuzzer,address,undefined (TRICYL_BUILD_FUZZ).
@@ -128,6 +128,26 @@ void run(const Case<S>& c) {
           "distance depends on the vertex order beyond its error bounds", c);
   check(refl_answer == a && close(refl),
         "distance changes under the point reflection beyond its bounds", c);
+  // tightenDistance (double): its interval is certified on its own, so it
+  // must overlap tryDistance's, and it replaces the result only with a
+  // narrower one; no FP exception.
+  if constexpr (std::is_same_v<S, double>) {
+    if (a == Answer::kDisjoint) {
+      DistanceResult<double> t = r;
+      bool tightened = false;
+      {
+        FpTraps traps;
+        tightened = tricyl::tightenDistance(c.cyl, c.pose, c.tri, &t);
+      }
+      if (tightened) {
+        check(t.error_bound < r.error_bound && t.distance > 0 &&
+                  std::isfinite(t.distance),
+              "tightenDistance: bound not narrower, or distance not positive",
+              c);
+        check(close(t), "tightenDistance's interval misses tryDistance's", c);
+      }
+    }
+  }
   if constexpr (std::is_same_v<S, float>) {
     DistanceResult<double> w{};
     {

@@ -274,8 +274,26 @@ Answer estimateContact(const Cylinder<S>& cylinder, const Pose<S>& pose,
   double R[3][3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) R[i][j] = double(pose.R[i][j]);
-  const V t = widen(pose.t);
-  const V world[3] = {widen(triangle.a), widen(triangle.b), widen(triangle.c)};
+  V t = widen(pose.t);
+  V world[3] = {widen(triangle.a), widen(triangle.b), widen(triangle.c)};
+  double r = double(cylinder.radius);
+  double h = double(cylinder.lz) / 2;
+  // Lengths above 2^300: the search's cross products (an edge times the
+  // normal, cubic in the lengths) and squares, and x - t itself near 1e308,
+  // overflow, and Inf / Inf or 0 * Inf raised FE_INVALID (from about 2^341).
+  // Everything is then computed on the scene scaled by
+  // 2^-e (exact: a power of two; lengths below 2^(e - 1074) lose their
+  // last bits or flush to zero, far below the estimate's accuracy), which
+  // brings the largest length near 1; the point and depth are scaled back.
+  double big = std::max({maxAbs(t), r, h});
+  for (const V& w : world) big = std::max(big, maxAbs(w));
+  const int e = big > 0x1p300 ? std::ilogb(big) : 0;
+  if (e != 0) {
+    t = std::ldexp(1.0, -e) * t;
+    for (V& w : world) w = std::ldexp(1.0, -e) * w;
+    r = std::ldexp(r, -e);
+    h = std::ldexp(h, -e);
+  }
   V y[3];
   for (int k = 0; k < 3; ++k) {
     const V d = world[k] - t;
@@ -283,23 +301,25 @@ Answer estimateContact(const Cylinder<S>& cylinder, const Pose<S>& pose,
             R[0][1] * d.x + R[1][1] * d.y + R[2][1] * d.z,
             R[0][2] * d.x + R[1][2] * d.y + R[2][2] * d.z};
   }
-  const double r = double(cylinder.radius);
-  const double h = double(cylinder.lz) / 2;
   const V tri_normal = cross(y[1] - y[0], y[2] - y[0]);
 
   DirectionSearch search(y, r, h);
   searchDirections(y, tri_normal, r, h, &search);
   // The axis is always offered, so `found()` holds; n is unit.
   const V n = search.normal();
-  const double depth = search.depth();
 
   const V p = contactPoint(y, tri_normal, r, h);
 
   // Back to the world frame: x = R y + t; the normal is R n, renormalised
   // (R may be a hair off orthonormal).
-  const V p_world{R[0][0] * p.x + R[0][1] * p.y + R[0][2] * p.z + t.x,
-                  R[1][0] * p.x + R[1][1] * p.y + R[1][2] * p.z + t.y,
-                  R[2][0] * p.x + R[2][1] * p.y + R[2][2] * p.z + t.z};
+  V p_world{R[0][0] * p.x + R[0][1] * p.y + R[0][2] * p.z + t.x,
+            R[1][0] * p.x + R[1][1] * p.y + R[1][2] * p.z + t.y,
+            R[2][0] * p.x + R[2][1] * p.y + R[2][2] * p.z + t.z};
+  double depth = search.depth();
+  if (e != 0) {  // back to the scene's scale (may overflow: guarded below)
+    p_world = std::ldexp(1.0, e) * p_world;
+    depth = std::ldexp(depth, e);
+  }
   V n_world{R[0][0] * n.x + R[0][1] * n.y + R[0][2] * n.z,
             R[1][0] * n.x + R[1][1] * n.y + R[1][2] * n.z,
             R[2][0] * n.x + R[2][1] * n.y + R[2][2] * n.z};

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The kernels that track exact values (Ks of src/filter.h): the
-// straight-line double-word stage (DwKernel) and the running double stage
-// for exact-looking poses (RunningExactKernel, below); no tape.
+// The kernel that tracks exact values (a K of src/filter.h): the
+// straight-line double-word stage (DwKernel); no tape.
 //
 // Where the double filter leaves some tests of a query undecided, the query
 // re-runs THOSE TESTS (its predicates, not the whole query) with DwKernel:
@@ -41,6 +40,7 @@
 #include <cstring>
 
 #include "eft.h"
+#include "expansion.h"
 #include "filter.h"
 #include "tricyl/types.h"
 
@@ -140,72 +140,6 @@ TRICYL_DW_INLINE Dwe<kFma> operator*(const Dwe<kFma>& a, const Dwe<kFma>& b) {
 /// decided exactly (Stage::kExact). Statistics only; per thread.
 inline thread_local bool tls_exact_zero = false;
 
-/// The running double kernel with exact values tracked (the triangle's
-/// running stage for exact-looking poses, src/triangle_cylinder.cpp): a
-/// bound e = 0 means v IS the exact value. Inputs are exact; a sum or
-/// product of two exact values is re-checked with TwoSum / TwoProduct
-/// (src/eft.h; the product only when no underflow can touch its error term:
-/// |v| >= kProdExactMin, or a zero factor) and stays exact when its error
-/// term is 0. Everything else follows Running's rules (src/filter.h).
-/// sign() of an exact value is its sign, kZero included: exact poses on
-/// exact data (the aligned scenes) are decided here, ties and all, at the
-/// cost of one error-free transformation per operation of exact operands;
-/// values that are not exact pay one compare.
-struct Rx {
-  double v;
-  double e;
-};
-TRICYL_DW_INLINE Rx fromRunning(Rd r) { return {r.v, r.e}; }
-TRICYL_DW_INLINE Rx operator+(Rx a, Rx b) {
-  if (a.e + b.e == 0) {  // e >= 0: both exact
-    double v, err;
-    twoSum(a.v, b.v, v, err);
-    return {v, err == 0 ? 0.0 : kU1d * std::fabs(v)};
-  }
-  return fromRunning(Rd{a.v, a.e} + Rd{b.v, b.e});
-}
-TRICYL_DW_INLINE Rx operator-(Rx a) { return {-a.v, a.e}; }
-TRICYL_DW_INLINE Rx operator-(Rx a, Rx b) { return a + (-b); }
-/// A product of two exact values of RunningExactKernel.
-/// Two factors of at most 26 significant bits each (the low 27 bits of
-/// both significands zero) have an exact product of at most 52 bits unless
-/// it underflows: checked by their bits first (the small dyadics of exact
-/// data), TwoProduct otherwise.
-TRICYL_DW_INLINE Rx mulExactOperands(Rx a, Rx b) {
-  const double p = a.v * b.v;
-  if (a.v == 0 || b.v == 0) return {p, 0.0};  // a zero factor: exact 0
-  std::uint64_t ba, bb;
-  std::memcpy(&ba, &a.v, sizeof ba);
-  std::memcpy(&bb, &b.v, sizeof bb);
-  const bool no_underflow = std::fabs(p) >= kProdExactMin;
-  if (((ba | bb) & ((std::uint64_t(1) << 27) - 1)) == 0 && no_underflow)
-    return {p, 0.0};
-  double q, err;
-  twoProd(a.v, b.v, q, err);
-  return {p, err == 0 && no_underflow ? 0.0 : kU1d * std::fabs(p) + 0x1p-1074};
-}
-
-TRICYL_DW_INLINE Rx operator*(Rx a, Rx b) {
-  if (a.e + b.e == 0) return mulExactOperands(a, b);
-  return fromRunning(Rd{a.v, a.e} * Rd{b.v, b.e});
-}
-
-struct RunningExactKernel {
-  using Num = Rx;
-  static constexpr bool kExact = false;
-  static Num lift(double x) { return {x, 0}; }
-  static Num inputDiff(double a, double b) { return lift(a) - lift(b); }
-  static Sign sign(const Num& a) {
-    // The bound's inflation and slack are RunningKernel's (src/filter.h).
-    const double bound = a.e == 0 ? 0.0 : a.e * (1 + 0x1p-40) + 0x1p-600;
-    if (a.v > bound) return Sign::kPos;
-    if (a.v < -bound) return Sign::kNeg;
-    if (a.e != 0) return Sign::kUnknown;
-    tls_exact_zero = true;
-    return Sign::kZero;
-  }
-};
-
 /// The local coordinate x = sum_k R_k d_k, d_k = p_k - t_k (R_k = R_kj for
 /// the coordinate's column j), from the exact differences d_k = D_k + l_k
 /// (TwoSum), as one double word:
@@ -259,6 +193,41 @@ TRICYL_DW_INLINE DwRun dwCoordinate(const double R[3], const double D[3],
     if (exact) r.e = 0;  // then r.v = (s, 0): x = s exactly
   }
   return r;
+}
+
+/// Coordinate j of y = R^T (p - t) (doubled for j = 2: Z = 2 z) to within
+/// about 2^-104 of ITS OWN magnitude, where dwCoordinate's bound is 2^-100
+/// of the terms' magnitude M (the tape's dwCoordAccurate, src/adaptive.cpp,
+/// for the straight-line stage): the exact value as a stack expansion
+/// (src/expansion.h), compressed, rounded to its two largest components
+/// (hi, lo) = TwoSum(c_n-1, c_n-2), with the bound e = (sum of the other
+/// components' magnitudes) (1 + 2^-40): at most 96 non-negative doubles,
+/// whose rounded sum is below the exact one by less than that factor, and
+/// the components are exact. An exact pair with lo != 0 is not a double:
+/// bound kNotDouble (DwKernel's convention). Returns false, and leaves `out`
+/// alone, where the expansion cannot be formed (near underflow).
+/// Needles and discs have local coordinates far below the terms they cancel
+/// from: their near ties fail in double word for dwCoordinate's bound alone.
+inline bool dwCoordinateAccurate(const Pose<double>& pose,
+                                 const Vec3<double>& p, int j, DwRun* out) {
+  const double pp[3] = {p.x, p.y, p.z};
+  const double tt[3] = {pose.t.x, pose.t.y, pose.t.z};
+  Expansion x;
+  for (int k = 0; k < 3; ++k)
+    x = x + Expansion(pose.R[k][j]) * Expansion::difference(pp[k], tt[k]);
+  if (j == 2) x = x + x;
+  x = x.compressed();
+  if (!x.ok()) return false;
+  const int n = x.size();
+  const double* c = x.data();
+  DwRun r{{0.0, 0.0}, 0.0};
+  if (n > 0) twoSum(c[n - 1], n >= 2 ? c[n - 2] : 0.0, r.v.hi, r.v.lo);
+  double rest = 0;
+  for (int m = 0; m + 2 < n; ++m) rest += std::fabs(c[m]);
+  r.e = rest * (1 + 0x1p-40);
+  if (r.e == 0 && r.v.lo != 0) r.e = kNotDouble;
+  *out = r;
+  return true;
 }
 
 /// The kernel (src/filter.h's interface). sign() returns kUnknown where the

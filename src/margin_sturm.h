@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include "filter.h"
+
 namespace tricyl::detail::sturm {
 
 using Poly = std::vector<mpz_class>;  // coefficients, lowest degree first
@@ -679,9 +681,25 @@ inline int taylorCertificate(const mpz_class* q, const mpz_class& m, long k,
 /// Q = L^2 - 4 R^2 P (q,
 /// lowest first, q[4] > 0): 1 if Q <= 0 somewhere on [0, 1], 0 if not, -1
 /// if not decided here (see above). `max_k` bounds the bits of s0.
+/// What one edge's certificate learnt, for the same edge against the other
+/// rim torus (the two differ only in the rim's height, and on the hostile
+/// inputs where the certificate runs the cylinder's length is often
+/// negligible: the two minima agree to many bits): the direction, the
+/// minimiser, and the bits and value at which that minimum was resolved.
+/// Only a starting point: the other torus's run uses it where its own search
+/// lands within 2^-20 of it, and resolves its own value (a level whose value
+/// agrees with the hint's to 2^-8, the test between two levels of one run).
+struct CertHint {
+  bool valid = false;
+  int dir = 0;
+  mpf_class x, v;
+  long k = 0;
+};
+
 inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
                                 const mpz_class* p, const mpz_class& R,
-                                const mpz_class& M, long max_k) {
+                                const mpz_class& M, long max_k,
+                                CertHint* hint = nullptr) {
   if (sgn(R) == 0) return 0;  // Q = L^2 > 0
   if (sgn(q[4]) <= 0) return -1;
   mpz_class qr[5], lr[3], pr[3];
@@ -755,6 +773,13 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
     }
   }
   if (dir < 0) return -1;
+  bool seeded = false;
+  if (hint != nullptr && hint->valid && hint->dir == dir && sgn(x) > 0 &&
+      cert::ilog2(mpf_class(abs(x - hint->x), 64)) < cert::ilog2(x) - 20) {
+    x.set_prec(hint->x.get_prec());
+    x = hint->x;
+    seeded = true;
+  }
   const mpz_class R2 = R * R;
   // At most two moves to another root region that the Taylor certificate
   // points at (the 128-bit search can miss a minimum inside a cluster).
@@ -783,6 +808,11 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
     int tries = 0;
     bool resolved = false, have_prev_v = false, expect_hit = false;
     mpf_class prev_v(0, 64);
+    if (seeded && attempt == 0) {  // the other torus's level and value
+      k = std::max(k, std::min(hint->k, max_k));
+      prev_v = hint->v;
+      have_prev_v = sgn(prev_v) != 0;
+    }
     while (k <= max_k && !moved) {
       // Newton on F' = L' - R P' / rho, F'' = L'' - R (P'' / rho -
       // P'^2 / (2 rho^3)), at a precision that resolves 2^-k in s after
@@ -844,16 +874,53 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
             cert::ilog2(mpf_class(v - prev_v, 64)) < cert::ilog2(v) - 8;
         // A negative value needs no second level: F(x) < 0 already
         // (x's error only raises F above its minimum).
-        if (sgn(v) == 0 || cert::ilog2(v) < cert::ilog2(size) - prec + 40 ||
-            (!same && sgn(v) > 0)) {
+        // The bits s0 needs: x's error e raises F(x) by about F'' e^2 / 2,
+        // to be kept below |v|. For AM-GM's quadratic G (below) it is
+        // G's minimum that must stay positive: G touches F at s* with G'
+        // = F', and at x its minimum lies G'(x)^2 / (2 G'') below G(x),
+        // G'(x) about F'' e: F''^2 e^2 / G'' against |v|, where G''
+        // = 2 (l2 - lambda p2) <= F'' (edges close to the blind case
+        // G'' <= 0 need many more bits than F'' alone asks).
+        long kn = sgn(v) == 0 ? k : (cert::ilog2(f2) - cert::ilog2(v)) / 2 + 8;
+        bool convex = false;  // G'' > 0: AM-GM's case
+        const bool above =
+            sgn(v) != 0 && cert::ilog2(v) >= cert::ilog2(size) - prec + 40;
+        if (above && sgn(v) > 0 && on_f && sgn(pv) > 0) {
+          const mpf_class lam(R / sqrt(pv), mp_bitcnt_t(prec));
+          const mpf_class g2(2 * (mpf_class(L[2], mp_bitcnt_t(prec)) -
+                                  lam * mpf_class(P[2], mp_bitcnt_t(prec))),
+                             mp_bitcnt_t(prec));
+          convex = sgn(g2) > 0;
+          if (convex && cert::ilog2(g2) < cert::ilog2(f2))
+            kn = std::max(
+                kn,
+                (2 * cert::ilog2(f2) - cert::ilog2(g2) - cert::ilog2(v)) / 2 +
+                    8);
+        }
+        if (!above || (!same && sgn(v) > 0)) {
           prev_v = v;
           have_prev_v = sgn(v) != 0;
-          k = 2 * k - lead;  // not resolved yet
+          // Not resolved yet. Below the rounding: twice the bits. A
+          // positive value above it, where AM-GM will be tried (G convex),
+          // only waits for its confirmation at the next level: at the bits
+          // it asks (kn) and at least 32 more, not twice as many (the
+          // doubling cost up to 60 % of a wide edge's floats). Elsewhere
+          // (the quartic's bound, whose needs kn does not model) twice.
+          k = above && convex ? std::max(k + 32, std::min(kn, 2 * k - lead))
+                              : 2 * k - lead;
           continue;
         }
         resolved = true;
         expect_hit = sgn(v) < 0;
-        const long kn = (cert::ilog2(f2) - cert::ilog2(v)) / 2 + 8;
+        if (hint != nullptr) {
+          hint->valid = true;
+          hint->dir = dir;
+          hint->x.set_prec(x.get_prec());
+          hint->x = x;
+          hint->v.set_prec(64);
+          hint->v = v;
+          hint->k = std::max(k, kn);
+        }
         if (kn > k) {
           k = kn;
           continue;
@@ -871,14 +938,24 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
       // Miss: the AM-GM bound (integers of L's size), else the quartic's.
       x.set_prec(mp_bitcnt_t(prec));
       const mpf_class pv = cert::evalAt(P, 3, x);
+      // AM-GM's quadratic G = L - lambda P - R^2 / lambda touches F at s*
+      // with G' = F' there, so it is positive on [0, 1] only if convex:
+      // G'' = 2 (l2 - lambda p2) > 0. Where lambda p2 >= l2 (an edge
+      // through the hole, rho(s*) <= R |E_xy|^2 / |E|^2) no k makes it
+      // hold: the quartic's bound at once (the floats only choose).
+      bool amgm_blind = !on_f;
       if ((!expect_hit || last) && sgn(pv) > 0) {
         const mpf_class lam(R / sqrt(pv), mp_bitcnt_t(prec));
-        if (cert::amgmCertificate(L, P, R2, lam, k + 32)) return 0;
+        amgm_blind =
+            amgm_blind || lam * mpf_class(P[2], 64) >= mpf_class(L[2], 64);
+        if (!amgm_blind && cert::amgmCertificate(L, P, R2, lam, k + 32))
+          return 0;
       }
       // The quartic's bound costs more (Q's integers, shifted): where
-      // Newton runs on F (AM-GM's domain) only on the last try.
+      // Newton runs on F (AM-GM's domain) only on the last try, or where
+      // AM-GM cannot hold.
       mpf_class other;
-      const int t = (on_f && !last) || (expect_hit && !last)
+      const int t = (!amgm_blind && !last) || (expect_hit && !last)
                         ? -1
                         : cert::taylorCertificate(Q, m, k, &other);
       if (t == 0) return 0;
@@ -896,7 +973,7 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
       } else if (++tries > 2) {
         return -1;
       } else {
-        k += 16 * tries + (k - lead) / 8;
+        k += 32 * tries + (k - lead) / 4;
       }
     }
     if (!moved) return -1;
@@ -905,3 +982,206 @@ inline int torusEdgeCertificate(const mpz_class* q, const mpz_class* l,
 }
 
 }  // namespace tricyl::detail::sturm
+
+// ---------------------------------------------------------------------------
+// Window floats: the intermediate stage of withinDistance's sized parts and
+// faces on wide inputs (src/triangle_cylinder_margin.cpp, docs/margin.md
+// "Window floats").
+//
+// On inputs whose exponents span thousands of binary orders, the exact torus
+// input is integers of about 4,300 bits (one common unit for values of
+// wildly different sizes), and the long double filter on them rounded once
+// (53 bits) cannot resolve what a margin at a hostile threshold asks: the
+// decisive quantities cancel a few hundred bits, not thousands. Here every
+// value is m 2^x with m an integer of at most P bits (the window: the
+// leading P bits of the value, wherever its exponent lies) and carries an
+// upper bound e of its distance to the true value, as the running-bound
+// filters do (src/filter.h), with no absolute slack and no exponent range:
+//   a + b:  exact sum, then truncated to P bits: e = e_a + e_b + 2^x
+//           (2^x the new unit; a term below a quarter of the other's unit
+//           is not formed: its magnitude joins the bound instead);
+//   a * b:  exact product, then truncated: e = |a| e_b + |b| e_a + e_a e_b
+//           + 2^x, |a| an upper bound of the computed value's magnitude.
+// A truncation toward zero to the unit 2^x is off by less than 2^x. The
+// bounds are doubles with a separate exponent (Bound: f 2^k, f in
+// [1/2, 1)), every operation on them rounded up: one or two roundings to
+// nearest (each within a factor 1 -+ 2^-53) times (1 + 2^-50), rounded too,
+// is at least the exact value ((1 - 2^-53)^3 (1 + 2^-50) > 1); a term
+// 2^-200 or more below the other in a sum is replaced by 2^-200 times the
+// other's exponent (an upper bound). sign(): |m 2^x| from its leading bits
+// truncated (a lower bound) against e: certain when strictly above, an
+// exact zero when m = 0 and e = 0. A certain sign is the true sign; an
+// uncertain one is kUnknown, and the caller goes on to exact arithmetic.
+namespace tricyl::detail::window {
+
+/// An upper bound f 2^k, f in [1/2, 1) (or f = 0: the bound 0).
+struct Bound {
+  double f = 0;
+  long k = 0;
+};
+
+/// f 2^k, f >= 0 computed with at most two roundings, times (1 + 2^-50)
+/// (rounded): an upper bound of the exact value, normalised (frexp is
+/// exact).
+inline Bound up(double f, long k) {
+  if (f == 0) return {};
+  int e = 0;
+  const double g = std::frexp(f * (1 + 0x1p-50), &e);
+  return {g, k + e};
+}
+
+inline Bound add(const Bound& a, const Bound& b) {
+  if (a.f == 0) return b;
+  if (b.f == 0) return a;
+  const Bound& hi = a.k >= b.k ? a : b;
+  const Bound& lo = a.k >= b.k ? b : a;
+  const long d = lo.k - hi.k;  // <= 0
+  // lo.f 2^d < 2^d <= 2^-200 when d <= -200; ldexp is exact otherwise
+  // (lo.f >= 1/2, no underflow at d > -200).
+  const double t = d <= -200 ? 0x1p-200 : std::ldexp(lo.f, int(d));
+  return up(hi.f + t, hi.k);
+}
+
+inline Bound mul(const Bound& a, const Bound& b) {
+  if (a.f == 0 || b.f == 0) return {};
+  return up(a.f * b.f, a.k + b.k);
+}
+
+/// 2^x as a bound.
+inline Bound pow2(long x) { return {0.5, x + 1}; }
+
+/// A value m 2^x (m at most p bits) and the bound e of its error. The
+/// window p is the inputs' (fromInteger), the larger of the operands' in
+/// an operation; p = 0 (a constant lifted from a double, 53 bits) is never
+/// truncated.
+struct Num {
+  mpz_class m;
+  long x = 0;
+  Bound e;
+  int p = 0;
+};
+
+/// An upper bound of |m 2^x|: mpz_get_d_2exp truncates, |m| = g 2^k
+/// (1 + d) with 1/2 <= |g| < 1 and 0 <= d < 2^-52.
+inline Bound magnitude(const mpz_class& m, long x) {
+  if (sgn(m) == 0) return {};
+  long k = 0;
+  const double g = std::fabs(mpz_get_d_2exp(&k, m.get_mpz_t()));
+  return up(g * (1 + 0x1p-51), k + x);
+}
+
+/// Truncates m to its leading p bits (toward zero), the error to e.
+inline void fit(Num* a) {
+  if (sgn(a->m) == 0 || a->p <= 0) return;
+  const long n = long(mpz_sizeinbase(a->m.get_mpz_t(), 2));
+  if (n <= a->p) return;
+  const mp_bitcnt_t s = mp_bitcnt_t(n - a->p);
+  mpz_tdiv_q_2exp(a->m.get_mpz_t(), a->m.get_mpz_t(), s);
+  a->x += long(s);
+  a->e = add(a->e, pow2(a->x));
+}
+
+/// The value z 2^x (an exact integer input), truncated to p > 0 bits.
+inline Num fromInteger(const mpz_class& z, int p, long x = 0) {
+  Num a{z, x, {}, p};
+  fit(&a);
+  return a;
+}
+
+/// |m 2^x| < 2^top (a 0 gives a very small top).
+inline long top(const mpz_class& m, long x) {
+  if (sgn(m) == 0) return std::numeric_limits<long>::min() / 4;
+  return x + long(mpz_sizeinbase(m.get_mpz_t(), 2));
+}
+
+inline Num operator+(const Num& a, const Num& b) {
+  Num r;
+  const bool za = sgn(a.m) == 0, zb = sgn(b.m) == 0;
+  if (za || zb) {
+    r = za ? b : a;
+    r.e = add(a.e, b.e);
+    r.p = std::max(a.p, b.p);
+    return r;
+  }
+  // A term below a quarter of the other's unit: its magnitude (< 2^top)
+  // joins the bound instead of a long exact sum.
+  if (top(b.m, b.x) < a.x - 2) {
+    r = a;
+    r.e = add(add(a.e, b.e), pow2(top(b.m, b.x)));
+    r.p = std::max(a.p, b.p);
+    return r;
+  }
+  if (top(a.m, a.x) < b.x - 2) {
+    r = b;
+    r.e = add(add(a.e, b.e), pow2(top(a.m, a.x)));
+    r.p = std::max(a.p, b.p);
+    return r;
+  }
+  // The shift is at most about P + 2 bits here.
+  if (a.x >= b.x) {
+    mpz_mul_2exp(r.m.get_mpz_t(), a.m.get_mpz_t(), mp_bitcnt_t(a.x - b.x));
+    r.m += b.m;
+    r.x = b.x;
+  } else {
+    mpz_mul_2exp(r.m.get_mpz_t(), b.m.get_mpz_t(), mp_bitcnt_t(b.x - a.x));
+    r.m += a.m;
+    r.x = a.x;
+  }
+  r.e = add(a.e, b.e);
+  r.p = std::max(a.p, b.p);
+  fit(&r);
+  return r;
+}
+
+inline Num operator-(const Num& a) {
+  Num r = a;
+  mpz_neg(r.m.get_mpz_t(), r.m.get_mpz_t());
+  return r;
+}
+
+inline Num operator-(const Num& a, const Num& b) { return a + (-b); }
+
+inline Num operator*(const Num& a, const Num& b) {
+  Num r;
+  mpz_mul(r.m.get_mpz_t(), a.m.get_mpz_t(), b.m.get_mpz_t());
+  r.x = a.x + b.x;
+  r.e = add(add(mul(magnitude(a.m, a.x), b.e), mul(magnitude(b.m, b.x), a.e)),
+            mul(a.e, b.e));
+  r.p = std::max(a.p, b.p);
+  fit(&r);
+  return r;
+}
+
+/// a times 2 (exact: the unit and the bound move up one binary order).
+inline Num twice(Num a) {
+  ++a.x;
+  if (a.e.f != 0) ++a.e.k;
+  return a;
+}
+
+/// The kernel (the interface of src/filter.h's kernels: Num, lift, sign).
+struct Kernel {
+  using Num = window::Num;
+  static constexpr bool kExact = false;
+  static Num lift(double v) {
+    int e = 0;
+    const double f = std::frexp(v, &e);  // exact: v = f 2^e
+    return {mpz_class(std::ldexp(f, 53)), long(e) - 53, {}, 0};
+  }
+  static Sign sign(const Num& a) {
+    const int s = sgn(a.m);
+    if (a.e.f == 0)
+      return s > 0 ? Sign::kPos : s < 0 ? Sign::kNeg : Sign::kZero;
+    if (s == 0) return Sign::kUnknown;
+    long k = 0;
+    const double g = std::fabs(mpz_get_d_2exp(&k, a.m.get_mpz_t()));
+    // g 2^(k + x) <= |m 2^x|, g in [1/2, 1): above e certainly when its
+    // exponent is larger, or equal with a larger fraction.
+    const long kv = k + a.x;
+    if (kv > a.e.k || (kv == a.e.k && g > a.e.f))
+      return s > 0 ? Sign::kPos : Sign::kNeg;
+    return Sign::kUnknown;
+  }
+};
+
+}  // namespace tricyl::detail::window

@@ -242,11 +242,33 @@ Tri dwStage(const Inputs& in, const DwFrame& f, std::uint32_t tests,
   return dwTestsPlain(in, f, tests, left, early);
 }
 
+// The frame again, each coordinate accurate to its own size
+// (dwCoordinateAccurate, src/dw_kernel.h) where that is tighter than the
+// frame's bound: exact coordinates are kept. Returns whether some bound
+// shrank (then the double-word stage runs once more).
+TRICYL_NOINLINE bool dwFrameAccurate(const Inputs& in, DwFrame* f) {
+  const Vec3<double>* P[3] = {&in.tri.a, &in.tri.b, &in.tri.c};
+  bool tighter = false;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      detail::DwRun& c = f->c[i][j];
+      detail::DwRun r;
+      if (c.e == 0 || !detail::dwCoordinateAccurate(in.pose, *P[i], j, &r))
+        continue;
+      if (r.e + std::fabs(r.v.lo) < c.e + std::fabs(c.v.lo)) {
+        c = r;
+        tighter = true;
+      }
+    }
+  }
+  return tighter;
+}
+
 // The running frame from the double-word frame: each coordinate rounded to
 // its high part, with the bound e + |lo| (|E - hi| <= |E - (hi + lo)| +
 // |lo|), rounded up by the factor 1 + 2^-50 (one addition rounded by at
 // most 1 + 2^-53). An exact coordinate (e = 0, then lo = 0) keeps the
-// bound 0: RunningExactKernel reads it as exact.
+// bound 0.
 template <class K>
 detail::TriCylLocal<K> runningFrame(const Inputs& in, const DwFrame& f) {
   detail::TriCylLocal<K> q;
@@ -345,14 +367,18 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
     // rounded, are accurate to their own size, where the fast path's are
     // accurate to the vertex's world terms (a needle's local x and y, far
     // below them, are decided here instead of in double word), and it
-    // knows which coordinates are exact doubles. An exact pose
-    // (shortRotation) on exact data may make exact ties, which only a
-    // kernel that tracks exact values can decide: there RunningExactKernel,
-    // elsewhere the cheaper RunningDoubleKernel.
+    // knows which coordinates are exact doubles. The running pass ends at
+    // its first undecided test (TestMask::stop_at_unknown): the double-word
+    // stage re-runs that test and the ones after it.
+    //   An exact pose (shortRotation) skips the running pass: on exact data
+    // it makes exact ties, which only a kernel that tracks exact values
+    // decides (the double-word stage does, section 4.5 of
+    // docs/exactness.md), and near ties in an exact frame are what the
+    // running pass fails on; the running pass decided too few of the rest
+    // to pay for its failures (bench/results/2026-11-26-triangle-stages-f.md).
     using detail::RunningDoubleKernel;
-    using detail::RunningExactKernel;
     using detail::triangleCylinderUndecided;
-    std::uint32_t left = 0;
+    std::uint32_t left = undecided;
     Tri t;
     // Settled by the filter, or here: the stages skip them.
     detail::EarlyOuts early;
@@ -360,19 +386,20 @@ Decision decide(const Inputs& in, std::uint32_t undecided,
     DwFrame frame;
     dwFrameStage(in, &frame);
     detail::tls_exact_zero = false;
-    if (shortRotation(in.pose))
-      t = triangleCylinderUndecided<RunningExactKernel>(
-          runningFrame<RunningExactKernel>(in, frame), undecided, &left,
-          &early);
-    else
+    if (!shortRotation(in.pose)) {
       t = triangleCylinderUndecided<RunningDoubleKernel>(
           runningFrame<RunningDoubleKernel>(in, frame), undecided, &left,
-          &early);
-    if (t != Tri::kUnknown)
-      return {detail::toAnswer(t),
-              detail::tls_exact_zero ? Stage::kExact : Stage::kRunning};
+          &early, /*stop_at_unknown=*/true);
+      if (t != Tri::kUnknown) return {detail::toAnswer(t), Stage::kRunning};
+    }
     undecided = left;
     t = dwStage(in, frame, undecided, &left, &early);
+    // What the frame's bound left open, once more on coordinates accurate
+    // to their own size (needles, discs), before the tape.
+    if (t == Tri::kUnknown && dwFrameAccurate(in, &frame)) {
+      undecided = left;
+      t = dwStage(in, frame, undecided, &left, &early);
+    }
     if (t != Tri::kUnknown)
       return {detail::toAnswer(t),
               detail::tls_exact_zero ? Stage::kExact : Stage::kExtended};

@@ -200,9 +200,16 @@ constexpr std::uint32_t kAllTests = (std::uint32_t(1) << 15) - 1;
 /// tests, so after a run that decided no test true, the tests it decided
 /// false (certified) can be dropped: a second run in stronger arithmetic
 /// needs only the undecided ones (triangleCylinderUndecided below).
+///   `stop_at_unknown`: the run ends at its first undecided test, which
+/// with every later test in `run` is reported undecided (the tests run in
+/// the order of their bits). For a stage whose undecided tests go on to a
+/// stronger one (the running stage): a test it cannot decide is usually a
+/// near tie that the later tests share, and the stronger stage re-runs
+/// them anyway (bench/results/2026-11-26-triangle-stages-f.md).
 struct TestMask {
   std::uint32_t run = kAllTests;
   std::uint32_t unknown = 0;
+  bool stop_at_unknown = false;
 };
 
 /// Closest point of the 2D segment between the homogeneous points
@@ -291,7 +298,8 @@ Tri triangleCylinder(const TriCylLocal<K>& q, bool* early,
 /// (B) on cap s all three; (E) and (A) none. The early-outs first: a
 /// certified rejection is the answer whatever the tests say. `left`
 /// (optional): the tests this run left undecided, when it returns kUnknown
-/// (the double-word kernel, src/dw_kernel.h, can).
+/// (the double-word kernel, src/dw_kernel.h, can). `stop_at_unknown`:
+/// TestMask's.
 /// Whether the six early-outs are settled: each failed at a certified sign,
 /// so that a stronger kernel would fail them too.
 struct EarlyOuts {
@@ -301,7 +309,8 @@ struct EarlyOuts {
 template <class K>
 Tri triangleCylinderUndecided(const TriCylLocal<K>& q, std::uint32_t tests,
                               std::uint32_t* left = nullptr,
-                              EarlyOuts* early = nullptr) {
+                              EarlyOuts* early = nullptr,
+                              bool stop_at_unknown = false) {
   // The early-outs again (the slab, then the disk's bounding square): in
   // the adaptive kernel they often decide what the filter could not, at the
   // cost of a few signs (fewer instructions in every family than going
@@ -344,6 +353,7 @@ Tri triangleCylinderUndecided(const TriCylLocal<K>& q, std::uint32_t tests,
   }
   TestMask mask;
   mask.run = tests;
+  mask.stop_at_unknown = stop_at_unknown;
   const Tri t = triangleCylinderTests<K>(q, top, bot, &mask);
   if (left) *left = mask.unknown;
   return t;
@@ -366,10 +376,21 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
   const std::uint32_t run = mask ? mask->run : kAllTests;
   auto skip = [run](int bit) { return (run >> bit & 1) == 0; };
   // any.add, and the test's bit in mask->unknown when it is undecided.
-  auto add = [&any, mask](Tri t, int bit) {
-    if (t == Tri::kUnknown && mask) mask->unknown |= std::uint32_t(1) << bit;
+  // With stop_at_unknown, an undecided test ends the run: add returns true
+  // and `done` then answers kUnknown.
+  bool stopped = false;
+  auto add = [&any, mask, &stopped](Tri t, int bit) {
+    if (t == Tri::kUnknown && mask) {
+      mask->unknown |= std::uint32_t(1) << bit;
+      if (mask->stop_at_unknown) {
+        mask->unknown |= mask->run & (~std::uint32_t(0) << bit);
+        stopped = true;
+        return true;
+      }
+    }
     return any.add(t);
   };
+  auto done = [&stopped] { return stopped ? Tri::kUnknown : Tri::kTrue; };
 
   // (V) A triangle vertex inside the solid: |Z| <= H and x^2 + y^2 <= r^2.
   for (int i = 0; i < 3; ++i) {
@@ -378,7 +399,7 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
     if (in_slab == Tri::kFalse) continue;
     if (add(kAnd(in_slab, isNonNeg(K::sign(r2 - x[i] * x[i] - y[i] * y[i]))),
             kTestV + i))
-      return Tri::kTrue;
+      return done();
   }
 
   // (X) An edge crossing a cap plane Z = s H strictly (a_i a_j < 0, with
@@ -400,7 +421,7 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
       const N W = aj - ai;
       if (add(kAnd(crossing, isNonNeg(K::sign(r2 * (W * W) - X * X - Y * Y))),
               kTestX + 3 * s + ei))
-        return Tri::kTrue;
+        return done();
     }
   }
 
@@ -435,7 +456,7 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
     t = kAnd(t, isNonNeg(K::sign((H - Z[i]) * L - gz)));
     if (t == Tri::kFalse) continue;
     t = kAnd(t, isNonNeg(K::sign((H + Z[i]) * L + gz)));
-    if (add(t, kTestE + ei)) return Tri::kTrue;
+    if (add(t, kTestE + ei)) return done();
   }
 
   // (A) The axis segment meets the triangle. With o_ij = x_i y_j - x_j y_i
@@ -458,7 +479,7 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
     const N A2 = o01 + o12 + o20;
     const Sign sA = K::sign(A2);
     if (sA == Sign::kUnknown) {
-      add(Tri::kUnknown, kTestA);
+      if (add(Tri::kUnknown, kTestA)) return done();
     } else if (sA != Sign::kZero) {
       const bool flip = sA == Sign::kNeg;
       auto oriented = [flip](const N& v) { return flip ? N(-v) : v; };
@@ -472,7 +493,7 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
         if (t != Tri::kFalse)
           t = kAnd(t, isNonNeg(K::sign((H + Z[0]) * A + w)));
       }
-      if (add(t, kTestA)) return Tri::kTrue;
+      if (add(t, kTestA)) return done();
     }
   }
 
@@ -487,7 +508,8 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
     const Sign* sa = s == 0 ? top : bot;
     if (sa[0] == Sign::kUnknown || sa[1] == Sign::kUnknown ||
         sa[2] == Sign::kUnknown) {
-      add(Tri::kUnknown, kTestB + s);  // the chord's shape is undecided
+      // The chord's shape is undecided.
+      if (add(Tri::kUnknown, kTestB + s)) return done();
       continue;
     }
     N X[3], Y[3], W[3];
@@ -517,7 +539,7 @@ Tri triangleCylinderTests(const TriCylLocal<K>& q, const Sign* top,
     if (n != 2) continue;  // no chord, or a single touching vertex
     if (add(chordWithinR<K>(X[0], Y[0], W[0], X[1], Y[1], W[1], r2),
             kTestB + s))
-      return Tri::kTrue;
+      return done();
   }
 
   return any.result();

@@ -742,9 +742,10 @@ int edgeExactQuartic(ExactEdge* e) {
 
 /// Phase 3, wide quartics: s0 gets at most a third of Q's bits (beyond
 /// that, its floats cost about what the count does).
-bool edgeExactWide(const ExactEdge& e) {
+bool edgeExactWide(const ExactEdge& e,
+                   detail::sturm::CertHint* hint = nullptr) {
   const int s = detail::sturm::torusEdgeCertificate(e.q, e.l, e.p, e.R, e.M,
-                                                    long(e.bits) / 3);
+                                                    long(e.bits) / 3, hint);
   if (s >= 0) return s == 1;
   return detail::sturm::rootsInUnitTorus(e.q, e.l[1], e.l[2]) > 0;
 }
@@ -1075,14 +1076,76 @@ TorusInput<Ul> torusWideInput(const TorusInput<ZKernel>& t) {
   return w;
 }
 
+/// The window-float kernel (src/margin_sturm.h, detail::window).
+using Mk = detail::window::Kernel;
+
+/// The exact torus input in window floats: each integer's leading p bits
+/// (truncated, the rest its bound).
+TorusInput<Mk> torusWindowInput(const TorusInput<ZKernel>& t, int p) {
+  TorusInput<Mk> w;
+  for (int i = 0; i < 3; ++i) {
+    w.X[i] = detail::window::fromInteger(t.X[i], p);
+    w.Y[i] = detail::window::fromInteger(t.Y[i], p);
+    w.Z[i] = detail::window::fromInteger(t.Z[i], p);
+  }
+  w.R = detail::window::fromInteger(t.R, p);
+  w.M = detail::window::fromInteger(t.M, p);
+  w.C = detail::window::fromInteger(t.C, p);
+  return w;
+}
+
+/// A sized part (grow_radius: Cyl(r + m, h), else Cyl(r, h + m)) by the
+/// triangle kernel's predicate in window floats, on the exact torus input
+/// `t` (torusExactInput(q, 1)): the geometry scaled by 2, so that the
+/// kernel's frame (x, y, Z = 2z, H = lz, radius) is (X, Y, 2 Z, 2 C, R)
+/// with R + M for the grown radius and 2 (C + M) for the grown length
+/// (X = 2x, R = 2r, M = 2m, C = lz: a scaling leaves the test unchanged).
+/// kUnknown: the exact run decides.
+Tri sizedPartWindow(const TorusInput<Mk>& w, bool grow_radius) {
+  using detail::window::twice;
+  detail::TriCylLocal<Mk> l;
+  for (int i = 0; i < 3; ++i) {
+    l.x[i] = w.X[i];
+    l.y[i] = w.Y[i];
+    l.Z[i] = twice(w.Z[i]);
+  }
+  l.H = twice(grow_radius ? w.C : w.C + w.M);
+  l.r = grow_radius ? w.R + w.M : w.R;
+  bool early = false;
+  return detail::triangleCylinder<Mk>(l, &early);
+}
+
+/// The window's precisions, tried in order: enough for most sized parts
+/// and faces of the hostile thresholds (the decisive quantities cancel a
+/// few hundred bits), then four times that (measured on the regression
+/// list: the least window that decides is 64 to 1,024 bits there; a
+/// window run costs mostly its operations' overhead at 320 bits, about
+/// 1.8 times that at 1,280). Where both abstain the exact stage decides.
+constexpr int kWindowBits[2] = {320, 1280};
+
+/// The window stages of a sized part, at each precision in turn.
+Tri sizedPartWindows(const TorusInput<ZKernel>& t, bool grow_radius) {
+  Tri r = sizedPartWindow(torusWindowInput(t, kWindowBits[0]), grow_radius);
+  if (r == Tri::kUnknown)
+    r = sizedPartWindow(torusWindowInput(t, kWindowBits[1]), grow_radius);
+  return r;
+}
+
+/// The face part of one torus in window floats, at each precision in turn.
+Tri faceWindows(const TorusInput<ZKernel>& t) {
+  Tri r = faceFeet<Mk>(torusWindowInput(t, kWindowBits[0]));
+  if (r == Tri::kUnknown) r = faceFeet<Mk>(torusWindowInput(t, kWindowBits[1]));
+  return r;
+}
+
 /// The face part of one torus through the stage driver (src/stages.h):
 /// FilterKernel, then the adaptive kernel, on the scaled inputs. Where the
 /// scaling is not exact: UnderflowKernel on the rescaled inputs, then on
 /// the exact local coordinates rounded once to long double (`wide()`, the
 /// torus's torusWideInput), then GMP dyadics on the original inputs.
-template <class Wide>
-Decision faceStage(const Query& q, const ScaledInputs& s, bool top,
-                   Wide&& wide) {
+template <class Wide, class Exact>
+Decision faceStage(const Query& q, const ScaledInputs& s, bool top, Wide&& wide,
+                   Exact&& exact) {
   auto pred = [&](auto tag, bool*) {
     using K = typename decltype(tag)::type;
     const auto l =
@@ -1097,7 +1160,8 @@ Decision faceStage(const Query& q, const ScaledInputs& s, bool top,
         return {f == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
                 Stage::kFastPath};
     }
-    const Tri f = faceFeet<Ul>(wide());
+    Tri f = faceFeet<Ul>(wide());
+    if (f == Tri::kUnknown) f = faceWindows(exact());
     if (f != Tri::kUnknown)
       return {f == Tri::kTrue ? Answer::kIntersect : Answer::kDisjoint,
               Stage::kExtended};
@@ -1200,7 +1264,7 @@ bool wideSpread(const Query& q) {
 bool sizedPartExcluded(const TorusInput<ZKernel>& t, bool grow_radius) {
   const mpz_class half = grow_radius ? t.C : mpz_class(t.C + t.M);
   const mpz_class rad = grow_radius ? mpz_class(t.R + t.M) : t.R;
-  auto all = [&t](auto&& pred) { return pred(0) && pred(1) && pred(2); };
+  auto all = [](auto&& pred) { return pred(0) && pred(1) && pred(2); };
   return all([&](int i) { return t.Z[i] > half; }) ||
          all([&](int i) { return t.Z[i] < -half; }) ||
          all([&](int i) { return t.X[i] > rad; }) ||
@@ -1215,7 +1279,7 @@ bool sizedPartExcluded(const TorusInput<ZKernel>& t, bool grow_radius) {
 /// is a rim point plus a vector of length <= m).
 bool torusExcluded(const TorusInput<ZKernel>& t, bool top) {
   const mpz_class hi = t.C + t.M, lo = t.C - t.M, rad = t.R + t.M;
-  auto all = [&t](auto&& pred) { return pred(0) && pred(1) && pred(2); };
+  auto all = [](auto&& pred) { return pred(0) && pred(1) && pred(2); };
   // Z of the top torus's input; the bottom one's is -Z (torusExactInput).
   auto z = [&t, top](int i) { return top ? t.Z[i] : mpz_class(-t.Z[i]); };
   return all([&](int i) { return z(i) > hi; }) ||
@@ -1224,6 +1288,22 @@ bool torusExcluded(const TorusInput<ZKernel>& t, bool top) {
          all([&](int i) { return t.X[i] < -rad; }) ||
          all([&](int i) { return t.Y[i] > rad; }) ||
          all([&](int i) { return t.Y[i] < -rad; });
+}
+
+/// A torus that the other one dominates on the triangle: for a point at
+/// height z >= 0 and h >= 0, (z + h)^2 - (z - h)^2 = 4 z h >= 0, so its
+/// distance to the bottom rim circle is at least that to the top one (the
+/// radial terms are equal) and Tor(-h) meets the triangle only where
+/// Tor(+h) does, if the whole triangle (convex) lies in z >= 0; the same
+/// mirrored for z <= 0, and for h = 0 the two tori coincide. Returns the
+/// torus (0: top, 1: bottom) that can be skipped, or -1. Comparisons of
+/// the exact torus input `t` (torusExactInput(q, 1)).
+int torusDominated(const TorusInput<ZKernel>& t) {
+  if (sgn(t.C) == 0) return 1;
+  auto all = [](auto&& pred) { return pred(0) && pred(1) && pred(2); };
+  if (all([&](int i) { return sgn(t.Z[i]) >= 0; })) return 1;
+  if (all([&](int i) { return sgn(t.Z[i]) <= 0; })) return 0;
+  return -1;
 }
 
 /// A cheap hit certificate on the exact torus input `t` (torusExactInput(q,
@@ -1409,10 +1489,14 @@ Decision decide(Query& q) {
     // Wide inputs, by cost: the ball test, the sized parts (when not run
     // first), the bounding sets (products of the inputs' size), the
     // quartics (twice that size), the wide quartics' local certificate.
-    if (!sized_first) {
-      if (!exact_top) exact_top = torusExactInput(q, 1);
-      if (axisHit(*exact_top)) return yes(stronger(stage, Stage::kExactGmp));
-    }
+    if (!exact_top) exact_top = torusExactInput(q, 1);
+    if (!sized_first && axisHit(*exact_top))
+      return yes(stronger(stage, Stage::kExactGmp));
+    // One torus dominates the other where the triangle lies on one side of
+    // z = 0 (torusDominated): the other's edges and face are skipped.
+    const int dominated = torusDominated(*exact_top);
+    if (dominated >= 0)
+      for (bool& o : open[dominated]) o = false;
     if (ball_first)
       for (int i = 0; i < 2; ++i) {
         if (!anyOpen(i)) continue;
@@ -1428,12 +1512,13 @@ Decision decide(Query& q) {
       }
     if (!sized_first) {
       if (!exact_top) exact_top = torusExactInput(q, 1);
-      if (!sizedPartExcluded(*exact_top, true) &&
-          cylinderPart(q, true, true, &stage))
-        return yes(stage);
-      if (!sizedPartExcluded(*exact_top, false) &&
-          cylinderPart(q, false, true, &stage))
-        return yes(stage);
+      for (const bool grow_radius : {true, false}) {
+        if (sizedPartExcluded(*exact_top, grow_radius)) continue;
+        const Tri w = sizedPartWindows(*exact_top, grow_radius);
+        if (w == Tri::kTrue) return yes(stronger(stage, Stage::kExtended));
+        if (w == Tri::kFalse) continue;
+        if (cylinderPart(q, grow_radius, true, &stage)) return yes(stage);
+      }
     }
     if (!wide_filter_done && wideFilter()) return yes(stage);
     ExactEdge edge[2][3];
@@ -1456,20 +1541,24 @@ Decision decide(Query& q) {
         if (r == 1) return yes(stage);
         open[i][e] = r < 0;
       }
+    // The same edge against the two tori: the second starts where the
+    // first resolved its minimum (CertHint).
+    detail::sturm::CertHint hint[3];
     for (int i = 0; i < 2; ++i)
       for (int e = 0; e < 3; ++e)
-        if (open[i][e] && edgeExactWide(edge[i][e])) return yes(stage);
+        if (open[i][e] && edgeExactWide(edge[i][e], &hint[e]))
+          return yes(stage);
     // The faces' exclusion where the exact input is at hand (comparisons).
-    if (exact_top)
-      for (int i = 0; i < 2; ++i)
-        slab_out[i] = torusExcluded(*exact_top, i == 0);
+    for (int i = 0; i < 2; ++i)
+      slab_out[i] = i == dominated || torusExcluded(*exact_top, i == 0);
   }
   // The triangle misses C here (C is inside Cyl(r + m, h)), hence the rim
   // circles: the face part is complete.
   for (int i = 0; i < 2; ++i) {
     if (slab_out[i]) continue;
     const Decision d = faceStage(
-        q, s, i == 0, [&]() -> const TorusInput<Ul>& { return wideTorus(i); });
+        q, s, i == 0, [&]() -> const TorusInput<Ul>& { return wideTorus(i); },
+        [&]() { return exactTorus(i); });
     stage = stronger(stage, d.stage);
     if (d.answer == Answer::kIntersect) return yes(stage);
   }

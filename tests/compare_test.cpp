@@ -543,9 +543,7 @@ TEST(CompareEndToEnd, SmallRunWritesParsableReports) {
     std::size_t drows = 0;
     while (std::getline(dcsv, line)) {
       ++drows;
-      std::vector<std::string> f;
-      std::stringstream ls(line);
-      for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+      const std::vector<std::string> f = splitCsv(line);
       ASSERT_GE(f.size(), 5u) << line;
       EXPECT_TRUE(fams.count(f[0])) << line;
       if (f[1] == "tricyl") {
@@ -553,14 +551,25 @@ TEST(CompareEndToEnd, SmallRunWritesParsableReports) {
       }
     }
     EXPECT_EQ(drows, fams.size() * 4);
+    // tricyl's error_bound holds on every case, before and after
+    // tightenDistance (columns bound_violated, tight_violated).
+    std::istringstream bcsv(slurp(dir + "/distance_bound.csv"));
+    std::getline(bcsv, line);  // header
+    std::size_t brows = 0;
+    while (std::getline(bcsv, line)) {
+      ++brows;
+      const std::vector<std::string> f = splitCsv(line);
+      ASSERT_EQ(f.size(), 9u) << line;
+      EXPECT_EQ(f[6], "0") << line;
+      EXPECT_EQ(f[8], "0") << line;
+    }
+    EXPECT_EQ(brows, fams.size());
     std::istringstream mcsv(slurp(dir + "/margin.csv"));
     std::getline(mcsv, line);
     std::size_t mrows = 0;
     while (std::getline(mcsv, line)) {
       ++mrows;
-      std::vector<std::string> f;
-      std::stringstream ls(line);
-      for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+      const std::vector<std::string> f = splitCsv(line);
       ASSERT_GE(f.size(), 4u) << line;
       EXPECT_EQ(f[3], "0") << line;  // tricyl's wrong margin answers
     }

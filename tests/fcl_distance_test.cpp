@@ -221,6 +221,107 @@ TYPED_TEST(FclDistanceTest, MinimumAndNearestPointsEqualBruteForce) {
       checked, apart, stats.nodes_tested, stats.nodes_skipped, stats.leaves);
 }
 
+// Scenes of 1e154 and up (mesh_traversal.h, SCALE): both walks equal brute
+// force, under the FP traps (FE_INVALID, FE_DIVBYZERO). Before the scale
+// fall-back, a node 1.4e154 or more from the cylinder's axis line got the
+// bound +Inf (its squared distance to the line overflowed): "spread" and
+// one of the two "far" scenes then reported a triangle that was not the
+// nearest (the other one was pruned); near 1e308 the node margin or b - c
+// overflowed and the bound computed Inf - Inf or 0 * Inf ("near max",
+// "model at 3e307": FE_INVALID, a trap). FCL fits the oriented boxes of
+// the "spread" and "3e307" models with a covariance that overflows: those
+// models go to FCL's own traversal (the walks decline them), and are
+// checked here only for the aligned types.
+TYPED_TEST(FclDistanceTest, HugeCoordinates) {
+  using BV = TypeParam;
+  struct Case {
+    const char* what;
+    Mesh m;
+    Scene s;
+    bool fit_overflows;  // FCL's oriented fit overflows: aligned types only
+  };
+  std::vector<Case> cases;
+  const Scene at_origin{1.0, 2.0, Tf::Identity(), Tf::Identity(), "huge"};
+  {
+    Case c{"spread", {}, at_origin, true};
+    c.m.v = {V3(0, 0, 1.4e154),  V3(1, 0, 1.4e154),  V3(0, 1, 1.4e154),
+             V3(1.35e154, 0, 0), V3(1.35e154, 1, 0), V3(1.35e154, 0, 1)};
+    c.m.t = {fcl::Triangle(0, 1, 2), fcl::Triangle(3, 4, 5)};
+    cases.push_back(c);
+  }
+  for (const double delta : {1e141, -1e141}) {
+    Case c{"far", {}, at_origin, false};
+    c.m.v = {V3(0, 0, 0),     V3(0, 1, 0),     V3(0, 0, 1),
+             V3(delta, 5, 0), V3(delta, 6, 0), V3(delta, 5, 1)};
+    c.m.t = {fcl::Triangle(0, 1, 2), fcl::Triangle(3, 4, 5)};
+    c.s.mesh_tf.translation() = V3(1.5e154, 0, 0);
+    cases.push_back(c);
+  }
+  {
+    std::mt19937_64 rng(7);
+    Case c{"near max", fcltest::sphereMesh(8), at_origin, false};
+    for (V3& v : c.m.v) v *= 1e100;
+    c.s.mesh_tf.linear() = fcltest::randomRotation(rng);
+    c.s.mesh_tf.translation() = V3(1e308, 0, 0);
+    c.s.cyl_tf.translation() = V3(-5e307, 0, 0);
+    c.s.r = 1e307;
+    c.s.lz = 1e307;
+    cases.push_back(c);
+  }
+  {
+    const double sc = 3e307;
+    Case c{"model at 3e307", fcltest::sphereMesh(6), at_origin, true};
+    for (V3& v : c.m.v) v *= sc;
+    c.s.cyl_tf.translation() = V3(-1.7e308, 0.2 * sc, 0);
+    c.s.r = 0.3 * sc;
+    c.s.lz = 0.5 * sc;
+    cases.push_back(c);
+  }
+  // A touching pose at 1e300: the collide walk's contacts.
+  {
+    Case c{"touching at 1e300", fcltest::sphereMesh(6), at_origin, true};
+    for (V3& v : c.m.v) v *= 1e300;
+    c.s.cyl_tf.translation() = V3(1e300, 0, 0);
+    c.s.r = 0.25e300;
+    c.s.lz = 1e300;
+    cases.push_back(c);
+  }
+  long touching = 0;
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.what);
+    if (c.fit_overflows && !kAlignedBv<BV>) continue;
+    std::shared_ptr<fcl::BVHModel<BV>> model;
+    {
+      test::NoFpTraps no_traps;  // FCL's fit (squares of the coordinates)
+      model = fcltest::makeModel<BV>(c.m);
+    }
+    const Brute b = bruteForce<BV>(c.m, c.s);
+    auto cyl = std::make_shared<fcl::Cylinderd>(c.s.r, c.s.lz);
+    fcl::DistanceResultd w;
+    ASSERT_TRUE(distanceMeshCylinder(model.get(), c.s.mesh_tf, cyl.get(),
+                                     c.s.cyl_tf, fcl::DistanceRequestd(true), w,
+                                     nullptr));
+    if (b.collides) {
+      ++touching;
+      EXPECT_LE(w.min_distance, 0);
+      EXPECT_TRUE(b.colliding.count(std::size_t(w.b1))) << w.b1;
+    } else {
+      ASSERT_TRUE(std::isfinite(b.min));
+      EXPECT_EQ(w.min_distance, b.min);
+      EXPECT_EQ(std::size_t(w.b1), b.arg);
+    }
+    fcl::CollisionResultd res;
+    std::size_t n = 0;
+    ASSERT_TRUE(
+        collideMeshCylinder(model.get(), c.s.mesh_tf, cyl.get(), c.s.cyl_tf,
+                            fcl::CollisionRequestd(1000, false), res, &n));
+    EXPECT_EQ(fcltest::contactIds(res, cyl.get()), b.colliding);
+  }
+  if (kAlignedBv<BV>) {
+    EXPECT_EQ(touching, 1);  // "touching at 1e300"
+  }
+}
+
 // Exact ties over a large region: a cylinder standing above an integer
 // grid, its cap parallel to it at height 1/4, so every triangle under the
 // cap is exactly 1/4 away and none can be pruned. The walk's queue then

@@ -237,6 +237,103 @@ TEST(MarginSturm, LeadingBitsSignsAgreeWithExact) {
   }
 }
 
+/// A window float's value m 2^x and its bound f 2^k as rationals.
+mpq_class windowValue(const detail::window::Num& a) {
+  mpq_class v(a.m);
+  mpz_class p = 1;
+  mpz_mul_2exp(p.get_mpz_t(), p.get_mpz_t(), mp_bitcnt_t(std::labs(a.x)));
+  if (a.x >= 0)
+    v *= p;
+  else
+    v /= p;
+  return v;
+}
+mpq_class windowBound(const detail::window::Num& a) {
+  mpq_class e(a.e.f);
+  mpz_class p = 1;
+  mpz_mul_2exp(p.get_mpz_t(), p.get_mpz_t(), mp_bitcnt_t(std::labs(a.e.k)));
+  if (a.e.k >= 0)
+    e *= p;
+  else
+    e /= p;
+  return e;
+}
+
+// The window floats (src/margin_sturm.h, detail::window: P-bit mantissas
+// with a running error bound, the intermediate stage of withinDistance's
+// sized parts and faces on wide inputs) against exact rationals: sums and
+// products of inputs spanning thousands of binary orders (integers of up
+// to 4,000 bits times 2^-60 .. 2^60), and near-ties made exactly
+// (a b - c d with c d = a b + delta, delta tiny or 0) where the window must
+// abstain. Every bound must hold (|exact - value| <= e), every certified
+// sign must be the exact one, and both outcomes must occur.
+TEST(MarginSturm, WindowFloatsBoundTheExactValue) {
+  const std::uint64_t seed = test::baseSeed();
+  SCOPED_TRACE(test::seedTrace(seed));
+  scenes::Rng g(seed ^ 0x77696e64u);
+  using K = detail::window::Kernel;
+  using N = K::Num;
+  const long n = test::scaled(4000);
+  long certain = 0, unknown = 0, wrong = 0;
+  auto input = [&g](mpq_class* exact) {
+    const mpz_class z = randomInteger(g, 1 + g.integer(4000));
+    const long x = long(g.integer(121)) - 60;
+    const N a = detail::window::fromInteger(z, 320, x);
+    *exact = windowValue(N{z, x, {}, 0});
+    return a;
+  };
+  auto check = [&](const N& v, const mpq_class& exact, long i) {
+    const mpq_class err = abs(exact - windowValue(v));
+    EXPECT_LE(err, windowBound(v)) << "i = " << i;
+    const detail::Sign s = K::sign(v);
+    if (s == detail::Sign::kUnknown) {
+      ++unknown;
+      return;
+    }
+    ++certain;
+    if (int(s) != sgn(exact)) ++wrong;
+  };
+  for (long i = 0; i < n; ++i) {
+    mpq_class ea, eb, ec, ed, ee;
+    const N a = input(&ea), b = input(&eb), e = input(&ee);
+    N c = input(&ec), d = input(&ed);
+    const int kind = g.integer(3);
+    if (kind > 0) {  // c d = a b (+ delta): c = a b 2^-x + delta, d = 2^x
+      const long x = long(g.integer(41)) - 20;
+      const mpq_class ab = ea * eb;
+      mpz_class num = ab.get_num(), den = ab.get_den();
+      // ab is an integer times a power of two: write it as c 2^x.
+      long sh = 0;
+      while (den > 1) {
+        den >>= 1;
+        --sh;
+      }
+      mpz_class cz = num;
+      if (kind == 2) cz += g.integer(7) - 3;
+      c = detail::window::fromInteger(cz, 320, sh - x);
+      ec = windowValue(N{cz, sh - x, {}, 0});
+      d = detail::window::fromInteger(1, 320, x);
+      ed = windowValue(N{mpz_class(1), x, {}, 0});
+    }
+    const N v = a * b - c * d;
+    check(v, ea * eb - ec * ed, i);
+    const N w = (a + e) * (b - e) + K::lift(0.75) * e;
+    check(w, (ea + ee) * (eb - ee) + mpq_class(3, 4) * ee, i);
+    const N u = (v * v + w) * a - detail::window::twice(c);
+    check(u,
+          ((ea * eb - ec * ed) * (ea * eb - ec * ed) + (ea + ee) * (eb - ee) +
+           mpq_class(3, 4) * ee) *
+                  ea -
+              2 * ec,
+          i);
+  }
+  std::printf("[ stats ] window signs certified %ld, abstained %ld\n", certain,
+              unknown);
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(certain, n / 2);
+  EXPECT_GT(unknown, n / 20);
+}
+
 /// The torus quartic Q = L^2 - 4 R^2 P from the quadratics L, P (lowest
 /// first) and R.
 Poly torusQuartic(const Poly& l, const Poly& pp, const mpz_class& R) {

@@ -133,8 +133,7 @@ void framePoint(std::mt19937_64& g, long i, Pose<double>& pose,
 
 template <class K>
 struct RunningFrameTest : ::testing::Test {};
-using RunningKernels =
-    ::testing::Types<RunningDoubleKernel, detail::RunningExactKernel>;
+using RunningKernels = ::testing::Types<RunningDoubleKernel>;
 TYPED_TEST_SUITE(RunningFrameTest, RunningKernels);
 
 TYPED_TEST(RunningFrameTest, BoundEnclosesTheExactLocalCoordinates) {
@@ -172,6 +171,52 @@ TYPED_TEST(RunningFrameTest, BoundEnclosesTheExactLocalCoordinates) {
   // Not vacuous: some coordinate's error comes within a factor 16 of its
   // bound (a bound inflated by that much would cost the stage decisions).
   EXPECT_GT(worst, 1.0 / 16);
+}
+
+// The double-word stage's retry frame (dwCoordinateAccurate): the bound
+// encloses the exact coordinate, in every regime of framePoint, and it is
+// relative to the coordinate's own size (2^-100 |x|), where dwCoordinate's
+// is relative to the terms' magnitude: the point of the retry.
+TEST(DwFrame, AccurateCoordinatesEncloseTheExactAndAreRelative) {
+  const std::uint64_t seed = test::baseSeed() + 77;
+  SCOPED_TRACE(test::seedTrace(seed));
+  std::mt19937_64 g(seed);
+  const long n = test::scaled(3000);
+  long failures = 0, formed = 0, tighter = 0;
+  for (long i = 0; i < n && failures < 10; ++i) {
+    Pose<double> pose;
+    Vec3<double> p;
+    framePoint(g, i, pose, p);
+    const oracle::Q3 ex = oracle::toLocal(pose, p);
+    const Q exact[3] = {ex.x, ex.y, 2 * ex.z};
+    detail::DwKernel<false>::Num c[3];
+    detail::DwKernel<false>::toLocal(pose, p, c[0], c[1], c[2]);
+    for (int j = 0; j < 3; ++j) {
+      detail::DwRun r;
+      if (!detail::dwCoordinateAccurate(pose, p, j, &r)) continue;
+      ++formed;
+      const Q v = exactly(r.v.hi) + exactly(r.v.lo);
+      const Q err = abs(v - exact[j]);
+      if (err > exactly(r.e) || (r.e == 0 && r.v.lo != 0)) {
+        ++failures;
+        ADD_FAILURE() << "case " << i << ", coordinate " << j << ": error "
+                      << err.get_d() << " > bound " << r.e;
+      }
+      if (r.e > 0x1p-100 * std::fabs(r.v.hi) + detail::kNotDouble) {
+        ++failures;
+        ADD_FAILURE() << "case " << i << ", coordinate " << j << ": bound "
+                      << r.e << " not relative to " << r.v.hi;
+      }
+      tighter += r.e + std::fabs(r.v.lo) < c[j].e + std::fabs(c[j].v.lo);
+    }
+  }
+  std::printf("[ stats    ] %ld coordinates formed, %ld tighter\n", formed,
+              tighter);
+  EXPECT_EQ(failures, 0);
+  // Not vacuous: most coordinates form, and the cancelling regime makes
+  // the retry's bound tighter than the frame's.
+  EXPECT_GT(formed, n);
+  EXPECT_GT(tighter, n / 8);
 }
 
 // The adaptive run's coordinates from the fast path's values
@@ -520,11 +565,6 @@ void trackingArithmetic(std::uint64_t seed, Value value) {
 TEST(TrackingKernels, BoundsEncloseAndSignsAreExact) {
   const std::uint64_t seed = test::baseSeed() + 75;
   SCOPED_TRACE(test::seedTrace(seed));
-  trackingArithmetic<detail::RunningExactKernel>(
-      seed, [](const detail::Rx& r, Q* v, double* e) {
-        *v = exactly(r.v);
-        *e = r.e;
-      });
   auto dw = [](const auto& r, Q* v, double* e) {
     *v = exactly(r.v.hi) + exactly(r.v.lo);
     *e = r.e;

@@ -303,6 +303,8 @@ struct Tally {
   long n = 0, zero = 0, wrong_zero = 0, over8 = 0, bound_violated = 0,
        untight = 0, escalate_bound = 0;
   long bound_over8 = 0;  // error_bound wider than 8 ulps (informational)
+  long tight_over8 = 0;  // ... still, after tightenDistance
+  long tightened = 0;    // results tightenDistance replaced
   long tiny = 0;         // distances below 1e-15 of the problem's size
   double tiny_max_ulps = 0;
   double max_ulps = 0, max_pt = 0;
@@ -312,10 +314,11 @@ struct Tally {
         "ulps %ld, bound violated %ld, sign disagreements %ld, oracle "
         "not tight %ld, point off its set <= %.3g ulps of the "
         "coordinates/size, "
-        "error_bound > 8 ulps on %ld; below 1e-15 of the size: %ld cases, max "
-        "error %.3g ulps\n",
+        "error_bound > 8 ulps on %ld (after tightenDistance: %ld, %ld "
+        "tightened); below 1e-15 of the size: %ld cases, max error %.3g "
+        "ulps\n",
         name, n, zero, max_ulps, over8, bound_violated, wrong_zero, untight,
-        max_pt, bound_over8, tiny, tiny_max_ulps);
+        max_pt, bound_over8, tight_over8, tightened, tiny, tiny_max_ulps);
   }
 };
 
@@ -357,6 +360,24 @@ void judge(const scenes::TriCase& k, Tally* t) {
                   << " oracle " << e.mid_hi;
   }
   if (!e.intersect && r.error_bound > 8 * ulpOf(r.distance)) ++t->bound_over8;
+  // tightenDistance: certified on its own (checked like r's bound below).
+  DistanceResult<double> q = r;
+  if (tightenDistance(k.cyl, k.pose, k.tri, &q)) {
+    ++t->tightened;
+    if (q.distance - q.error_bound > e.hi ||
+        q.distance + q.error_bound < e.lo) {
+      ++t->bound_violated;
+      ADD_FAILURE() << "tightened error_bound " << q.error_bound
+                    << " violated: distance " << q.distance << " oracle ["
+                    << e.lo << ", " << e.hi << "]";
+    }
+    if (oracle::ulpsError(e, q.distance) > 8) {
+      ++t->over8;
+      ADD_FAILURE() << "tightened distance " << q.distance << " off by "
+                    << oracle::ulpsError(e, q.distance) << " ulps";
+    }
+  }
+  if (!e.intersect && q.error_bound > 8 * ulpOf(q.distance)) ++t->tight_over8;
   if (r.distance - r.error_bound > e.hi || r.distance + r.error_bound < e.lo) {
     ++t->bound_violated;
     ADD_FAILURE() << "error_bound " << r.error_bound << " violated: distance "
@@ -413,6 +434,151 @@ TEST(TriangleCylinderDistance, SeparationsAgainstOracle) {
     std::snprintf(name, sizeof name, "sep 1e%d", decade);
     t.print(name);
   }
+}
+
+// Separations from 1e-16 down to about 1e-33 of the problem's size, built
+// exactly (every coordinate a double, poses signed permutations, so the
+// world inputs are the local ones and the oracle's distance is the
+// constructed one), one kind per nearest feature:
+//   vertex-barrel: v = (3 + 4 delta, 4 - 3 delta, z) beside the barrel of
+//     radius 5 (a Pythagorean point moved along the tangent: distance
+//     sqrt(25 + 25 delta^2) - 5, about 2.5 delta^2, delta = 2^-26 .. 2^-50);
+//   vertex-cap: a vertex 2^-52 k above the cap, the other two 2^m away;
+//   edge-barrel: an edge on the line x = 5 + 2^-50, 2^m long, beside the
+//     barrel of radius 5;
+//   edge-cap: an edge 2^-52 above the cap, 2^m long, crossing over it;
+//   face-barrel: a face in the plane x = 5 + 2^-50, 2^m wide.
+// Reported per kind and decade of distance / size: the error in ulps, and
+// error_bound in ulps of the distance (docs/distance.md, section 6). The
+// bound is certified at every separation (0 violations, asserted), and,
+// each kind being one of those tightenDistance re-evaluates exactly, after
+// it the distance and its bound are within 8 ulps (asserted: tryDistance's
+// double-word bound alone is up to 1e17 ulps wide).
+struct TinyKindTally {
+  long n = 0, over8 = 0, bound_over8 = 0, violated = 0, wrong_zero = 0;
+  double max_ulps = 0, max_bound_ulps = 0;
+  double max_bound_ulps_before = 0;  // tryDistance's own, before tightening
+};
+
+scenes::TriCase tinyCase(scenes::Rng& g, int kind, double* size) {
+  const int m = g.integer(51);  // the big lengths: 2^m
+  const double big = std::ldexp(1.0, m);
+  V a, b, c;
+  Cylinder<double> cyl{5, 4};
+  switch (kind) {
+    case 0: {  // vertex-barrel
+      const double delta = std::ldexp(1.0, -26 - g.integer(25));
+      const double z = 0.25 * (g.integer(13) - 6);
+      a = {3 + 4 * delta, 4 - 3 * delta, z};
+      b = {a.x + 8, a.y - 6, z};
+      c = {a.x + 3, a.y + 4, z + 1};
+      *size = 12;
+      break;
+    }
+    case 1: {  // vertex-cap, the cap z = 2
+      const double k = double(1 + g.integer(8));
+      a = {0.25 * (g.integer(9) - 4), 0.25 * (g.integer(9) - 4),
+           2 + std::ldexp(k, -51)};
+      b = {a.x + big, a.y, a.z + big};
+      c = {a.x, a.y + big, a.z + big};
+      *size = 2 * big;
+      break;
+    }
+    case 2: {  // edge-barrel
+      const double x = 5 + std::ldexp(1.0, -50 + g.integer(3));
+      a = {x, -big, 0.5};
+      b = {x, big, -0.5};
+      c = {x + big, 0.25 * (g.integer(9) - 4), 0};
+      *size = 2 * big;
+      break;
+    }
+    case 3: {  // edge-cap
+      const double z = 2 + std::ldexp(1.0, -51 + g.integer(3));
+      a = {-big, 0.25 * (g.integer(9) - 4), z};
+      b = {big, 0.25 * (g.integer(9) - 4), z};
+      c = {0.25 * (g.integer(9) - 4), 0, z + big};
+      *size = 2 * big;
+      break;
+    }
+    default: {  // face-barrel
+      const double x = 5 + std::ldexp(1.0, -50 + g.integer(3));
+      a = {x, -big, -big};
+      b = {x, big, -big};
+      c = {x, 0.25 * (g.integer(9) - 4), big};
+      *size = 2 * big;
+      break;
+    }
+  }
+  Pose<double> pose = scenes::internal::exactPose(g);
+  pose.t = {0, 0, 0};
+  return scenes::internal::posed(cyl, pose, a, b, c);
+}
+
+TEST(TriangleCylinderDistance, TinySeparationsAgainstOracle) {
+  const std::uint64_t seed = test::baseSeed() ^ 0x74696e79u;
+  SCOPED_TRACE(test::seedTrace(seed));
+  scenes::Rng g(seed);
+  static const char* const kKinds[] = {
+      "vertex-barrel", "vertex-cap", "edge-barrel", "edge-cap", "face-barrel"};
+  constexpr int kDecades = 36;
+  TinyKindTally tally[5][kDecades];
+  for (long i = 0; i < test::scaled(2500); ++i) {
+    const int kind = int(i % 5);
+    double size = 0;
+    const scenes::TriCase k = tinyCase(g, kind, &size);
+    SCOPED_TRACE(std::string(kKinds[kind]) + " #" + std::to_string(i));
+    DistanceResult<double> r = distance(k.cyl, k.pose, k.tri);
+    const DistanceResult<double> before = r;
+    const bool tightened = tightenDistance(k.cyl, k.pose, k.tri, &r);
+    const oracle::DistanceEnclosure e =
+        oracle::distanceEnclosure(k.cyl, k.pose, k.tri);
+    ASSERT_TRUE(e.tight) << e.rel_width;
+    // tryDistance's own bound holds too (it is wide: reported).
+    EXPECT_FALSE(before.distance - before.error_bound > e.hi ||
+                 before.distance + before.error_bound < e.lo);
+    EXPECT_EQ(tightened, r.error_bound < before.error_bound);
+    ASSERT_FALSE(e.intersect);
+    const int decade =
+        std::min(kDecades - 1, int(std::floor(-std::log10(e.hi / size))));
+    TinyKindTally& t = tally[kind][std::max(0, decade)];
+    ++t.n;
+    if (r.distance == 0) {
+      ++t.wrong_zero;
+      ADD_FAILURE() << "distance 0 for a disjoint pair";
+      continue;
+    }
+    t.max_bound_ulps_before = std::max(
+        t.max_bound_ulps_before, before.error_bound / ulpOf(before.distance));
+    const double ulps = oracle::ulpsError(e, r.distance);
+    const double bound_ulps = r.error_bound / ulpOf(r.distance);
+    t.max_ulps = std::max(t.max_ulps, ulps);
+    t.max_bound_ulps = std::max(t.max_bound_ulps, bound_ulps);
+    if (ulps > 8) ++t.over8;
+    if (bound_ulps > 8) ++t.bound_over8;
+    if (r.distance - r.error_bound > e.hi ||
+        r.distance + r.error_bound < e.lo) {
+      ++t.violated;
+      ADD_FAILURE() << "error_bound " << r.error_bound << " violated: distance "
+                    << r.distance << " oracle [" << e.lo << ", " << e.hi << "]";
+    }
+  }
+  for (int kind = 0; kind < 5; ++kind)
+    for (int d = 0; d < kDecades; ++d) {
+      const TinyKindTally& t = tally[kind][d];
+      if (t.n == 0) continue;
+      std::printf(
+          "[ tiny  ] %-13s 1e-%02d..: %4ld cases, tightened: max error "
+          "%8.3g ulps (>8: %3ld), error_bound max %9.3g ulps (>8: %3ld), "
+          "violated %ld; tryDistance's error_bound max %9.3g ulps\n",
+          kKinds[kind], d + 1, t.n, t.max_ulps, t.over8, t.max_bound_ulps,
+          t.bound_over8, t.violated, t.max_bound_ulps_before);
+      EXPECT_EQ(t.violated, 0);
+      EXPECT_EQ(t.wrong_zero, 0);
+      // Every kind is one that tightenDistance certifies exactly: within
+      // 8 ulps, and so is the bound.
+      EXPECT_EQ(t.over8, 0) << kKinds[kind];
+      EXPECT_EQ(t.bound_over8, 0) << kKinds[kind];
+    }
 }
 
 }  // namespace

@@ -285,7 +285,9 @@ traverseBody(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
   const int untested_subtree =
       nearer_first ? kUntestedSubtreeEarlyStop : kUntestedSubtree;
   NodeStack stack;
-  stack.push(0);
+  // SCALE (mesh_traversal.h): beyond kMaxScale the root goes in untested,
+  // and with it every node: each triangle reaches the kernel.
+  stack.push(setup.bounded ? 0 : ~0);
   Box box;
   std::size_t tested = 0, skipped = 0;
   bool done = false;

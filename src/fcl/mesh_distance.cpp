@@ -215,6 +215,62 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
     ++skipped;
     return false;
   };
+  // A triangle (world vertices p, lower bound lt of its distance) measured
+  // against best; true when it meets the cylinder (the walk then stops).
+  const auto measure = [&](int id, const V3 p[3], double lt) {
+    const Triangle<double> tri{toVec3(p[0]), toVec3(p[1]), toVec3(p[2])};
+    ++leaves;
+    // A triangle whose bound proves nothing may meet the cylinder: the
+    // Boolean first (tryIntersect: not kDisjoint exactly when tryDistance
+    // is not, and several times cheaper), then the distance only if they
+    // are apart. A pose in collision stops at such a triangle.
+    DistanceResult<double> d;
+    if ((gt(lt, 0) || tryIntersect(cyl, pose, tri) == Answer::kDisjoint) &&
+        tryDistance(cyl, pose, tri, &d) == Answer::kDisjoint) {
+      if (d.distance < best) {
+        ++hits;
+        best = d.distance;
+        result.update(d.distance, geom, cyl_geom_base, id,
+                      fcl::DistanceResult<double>::NONE,
+                      V3(d.point_on_triangle.x, d.point_on_triangle.y,
+                         d.point_on_triangle.z),
+                      V3(d.point_on_cylinder.x, d.point_on_cylinder.y,
+                         d.point_on_cylinder.z));
+      }
+      return false;
+    }
+    // In collision (or a non-finite world vertex, reported "in collision"
+    // as the Solver answers it): minus the contact depth, and both nearest
+    // points at the contact point, as Solver::shapeTriangleDistance gives
+    // them; the request is then satisfied (FCL stops at min_distance <= 0).
+    ContactEstimate<double> est;
+    estimateContact(cyl, pose, tri, &est);
+    ++hits;
+    const V3 pos(est.point.x, est.point.y, est.point.z);
+    result.update(-est.depth, geom, cyl_geom_base, id,
+                  fcl::DistanceResult<double>::NONE, pos, pos);
+    return true;
+  };
+  const auto report = [&] {
+    if (stats == nullptr) return;
+    stats->nodes_tested += tested;
+    stats->nodes_skipped += skipped;
+    stats->leaves += leaves;
+    stats->hits += hits;
+  };
+  // SCALE (mesh_traversal.h): beyond kMaxScale no bound is computed; every
+  // triangle is measured, in index order (the brute-force minimum, the
+  // first triangle reaching it; the first colliding one stops).
+  if (!setup.bounded) {
+    for (int id = 0; id < model.num_tris; ++id) {
+      V3 p[3];
+      worldTriangle(model.vertices, model.tri_indices[id], tf_mesh, setup.raw,
+                    p);
+      if (measure(id, p, 0.0)) break;
+    }
+    report();
+    return true;
+  }
   // `next`: the entry the queue would give next, taken without the round
   // trip through it (the nearer child of the node just expanded, below).
   Entry next{};
@@ -310,46 +366,9 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
       }
       continue;
     }
-    const int id = primitiveId(node);
-    const Triangle<double> tri{toVec3(p[0]), toVec3(p[1]), toVec3(p[2])};
-    ++leaves;
-    // A triangle whose bound proves nothing may meet the cylinder: the
-    // Boolean first (tryIntersect: not kDisjoint exactly when tryDistance
-    // is not, and several times cheaper), then the distance only if they
-    // are apart. A pose in collision stops at such a triangle.
-    DistanceResult<double> d;
-    if ((gt(lt, 0) || tryIntersect(cyl, pose, tri) == Answer::kDisjoint) &&
-        tryDistance(cyl, pose, tri, &d) == Answer::kDisjoint) {
-      if (d.distance < best) {
-        ++hits;
-        best = d.distance;
-        result.update(d.distance, geom, cyl_geom_base, id,
-                      fcl::DistanceResult<double>::NONE,
-                      V3(d.point_on_triangle.x, d.point_on_triangle.y,
-                         d.point_on_triangle.z),
-                      V3(d.point_on_cylinder.x, d.point_on_cylinder.y,
-                         d.point_on_cylinder.z));
-      }
-      continue;
-    }
-    // In collision (or a non-finite world vertex, reported "in collision"
-    // as the Solver answers it): minus the contact depth, and both nearest
-    // points at the contact point, as Solver::shapeTriangleDistance gives
-    // them; the request is then satisfied (FCL stops at min_distance <= 0).
-    ContactEstimate<double> est;
-    estimateContact(cyl, pose, tri, &est);
-    ++hits;
-    const V3 pos(est.point.x, est.point.y, est.point.z);
-    result.update(-est.depth, geom, cyl_geom_base, id,
-                  fcl::DistanceResult<double>::NONE, pos, pos);
-    break;
+    if (measure(primitiveId(node), p, lt)) break;
   }
-  if (stats != nullptr) {
-    stats->nodes_tested += tested;
-    stats->nodes_skipped += skipped;
-    stats->leaves += leaves;
-    stats->hits += hits;
-  }
+  report();
   return true;
 }
 

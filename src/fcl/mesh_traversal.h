@@ -588,11 +588,39 @@ inline double lowerBoundLocal(double lb, const Local& k) {
   return lb * (1 - 4 * k.delta - 0x1p-50);
 }
 
+// SCALE. The node test, lowerBound and the leaves' bounds compute squares
+// and sums of the coordinates: beyond some size they overflow, and the
+// margin's analysis (relative rounding) no longer holds. An overflowed
+// square made lowerBound +Inf for a node about 1.4e154 from the axis line
+// (sqrt(q2) = Inf), a bound above the true distance that pruned the
+// nearest triangle; nearer 1e308, b - c or t_c - t_m overflowed and
+// Inf - Inf or 0 * Inf raised FE_INVALID (tests/fcl_distance_test.cpp,
+// HugeCoordinates). Let S = |b_root|_1 + sum e_root + |t_m|_1 + |t_c|_1 + r
+// + h, the root's box and the poses (tf_mesh's translation counts even for
+// the identity: it is then 0). Every box FCL fits lies within a few times
+// S: the AABB/KDOP boxes nest in the root's; an oriented box is fitted to a
+// subset of the vertices, all inside the root's box, so its centre and
+// extents are at most about 2 S in norm. The cylinder's centre in the mesh
+// frame is at most |t_c - t_m| (1 + delta) <= 2 S. So every d = b - c is
+// within 5 S, u.d too, q = d - (u.d) u within 10 S, and q2 (the largest
+// quantity computed: three squares) below 300 S^2 < 2^9 S^2, finite for S <
+// 2^507; the leaves' bounds check their own range (triangleLowerBound and
+// triangleSupportBound: 2^240). Below kMaxScale = 2^480 nothing overflows
+// with 2^27 to spare. Above it (or when S itself overflows) the walks fall
+// back to testing every triangle: prepare() sets Setup::bounded false and
+// leaves Local zero; the collide walk then takes every node as untested
+// (no node test) and the distance walk measures every triangle
+// (mesh_distance.cpp, measureAll), in index order. A model that large is
+// rare (1e144 and up); the kernel itself covers the whole range.
+constexpr double kMaxScale = 0x1p480;
+
 /// What prepare() found: the model, the cylinder in the mesh frame, and how
 /// the Solver forms the world vertices.
 struct Setup {
   Local k;
-  bool raw;  // vertices used as stored (no tf_mesh * v), see prepare()
+  bool raw;      // vertices used as stored (no tf_mesh * v), see prepare()
+  bool bounded;  // false: the scale is beyond kMaxScale (SCALE), no node
+                 // test or bound may be computed, k is zero
 };
 
 /// The validation and set-up common to the traversals. Returns false (the
@@ -601,7 +629,8 @@ struct Setup {
 /// cylinder with NaN/Inf or negative sizes, non-finite transforms, rotations
 /// or a root box far from orthonormal, a root box that is not finite.
 /// `margin` (>= 0, finite) is a collide margin added to every support (0 for
-/// plain collide and for distance).
+/// plain collide and for distance). A scene beyond kMaxScale is accepted
+/// with Setup::bounded false (SCALE): the caller then tests every triangle.
 template <class BV, class Boxer>
 bool prepare(const fcl::BVHModel<BV>& model, const Tf& tf_mesh,
              const fcl::Cylinderd& cyl_geom, const Tf& tf_cyl, double margin,
@@ -637,19 +666,37 @@ bool prepare(const fcl::BVHModel<BV>& model, const Tf& tf_mesh,
   // |A A^T - I| |v - b|, item 2 of the margin); the other boxes come from
   // the same fit.
   double box_delta = 0;
+  double scale =
+      norm1(tf_mesh.translation()) + norm1(tf_cyl.translation()) + r + 0.5 * lz;
   {
     Box root;
     Boxer::get(model.getBV(0).bv, &root);
     for (int i = 0; i < 3; ++i)
       if (!std::isfinite(root.b[i]) || !std::isfinite(root.e[i])) return false;
     if constexpr (!Boxer::kAligned) box_delta = gramDeparture(root.a);
+    for (int i = 0; i < 3; ++i) scale += std::fabs(root.b[i]) + root.e[i];
   }
   // (The identity's departure is exactly 0.)
   const double delta = std::max(
       {identity ? 0.0 : nonOrthogonality(Rm), nonOrthogonality(Rc), box_delta});
   if (!std::islessequal(delta, kMaxNonOrthogonality)) return false;
 
+  // World vertices exactly as the Solver sees them (fcl_solver.h, FRAMES):
+  // AABB and KDOP meshes are moved by FCL's initialize() unless it takes the
+  // transform for the identity (Eigen's isIdentity, as FCL calls it). The
+  // other meshes are moved by tf_mesh at every leaf; when tf_mesh is exactly
+  // the identity that gives each finite coordinate's own value (1 x + 0 y +
+  // 0 z + 0 = x, up to the sign of a zero), so the vertices are read as they
+  // are. (A non-finite vertex stays non-finite and is reported "in
+  // collision" either way.)
+  out->raw = Boxer::kAligned ? tf_mesh.matrix().isIdentity() : identity;
   Local& k = out->k;
+  // SCALE: beyond kMaxScale (or overflowed), every triangle is tested.
+  out->bounded = std::isless(scale, kMaxScale);
+  if (!out->bounded) {
+    k = Local{};
+    return true;
+  }
   // (For the identity, R_m^T x computes x exactly, up to the sign of a zero.)
   const V3 c =
       identity
@@ -683,16 +730,6 @@ bool prepare(const fcl::BVHModel<BV>& model, const Tf& tf_mesh,
       k.support[i] = k.h * k.au[i] + k.r * sqrtNonNegative(uj * uj + uk * uk);
     }
   }
-
-  // World vertices exactly as the Solver sees them (fcl_solver.h, FRAMES):
-  // AABB and KDOP meshes are moved by FCL's initialize() unless it takes the
-  // transform for the identity (Eigen's isIdentity, as FCL calls it). The
-  // other meshes are moved by tf_mesh at every leaf; when tf_mesh is exactly
-  // the identity that gives each finite coordinate's own value (1 x + 0 y +
-  // 0 z + 0 = x, up to the sign of a zero), so the vertices are read as they
-  // are. (A non-finite vertex stays non-finite and is reported "in
-  // collision" either way.)
-  out->raw = Boxer::kAligned ? tf_mesh.matrix().isIdentity() : identity;
   return true;
 }
 
