@@ -242,8 +242,12 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
     }
     // The closed form first: where the edge's root lies in the barrel's
     // region (|z| <= h, rho > r), phi' = (1 - r/rho) p_xy . d_xy vanishes
-    // exactly where p_xy . d_xy = 0, a linear equation in s. Otherwise
-    // the safeguarded Newton iteration.
+    // exactly where p_xy . d_xy = 0, a linear equation in s; so it does
+    // for an edge of constant z (d_z = 0: the slab's term (z - clamp(z))
+    // d_z of phi' is 0) over the rim, where Newton's iteration would
+    // crawl near a tangency (phi' of order (s - s*)^2 as rho -> r: a
+    // triangle in or just off a cap plane). Otherwise the safeguarded
+    // Newton iteration.
     double s = -1;
     const double dxy2 = d.x * d.x + d.y * d.y;
     if (dxy2 > detail::dist::kTinyDen) {
@@ -251,7 +255,9 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
       const double sb = -(a.x * d.x + a.y * d.y) / dxy2;
       if (sb > 0 && sb < 1) {
         const P3<double> p = a + d * sb;
-        if (absd(p.z) < P.h && p.x * p.x + p.y * p.y > P.r * P.r) s = sb;
+        if ((absd(p.z) <= P.h || d.z == 0) &&
+            p.x * p.x + p.y * p.y > P.r * P.r)
+          s = sb;
       }
     }
     if (!(s >= 0))

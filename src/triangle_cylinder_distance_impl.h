@@ -147,8 +147,10 @@ inline T pointDist(const P3<T>& p, const T& r, const T& h) {
 
 /// The root of phi' in a bracket [lo, hi] with phi'(lo) < 0 < phi'(hi),
 /// starting at s inside it: Newton's iteration kept inside the shrinking
-/// bracket (a bisection whenever the Newton point leaves it, and whenever
-/// the bracket did not halve in two steps). At most `max_iter` evaluations.
+/// bracket (a bisection whenever the bracket did not halve in two steps,
+/// and whenever the Newton point leaves it, unless the end it overshot is an
+/// earlier iterate: then the regula falsi point between s and that end,
+/// strictly inside, replaces it). At most `max_iter` evaluations.
 /// It stops when the bracket is narrower than `tol`, or after a Newton step
 /// shorter than `step_tol` (the iterate is then within about step_tol^2 of
 /// a smooth root; at a kink of phi' the bracket criterion decides).
@@ -157,13 +159,20 @@ inline T edgeSolveIn(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
                      T lo, T hi, T s, int max_iter, const T& tol,
                      const T& step_tol) {
   T width_before = hi - lo;
+  // phi' at the bracket's ends once they are iterates (g_lo < 0 < g_hi).
+  T g_lo = T(0), g_hi = T(0);
+  bool have_lo = false, have_hi = false;
   for (int it = 0; it < max_iter; ++it) {
     const Dphi<T> e = edgeDphi(a, d, s, r, h);
     if (e.g == T(0)) return s;
     if (e.g < T(0)) {
       lo = s;
+      g_lo = e.g;
+      have_lo = true;
     } else {
       hi = s;
+      g_hi = e.g;
+      have_hi = true;
     }
     if (!(hi - lo > tol)) return (lo + hi) * T(0.5);
     T next = T(0.5) * (lo + hi);
@@ -173,6 +182,23 @@ inline T edgeSolveIn(const P3<T>& a, const P3<T>& d, const T& r, const T& h,
       if (newton > lo && newton < hi) {
         next = newton;
         if (!(absT(step) > step_tol)) return next;
+      } else if (newton == s) {
+        // A step that rounds away: s is the root to its last bit (phi'(s)
+        // is a rounding error; s is an end of the bracket, just moved
+        // there). Bisecting from there would shrink the bracket by halves
+        // down to `tol`, about 50 evaluations for nothing.
+        return s;
+      } else if (e.g < T(0) ? have_hi : have_lo) {
+        // The Newton point overshot an end that is an earlier iterate on
+        // the other side of the root (phi' is steeper between s and the
+        // root than at s: a root next to that end, where the iterates
+        // would otherwise approach it by bisections): the regula falsi
+        // point between s and that end, inside (s, end) as the signs
+        // differ.
+        const T far = e.g < T(0) ? hi : lo;
+        const T gf = e.g < T(0) ? g_hi : g_lo;
+        const T secant = s + (far - s) * (e.g / (e.g - gf));
+        if (secant > lo && secant < hi) next = secant;
       }
     }
     if ((it & 1) != 0) {
