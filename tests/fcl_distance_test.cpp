@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <random>
@@ -970,8 +971,11 @@ TYPED_TEST(FclDistanceTest, TinyDistancesAgreeWithBruteForceWithinBounds) {
         const Mesh m =
             which < 0 ? spikesMesh(r, delta, which == -2 ? 0x1p-20 : 0, rng)
                       : shared[std::size_t(which)];
-        SCOPED_TRACE(m.name + (barrel ? " barrel" : " cap") + " rel " +
-                     std::to_string(rel));
+        char what[96];
+        std::snprintf(what, sizeof what, "%s%s, %s, delta %.17g (%g of %g)",
+                      m.name.c_str(), which == -2 ? " (unique)" : "",
+                      barrel ? "barrel" : "cap", delta, rel, size);
+        SCOPED_TRACE(what);
         Scene s;
         s.r = r;
         s.lz = 2 * h;
