@@ -79,6 +79,10 @@ struct Brute {
   std::size_t arg = 0;
   bool collides = false;
   std::set<std::size_t> colliding;
+  // Per triangle: the distance and its error_bound (+Inf and 0 for a
+  // colliding one); U = min (d + e), an upper bound of the true minimum.
+  std::vector<double> d, e;
+  double upper = std::numeric_limits<double>::infinity();
 };
 
 template <class BV>
@@ -92,14 +96,29 @@ Brute bruteForce(const Mesh& m, const Scene& s) {
     if (a != Answer::kDisjoint) {
       b.collides = true;
       b.colliding.insert(i);
+      b.d.push_back(std::numeric_limits<double>::infinity());
+      b.e.push_back(0);
       continue;
     }
+    b.d.push_back(d.distance);
+    b.e.push_back(d.error_bound);
+    b.upper = std::min(b.upper, d.distance + d.error_bound);
     if (d.distance < b.min) {
       b.min = d.distance;
       b.arg = i;
     }
   }
   return b;
+}
+
+/// The diagonal of the mesh's bounding box.
+double diagonal(const Mesh& m) {
+  V3 lo = m.v[0], hi = m.v[0];
+  for (const V3& p : m.v) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return (hi - lo).norm();
 }
 
 /// Seeded scenes: fcltest::makeScenes' (grazing and random, many touching),
@@ -109,12 +128,7 @@ std::vector<Scene> scenes(const Mesh& m, std::uint64_t seed, int per_kind) {
   std::mt19937_64 rng(seed ^ 0x61706172u);
   std::uniform_real_distribution<double> u01(0, 1);
   std::normal_distribution<double> g;
-  V3 lo = m.v[0], hi = m.v[0];
-  for (const V3& p : m.v) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const double diag = (hi - lo).norm();
+  const double diag = diagonal(m);
   std::vector<Scene> out = base;
   for (std::size_t k = 0; k < base.size(); ++k) {
     Scene s = base[k];
@@ -861,47 +875,22 @@ bool lowestAtOrigin(Mesh* m) {
   return true;
 }
 
-double diagonal(const Mesh& m) {
-  V3 lo = m.v[0], hi = m.v[0];
-  for (const V3& p : m.v) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  return (hi - lo).norm();
-}
-
+/// Brute force (bruteForce) and whether its minimum is certified unique:
+/// d_j + e_j < d_i - e_i for every other triangle i.
 struct TinyBrute {
-  std::vector<double> d, e;
-  double b = std::numeric_limits<double>::infinity();
-  std::size_t j = 0;
-  double upper = std::numeric_limits<double>::infinity();  // U
+  Brute f;
   bool unique = false;
-  bool disjoint = true;
 };
 
 template <class BV>
 TinyBrute tinyBrute(const Mesh& m, const Scene& s) {
-  TinyBrute t;
-  const Cylinder<double> cyl{s.r, s.lz};
-  const Pose<double> pose = toPose(s.cyl_tf);
-  for (std::size_t i = 0; i < m.t.size(); ++i) {
-    DistanceResult<double> d;
-    if (tryDistance(cyl, pose, worldTri<BV>(m, s.mesh_tf, i), &d) !=
-        Answer::kDisjoint) {
-      t.disjoint = false;
-      return t;
-    }
-    t.d.push_back(d.distance);
-    t.e.push_back(d.error_bound);
-    if (d.distance < t.b) {
-      t.b = d.distance;
-      t.j = i;
-    }
-    t.upper = std::min(t.upper, d.distance + d.error_bound);
-  }
+  TinyBrute t{bruteForce<BV>(m, s)};
+  const Brute& f = t.f;
+  if (f.collides) return t;
   t.unique = true;
   for (std::size_t i = 0; i < m.t.size(); ++i)
-    if (i != t.j && !(t.d[t.j] + t.e[t.j] < t.d[i] - t.e[i])) t.unique = false;
+    if (i != f.arg && !(f.d[f.arg] + f.e[f.arg] < f.d[i] - f.e[i]))
+      t.unique = false;
   return t;
 }
 
@@ -933,16 +922,17 @@ void checkTinyAnswer(const Mesh& m, const Scene& s, const TinyBrute& t,
   EXPECT_EQ(w.nearest_points[0], fclPoint(at.point_on_triangle));
   EXPECT_EQ(w.nearest_points[1], fclPoint(at.point_on_cylinder));
   // (2)
-  EXPECT_LE(t.b, w.min_distance);
-  EXPECT_LE(w.min_distance, t.b + t.e[t.j] + slack) << "brute force " << t.b;
-  *equal += w.min_distance == t.b;
+  EXPECT_LE(t.f.min, w.min_distance);
+  EXPECT_LE(w.min_distance, t.f.min + t.f.e[t.f.arg] + slack)
+      << "brute force " << t.f.min;
+  *equal += w.min_distance == t.f.min;
   if (slack > 0) return;
   // (3)
-  EXPECT_LE(at.distance - at.error_bound, t.upper);
+  EXPECT_LE(at.distance - at.error_bound, t.f.upper);
   // (4)
   if (t.unique) {
-    EXPECT_EQ(std::size_t(w.b1), t.j);
-    EXPECT_EQ(w.min_distance, t.b);
+    EXPECT_EQ(std::size_t(w.b1), t.f.arg);
+    EXPECT_EQ(w.min_distance, t.f.min);
   }
 }
 
@@ -994,25 +984,24 @@ TYPED_TEST(FclDistanceTest, TinyDistancesAgreeWithBruteForceWithinBounds) {
         }
         auto model = fcltest::makeModel<BV>(m);
         const TinyBrute t = tinyBrute<BV>(m, s);
-        ASSERT_TRUE(t.disjoint);
+        ASSERT_FALSE(t.f.collides);
         unique += t.unique;
-        for (const double e : t.e) wide += e > 0x1p-40 * t.b;
+        for (const double e : t.f.e) wide += e > 0x1p-40 * t.f.min;
         auto cyl = std::make_shared<fcl::Cylinderd>(s.r, s.lz);
-        const fcl::CollisionObjectd mesh_obj(model, s.mesh_tf);
-        const fcl::CollisionObjectd cyl_obj(cyl, s.cyl_tf);
-        for (int order = 0; order < 2; ++order) {
-          const fcl::CollisionObjectd* o1 = order ? &cyl_obj : &mesh_obj;
-          const fcl::CollisionObjectd* o2 = order ? &mesh_obj : &cyl_obj;
-          fcl::DistanceRequestd req(true);
+        // Both argument orders: (mesh, cylinder), then (cylinder, mesh).
+        const fcl::CollisionObjectd objs[2] = {{model, s.mesh_tf},
+                                               {cyl, s.cyl_tf}};
+        for (const bool cyl_first : {false, true}) {
+          const fcl::DistanceRequestd req(true);
           fcl::DistanceResultd w, f;
-          tricyl::distance(o1, o2, req, w);
+          tricyl::distance(&objs[cyl_first], &objs[!cyl_first], req, w);
           checkTinyAnswer<BV>(
               m, s, t, w,
-              order ? "wrapper, cylinder first" : "wrapper, mesh first", 0.0,
-              &wrapper_equal);
-          fcl::distance(o1, o2, &solver, req, f);
+              cyl_first ? "wrapper, cylinder first" : "wrapper, mesh first",
+              0.0, &wrapper_equal);
+          fcl::distance(&objs[cyl_first], &objs[!cyl_first], &solver, req, f);
           checkTinyAnswer<BV>(
-              m, s, t, f, order ? "fcl, cylinder first" : "fcl, mesh first",
+              m, s, t, f, cyl_first ? "fcl, cylinder first" : "fcl, mesh first",
               kFclOwnTraversal<BV> ? 1e-14 * size : 0.0, &fcl_equal);
           checked += 2;
         }
