@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <random>
@@ -78,6 +79,10 @@ struct Brute {
   std::size_t arg = 0;
   bool collides = false;
   std::set<std::size_t> colliding;
+  // Per triangle: the distance and its error_bound (+Inf and 0 for a
+  // colliding one); U = min (d + e), an upper bound of the true minimum.
+  std::vector<double> d, e;
+  double upper = std::numeric_limits<double>::infinity();
 };
 
 template <class BV>
@@ -91,14 +96,29 @@ Brute bruteForce(const Mesh& m, const Scene& s) {
     if (a != Answer::kDisjoint) {
       b.collides = true;
       b.colliding.insert(i);
+      b.d.push_back(std::numeric_limits<double>::infinity());
+      b.e.push_back(0);
       continue;
     }
+    b.d.push_back(d.distance);
+    b.e.push_back(d.error_bound);
+    b.upper = std::min(b.upper, d.distance + d.error_bound);
     if (d.distance < b.min) {
       b.min = d.distance;
       b.arg = i;
     }
   }
   return b;
+}
+
+/// The diagonal of the mesh's bounding box.
+double diagonal(const Mesh& m) {
+  V3 lo = m.v[0], hi = m.v[0];
+  for (const V3& p : m.v) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return (hi - lo).norm();
 }
 
 /// Seeded scenes: fcltest::makeScenes' (grazing and random, many touching),
@@ -108,12 +128,7 @@ std::vector<Scene> scenes(const Mesh& m, std::uint64_t seed, int per_kind) {
   std::mt19937_64 rng(seed ^ 0x61706172u);
   std::uniform_real_distribution<double> u01(0, 1);
   std::normal_distribution<double> g;
-  V3 lo = m.v[0], hi = m.v[0];
-  for (const V3& p : m.v) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const double diag = (hi - lo).norm();
+  const double diag = diagonal(m);
   std::vector<Scene> out = base;
   for (std::size_t k = 0; k < base.size(); ++k) {
     Scene s = base[k];
@@ -773,6 +788,242 @@ TEST(FclDistanceShapes, FloatModels) {
   check(BvTag<fcl::AABB<float>>{});
   check(BvTag<fcl::OBB<float>>{});
   check(BvTag<fcl::KDOP<float, 16>>{});
+}
+
+// TINY DISTANCES (docs/distance.md, section 6; mesh_distance.cpp, PRUNING).
+// Below about 2^-45 of the problem's size tricyl::distance's error_bound is
+// the double-word allowance (about 2^-95 of the size), wider than the 2^-40
+// relative slack the walk's pruning once assumed. Scenes: a cylinder of
+// radius and half length 2^-60 whose cap (or barrel, the axis along y)
+// lies delta = 1e-12 .. 1e-30 of the mesh's size below the mesh's lowest
+// vertex, put at the origin; poses exact (a permutation rotation, dyadic
+// translations), so these distances are the true ones. Meshes: a synthetic
+// "spikes" mesh (triangles with one vertex near the origin at heights
+// delta (1 + q) above it, q in {0, 2^-52, 2^-44, 2^-30, 1}, or all but the
+// first lifted by a further 2^-20 delta (a unique minimum), some spanning
+// 4 r, some 0.5, the size: the narrow ones have tight bounds and a tiny
+// error_bound, the wide ones a loose bound and an error_bound of 2^-95 of
+// the size, many distances exactly equal), and the shared meshes moved so
+// that their lowest vertex is at the origin (every triangle around it at
+// exactly delta: a tie of six or so).
+//
+// What "agree" means. Every triangle i has a computed distance d_i and a
+// certified e_i: its true distance is in [d_i - e_i, d_i + e_i], so the
+// true minimum m is in [L, U], L = min (d_i - e_i), U = min (d_i + e_i).
+// The brute-force answer is b = min d_i (triangle j, the first reaching
+// it). Triangles whose intervals overlap cannot be told apart by the
+// kernel, so a walk that measures fewer triangles may return another of
+// them. Asserted for the wrapper (both orders, every BV type) and for
+// fcl::distance with tricyl::Solver: (1) the value returned is the
+// kernel's d_w of the triangle w returned, with that triangle's nearest
+// points; (2) b <= d_w <= b + e_j (the walk's value is a kernel value no
+// smaller than the brute-force one, and above it by no more than the
+// brute-force triangle's own error bound); (3) d_w - e_w <= U (w may be
+// the nearest triangle: none is certainly nearer); (4) when the minimum is
+// certified unique (d_j + e_j < d_i - e_i for every other i), w = j and
+// d_w = b exactly. The count of d_w == b is printed.
+struct TinyMesh {
+  Mesh m;
+  double size;  // the mesh's bounding-box diagonal
+};
+
+/// The synthetic spikes mesh, its lowest vertex at the origin. `r` is the
+/// cylinder's radius (the narrow spikes' width scale); delta the scene's
+/// separation; `lift` (0 or 2^-20) raises every spike but the first by
+/// delta lift (a unique nearest triangle where the bounds allow it).
+Mesh spikesMesh(double r, double delta, double lift, std::mt19937_64& rng) {
+  Mesh m;
+  m.name = "spikes";
+  std::uniform_real_distribution<double> u(-1, 1);
+  const double qs[] = {0, 0x1p-52, 0x1p-44, 0x1p-30, 1};
+  const auto add = [&m](const V3& a, const V3& b, const V3& c) {
+    const int k = int(m.v.size());
+    m.v.push_back(a);
+    m.v.push_back(b);
+    m.v.push_back(c);
+    m.t.emplace_back(k, k + 1, k + 2);
+  };
+  // The size (lifted with the spikes after the first).
+  add(V3(0, 0, delta * lift), V3(0.5, 0.25, 0.5), V3(-0.25, 0.5, 0.5));
+  for (int i = 0; i < 40; ++i) {
+    const double q = qs[i % 5];
+    // (delta q is exact relative to delta: q a power of two or 0, 1.)
+    const V3 p(0, 0, delta * q + (i > 0 ? delta * lift : 0.0));
+    const double w = (i / 5) % 2 ? 0.5 : 4 * r;  // wide or narrow
+    add(p, p + V3(w * u(rng), w * u(rng), w * (1 + u(rng)) + w),
+        p + V3(w * u(rng), w * u(rng), w * (1 + u(rng)) + w));
+  }
+  // Filler: a grid of triangles 0.01 .. 1 above the origin (prunable).
+  for (int i = 0; i < 60; ++i) {
+    const V3 p(0.5 * u(rng), 0.5 * u(rng), 0.01 + 0.5 * (1 + u(rng)));
+    add(p, p + V3(0.05, 0, 0.01), p + V3(0, 0.05, 0.02));
+  }
+  return m;
+}
+
+/// A shared mesh moved so that its lowest vertex (smallest z, then the
+/// first) is at the origin: every vertex then has z >= 0 exactly (x - v
+/// is rounded monotonically), so every triangle around it is exactly as
+/// far from the cylinder as that vertex.
+bool lowestAtOrigin(Mesh* m) {
+  if (m->v.empty()) return false;
+  std::size_t lo = 0;
+  for (std::size_t i = 1; i < m->v.size(); ++i)
+    if (m->v[i][2] < m->v[lo][2]) lo = i;
+  const V3 o = m->v[lo];
+  for (V3& p : m->v) p = p - o;
+  return true;
+}
+
+/// Brute force (bruteForce) and whether its minimum is certified unique:
+/// d_j + e_j < d_i - e_i for every other triangle i.
+struct TinyBrute {
+  Brute f;
+  bool unique = false;
+};
+
+template <class BV>
+TinyBrute tinyBrute(const Mesh& m, const Scene& s) {
+  TinyBrute t{bruteForce<BV>(m, s)};
+  const Brute& f = t.f;
+  if (f.collides) return t;
+  t.unique = true;
+  for (std::size_t i = 0; i < m.t.size(); ++i)
+    if (i != f.arg && !(f.d[f.arg] + f.e[f.arg] < f.d[i] - f.e[i]))
+      t.unique = false;
+  return t;
+}
+
+/// FCL's own traversal (fcl::distance with the Solver, for the types it
+/// does not hand to the wrapper) prunes with its rounded BV distances and
+/// no allowance: it may miss the nearest triangle by an absolute rounding
+/// of its boxes (about 1e-16 of the scene's size; 1e-14 is asserted, as in
+/// MinimumAndNearestPointsEqualBruteForce), far above these distances.
+template <class BV>
+constexpr bool kFclOwnTraversal = std::is_same_v<BV, fcl::RSS<double>> ||
+                                  std::is_same_v<BV, fcl::kIOS<double>> ||
+                                  std::is_same_v<BV, fcl::OBBRSS<double>>;
+
+/// Asserts (1)-(4) of TINY DISTANCES for one answer; `slack` is 0 for the
+/// wrapper, FCL's rounding (above) for FCL's own traversal (whose (3) and
+/// (4) are then not asserted).
+template <class BV>
+void checkTinyAnswer(const Mesh& m, const Scene& s, const TinyBrute& t,
+                     const fcl::DistanceResultd& w, const char* who,
+                     double slack, long* equal) {
+  SCOPED_TRACE(who);
+  ASSERT_GE(w.b1, 0);
+  ASSERT_LT(std::size_t(w.b1), m.t.size());
+  const Cylinder<double> c{s.r, s.lz};
+  const DistanceResult<double> at =
+      tricyl::distance(c, toPose(s.cyl_tf), worldTri<BV>(m, s.mesh_tf, w.b1));
+  // (1)
+  EXPECT_EQ(w.min_distance, at.distance);
+  EXPECT_EQ(w.nearest_points[0], fclPoint(at.point_on_triangle));
+  EXPECT_EQ(w.nearest_points[1], fclPoint(at.point_on_cylinder));
+  // (2)
+  EXPECT_LE(t.f.min, w.min_distance);
+  EXPECT_LE(w.min_distance, t.f.min + t.f.e[t.f.arg] + slack)
+      << "brute force " << t.f.min;
+  *equal += w.min_distance == t.f.min;
+  if (slack > 0) return;
+  // (3)
+  EXPECT_LE(at.distance - at.error_bound, t.f.upper);
+  // (4)
+  if (t.unique) {
+    EXPECT_EQ(std::size_t(w.b1), t.f.arg);
+    EXPECT_EQ(w.min_distance, t.f.min);
+  }
+}
+
+TYPED_TEST(FclDistanceTest, TinyDistancesAgreeWithBruteForceWithinBounds) {
+  using BV = TypeParam;
+  const std::uint64_t seed = test::baseSeed() ^ 0x74696e79u;
+  SCOPED_TRACE(test::seedTrace(seed));
+  std::mt19937_64 rng(seed);
+  const Solver<double> solver;
+  const double r = 0x1p-60, h = 0x1p-60;
+  long checked = 0, wrapper_equal = 0, fcl_equal = 0, unique = 0, wide = 0;
+  TraversalStats stats;
+  std::vector<Mesh> shared;
+  for (Mesh& mm : meshes())
+    if (mm.name != "builtin sphere" && lowestAtOrigin(&mm))
+      shared.push_back(std::move(mm));
+  for (const double rel : {1e-12, 1e-16, 1e-20, 1e-25, 1e-30}) {
+    for (int which = -2; which < int(shared.size()); ++which) {
+      for (int barrel = 0; barrel < 2; ++barrel) {
+        // The mesh and delta (rel of its size, on a 2^-112 grid so that
+        // the cylinder's translation below is exact).
+        const double size = which < 0 ? 1.0 : diagonal(shared[which]);
+        const double delta =
+            std::max(std::ldexp(std::round(std::ldexp(rel * size, 112)), -112),
+                     0x1p-112);
+        const Mesh m =
+            which < 0 ? spikesMesh(r, delta, which == -2 ? 0x1p-20 : 0, rng)
+                      : shared[std::size_t(which)];
+        char what[96];
+        std::snprintf(what, sizeof what, "%s%s, %s, delta %.17g (%g of %g)",
+                      m.name.c_str(), which == -2 ? " (unique)" : "",
+                      barrel ? "barrel" : "cap", delta, rel, size);
+        SCOPED_TRACE(what);
+        Scene s;
+        s.r = r;
+        s.lz = 2 * h;
+        s.kind = "tiny";
+        s.mesh_tf = Tf::Identity();
+        s.cyl_tf = Tf::Identity();
+        if (barrel) {
+          // Axis along y (columns e_z, e_x, e_y: det +1), the barrel's
+          // nearest line at z = -delta.
+          fcl::Matrix3d R;
+          R << 0, 1, 0, 0, 0, 1, 1, 0, 0;
+          s.cyl_tf.linear() = R;
+          s.cyl_tf.translation() = V3(0, 0, -(r + delta));
+        } else {
+          s.cyl_tf.translation() = V3(0, 0, -(h + delta));
+        }
+        auto model = fcltest::makeModel<BV>(m);
+        const TinyBrute t = tinyBrute<BV>(m, s);
+        ASSERT_FALSE(t.f.collides);
+        unique += t.unique;
+        for (const double e : t.f.e) wide += e > 0x1p-40 * t.f.min;
+        auto cyl = std::make_shared<fcl::Cylinderd>(s.r, s.lz);
+        // Both argument orders: (mesh, cylinder), then (cylinder, mesh).
+        const fcl::CollisionObjectd objs[2] = {{model, s.mesh_tf},
+                                               {cyl, s.cyl_tf}};
+        for (const bool cyl_first : {false, true}) {
+          const fcl::DistanceRequestd req(true);
+          fcl::DistanceResultd w, f;
+          tricyl::distance(&objs[cyl_first], &objs[!cyl_first], req, w);
+          checkTinyAnswer<BV>(
+              m, s, t, w,
+              cyl_first ? "wrapper, cylinder first" : "wrapper, mesh first",
+              0.0, &wrapper_equal);
+          fcl::distance(&objs[cyl_first], &objs[!cyl_first], &solver, req, f);
+          checkTinyAnswer<BV>(
+              m, s, t, f, cyl_first ? "fcl, cylinder first" : "fcl, mesh first",
+              kFclOwnTraversal<BV> ? 1e-14 * size : 0.0, &fcl_equal);
+          checked += 2;
+        }
+        fcl::DistanceResultd w;
+        distanceMeshCylinder(model.get(), s.mesh_tf, cyl.get(), s.cyl_tf,
+                             fcl::DistanceRequestd(), w, &stats);
+      }
+    }
+  }
+  // The scenes do what they are for: error bounds wider than 2^-40 of the
+  // minimum (the old pruning's assumption), pruning still at work, and
+  // unique minima too (assertion (4) at work).
+  EXPECT_GT(wide, 0);
+  EXPECT_GT(unique, 0);
+  EXPECT_GT(stats.nodes_skipped, 0u);
+  std::printf(
+      "[ info ] %ld answers, equal to brute force's value: wrapper %ld, "
+      "fcl::distance %ld; %ld scenes with a certified unique minimum; %ld "
+      "triangle bounds wider than 2^-40 of the minimum; traversal: %zu "
+      "bounds, %zu pruned, %zu triangles measured\n",
+      checked, wrapper_equal, fcl_equal, unique, wide, stats.nodes_tested,
+      stats.nodes_skipped, stats.leaves);
 }
 
 }  // namespace

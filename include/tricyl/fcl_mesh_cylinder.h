@@ -137,10 +137,14 @@ bool collideMeshCylinderWithin(const fcl::CollisionGeometry<double>* g1,
 /// value already in `result` (DistanceResult::update): tricyl::distance's
 /// certified distance for a disjoint triangle, and for a colliding one minus
 /// estimateContact's depth, where the walk stops (FCL stops at
-/// min_distance <= 0 too). Without rel_err/abs_err in the request the value
-/// is the brute-force minimum over all the triangles (src/fcl/
-/// mesh_distance.cpp, PRUNING), not an approximation; with them, within
-/// those tolerances as in FCL. result.o1 is the mesh, b1 the triangle,
+/// min_distance <= 0 too). Without rel_err/abs_err in the request the
+/// nearest triangle is always measured (a triangle is skipped only when
+/// certainly farther than the best one: src/fcl/mesh_distance.cpp,
+/// PRUNING) and the value is the brute-force minimum over all the
+/// triangles, except that ties within tricyl::distance's error bounds may
+/// be broken differently (then within the brute-force triangle's bound of
+/// it; docs/distance.md, section 6.2); with them, within those tolerances
+/// as in FCL. result.o1 is the mesh, b1 the triangle,
 /// nearest_points[0] on the triangle and [1] on the cylinder, world frame
 /// (FCL's convention in either argument order). Signed distance is the
 /// caller's (tricyl::distance): this never reads enable_signed_distance.

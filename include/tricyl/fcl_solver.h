@@ -69,8 +69,9 @@
 /// - tricyl::distance(o1, o2, request, result): fcl::distance's
 ///   replacement; a mesh/cylinder pair in double is walked by tricyl's own
 ///   traversal (fcl_mesh_cylinder.h, distanceMeshCylinder): certified lower
-///   bounds per node and per triangle, best-first, the exact brute-force
-///   minimum of the per-triangle distances.
+///   bounds per node and per triangle, best-first, the brute-force minimum
+///   of the per-triangle distances (ties within their certified error
+///   bounds aside: docs/distance.md, section 6.2).
 ///
 /// ## MARGIN COLLIDE (docs/fcl_solver.md)
 /// tricyl::collide(o1, o2, request, result, CollideOptions<S>{margin}):

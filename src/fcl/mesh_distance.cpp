@@ -27,18 +27,33 @@ namespace {
 
 using namespace traversal;  // NOLINT: this file's own internal helpers
 
-// PRUNING. A node whose certified lower bound lb (lowerBoundLocal) exceeds
-// best (1 + 2^-40), best the smallest distance found so far, is skipped. A
-// triangle below it has true distance >= lb, and tricyl::distance returns it
-// within error_bound, a few ulps of the distance (<= 8 ulps, 2^-50
-// relative, docs/distance.md), so its computed distance is >= lb (1 -
-// 2^-49) > best: it could not have replaced best (DistanceResult::update
-// keeps the first of equal distances). The traversal therefore returns the
-// smallest computed distance over ALL the triangles, the brute-force
-// minimum, not an approximation of it. Distances in the subnormal range,
-// where error_bound is absolute and larger than 2^-40 of the distance
-// (triangle_cylinder_distance.h), are the exception: the node bound's own
-// absolute term (2^-500 and up) dwarfs them and nothing is pruned that near.
+// PRUNING. Each triangle i measured gets d_i and a certified e_i
+// (error_bound): its true distance is in [d_i - e_i, d_i + e_i]. best is
+// the smallest d_i so far (triangle c) and cut = (d_c + e_c) (1 + 2^-40),
+// rounded (two roundings of 2^-53 each: cut > d_c + e_c still). A node
+// whose certified lower bound lb (lowerBoundLocal, triangleLowerBound,
+// triangleSupportBound) exceeds cut is skipped: every triangle below it is
+// certainly farther than c (true >= lb > d_c + e_c >= c's true distance),
+// so it is not the nearest triangle, and the nearest one (every triangle
+// attaining the true minimum) is always measured. The traversal returns
+// the smallest d_i over the triangles it measured; hence, with b the
+// brute-force minimum over ALL the triangles (triangle j): b <= returned
+// <= b + e_j, the returned triangle is never certainly farther than
+// another (returned - e <= min (d_i + e_i)), and returned = b exactly
+// whenever a pruned triangle's own error cannot take its d below best,
+// in particular whenever the minimum is certified unique and whenever the
+// pruned triangles' e_i are within 2^-40 of their distance (the usual case:
+// a few ulps above about 2^-45 of the problem's size, docs/distance.md,
+// section 4). Below that size the kernel's e_i is its double-word
+// allowance, about 2^-95 of the size, wider than 2^-40 of the distance
+// (an earlier rule, lb > best (1 + 2^-40), assumed e <= 2^-40 best and
+// could then prune the nearest triangle, one within e_c of best): ties
+// among triangles whose intervals overlap may then be broken differently
+// from brute force, the value staying within the bounds above
+// (tests/fcl_distance_test.cpp, TinyDistancesAgreeWithBruteForceWithinBounds;
+// docs/distance.md, section 6.2). Distances in the subnormal range, where
+// error_bound is absolute, are covered the same way (the node bound's own
+// absolute term, 2^-500 and up, prunes nothing that near anyway).
 // DistanceRequest::rel_err and abs_err, when set, loosen the test exactly as
 // FCL's traversal does (canStop: lb >= best - abs_err and lb (1 + rel_err) >=
 // best): the answer is then within those tolerances of the minimum.
@@ -150,16 +165,24 @@ class Pruner {
       : rel_err_(request.rel_err),
         abs_err_(request.abs_err),
         loose_(request.rel_err > 0 || request.abs_err > 0) {}
-  /// True when a node of lower bound lb cannot improve on best.
-  bool prune(double lb, double best) const {
-    if (gt(lb, best + best * kLeafRel)) return true;
-    return loose_ && std::isgreaterequal(lb, best - abs_err_) &&
-           std::isgreaterequal(lb * (1 + rel_err_), best);
+  /// The best triangle so far changed: its distance and error bound (the
+  /// cut of PRUNING).
+  void setBest(double best, double error_bound) {
+    best_ = best;
+    cut_ = (best + error_bound) * (1 + kLeafRel);
+  }
+  /// True when a node of lower bound lb cannot hold the nearest triangle.
+  bool prune(double lb) const {
+    if (gt(lb, cut_)) return true;
+    return loose_ && std::isgreaterequal(lb, best_ - abs_err_) &&
+           std::isgreaterequal(lb * (1 + rel_err_), best_);
   }
 
  private:
   double rel_err_, abs_err_;
   bool loose_;
+  double best_ = std::numeric_limits<double>::infinity();
+  double cut_ = std::numeric_limits<double>::infinity();
 };
 
 template <class BV>
@@ -176,7 +199,7 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
   const Local& k = setup.k;
   const Cylinder<double> cyl{cyl_geom.radius, cyl_geom.lz};
   const Pose<double> pose = toPose(tf_cyl);
-  const Pruner pruner(request);
+  Pruner pruner(request);
 
   // A node's bound. Its children (or its triangle's vertex indices) are
   // asked for at the same time: about half the nodes bounded are expanded
@@ -201,6 +224,9 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
   };
   std::size_t tested = 0, skipped = 0, leaves = 0, hits = 0;
   double best = result.min_distance;
+  // (A result passed in carries no error bound: its distance is taken as
+  // it is.)
+  pruner.setBest(best, 0);
   EntryQueue queue;
   // A node's entry carries its box bound; a leaf's triangle gets its own
   // cheap bound (mesh_traversal.h, triangleLowerBound) only when it comes
@@ -211,7 +237,7 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
   };
   const auto survives = [&](double lb) {
     ++tested;
-    if (!pruner.prune(lb, best)) return true;
+    if (!pruner.prune(lb)) return true;
     ++skipped;
     return false;
   };
@@ -230,6 +256,7 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
       if (d.distance < best) {
         ++hits;
         best = d.distance;
+        pruner.setBest(best, d.error_bound);
         result.update(d.distance, geom, cyl_geom_base, id,
                       fcl::DistanceResult<double>::NONE,
                       V3(d.point_on_triangle.x, d.point_on_triangle.y,
@@ -288,7 +315,7 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
     // Taken from the heap, every open entry is at least e.lb: once that
     // cannot improve on best, nothing can. (From the stack, e.lb is <= 0 or
     // NaN and prunes nothing while best > 0; the loop ends at best <= 0.)
-    if (pruner.prune(e.lb, best)) {
+    if (pruner.prune(e.lb)) {
       ++skipped;
       if (gt(e.lb, 0)) break;
       continue;
@@ -314,7 +341,7 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
       const double lb = support ? triangleSupportBound(local, cyl.radius, k.h)
                                 : triangleLowerBound(local, cyl.radius, k.h);
       if (gt(lb, lt)) lt = lb;
-      if (pruner.prune(lt, best)) {
+      if (pruner.prune(lt)) {
         ++skipped;
         continue;
       }
@@ -328,7 +355,7 @@ bool traverse(const fcl::CollisionGeometry<double>* geom, const Tf& tf_mesh,
       if (!support && gt(lt, 0)) {
         const double ls = triangleSupportBound(local, cyl.radius, k.h);
         if (gt(ls, lt)) {
-          if (pruner.prune(ls, best)) {
+          if (pruner.prune(ls)) {
             ++skipped;
             continue;
           }
