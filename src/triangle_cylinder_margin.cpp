@@ -1416,9 +1416,16 @@ Decision decide(Query& q) {
     validated = true;
     sized_first = detail::rangeGateOk(4 * q.max_len, q.max_unitless);
     if (!sized_first) {
-      exact_top = torusExactInput(q, 1);
-      wide_in[0] = torusWideInput(*exact_top);
-      const Tri w = supersetStages(*exact_top, *wide_in[0]);
+      // First in double on the rescaled inputs (torusRobustInput: no GMP),
+      // then on the exact input.
+      Tri w = q.max_len > 0 ? supersetPart<Uk>(torusRobustInput(q, true))
+                            : Tri::kUnknown;
+      if (w == Tri::kFalse) return no(Stage::kEarlyOut);
+      if (w == Tri::kUnknown) {
+        exact_top = torusExactInput(q, 1);
+        wide_in[0] = torusWideInput(*exact_top);
+        w = supersetStages(*exact_top, *wide_in[0]);
+      }
       if (w == Tri::kFalse) return no(Stage::kExtended);
       superset_open = w == Tri::kUnknown;
     }
