@@ -238,6 +238,8 @@ struct DwKernel {
   using Num = Dwe<kFma>;
   static constexpr bool kExact = false;
   static TRICYL_DW_INLINE Num lift(double x) { return {{x, 0.0}, 0.0}; }
+  /// A coordinate of the double-word frame (value and bound) as a value.
+  static TRICYL_DW_INLINE Num leaf(const DwRun& c) { return {c.v, c.e}; }
   static TRICYL_DW_INLINE Num inputDiff(double a, double b) {
     Num r;
     twoSum(a, -b, r.v.hi, r.v.lo);

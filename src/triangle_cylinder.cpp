@@ -180,33 +180,16 @@ TRICYL_ALWAYS_INLINE void dwFrame(const Inputs& in, DwFrame* f) {
   }
 }
 
-// The double-word stage (src/dw_kernel.h): the tests in `tests` alone, in
-// straight-line double-word arithmetic, on the frame `f`; `left`: those it
-// left undecided. Flattened (every call inlined), so that the copy compiled
-// for FMA (TRICYL_FMA_DISPATCH) runs FMA throughout; both copies give the
-// same bits.
-template <bool kFma>
-TRICYL_ALWAYS_INLINE Tri dwTests(const Inputs& in, const DwFrame& f,
-                                 std::uint32_t tests, std::uint32_t* left,
-                                 detail::EarlyOuts* early) {
-  using K = detail::DwKernel<kFma>;
-  detail::TriCylLocal<K> q;
-  for (int i = 0; i < 3; ++i) {
-    q.x[i] = {f.c[i][0].v, f.c[i][0].e};
-    q.y[i] = {f.c[i][1].v, f.c[i][1].e};
-    q.Z[i] = {f.c[i][2].v, f.c[i][2].e};
-  }
-  q.H = K::lift(in.cyl.lz);
-  q.r = K::lift(in.cyl.radius);
-  return detail::triangleCylinderUndecided<K>(q, tests, left, early);
-}
-// The double-word filter (DwFilterKernel, src/dw_kernel.h) on the same
-// frame: the values in double word with a magnitude bound, no running bound.
-template <bool kFma>
-TRICYL_ALWAYS_INLINE Tri dwfTests(const Inputs& in, const DwFrame& f,
-                                  std::uint32_t tests, std::uint32_t* left,
-                                  detail::EarlyOuts* early) {
-  using K = detail::DwFilterKernel<kFma>;
+// The double-word stages (src/dw_kernel.h): the tests in `tests` alone, on
+// the frame `f`, in straight-line double-word arithmetic: K = DwKernel (a
+// running bound, exact values tracked) or DwFilterKernel (a magnitude
+// bound); `left`: the tests it left undecided. Flattened (every call
+// inlined), so that the copy compiled for FMA (TRICYL_FMA_DISPATCH) runs FMA
+// throughout; both copies give the same bits.
+template <class K>
+TRICYL_ALWAYS_INLINE Tri frameTests(const Inputs& in, const DwFrame& f,
+                                    std::uint32_t tests, std::uint32_t* left,
+                                    detail::EarlyOuts* early) {
   detail::TriCylLocal<K> q;
   for (int i = 0; i < 3; ++i) {
     q.x[i] = K::leaf(f.c[i][0]);
@@ -216,6 +199,18 @@ TRICYL_ALWAYS_INLINE Tri dwfTests(const Inputs& in, const DwFrame& f,
   q.H = K::lift(in.cyl.lz);
   q.r = K::lift(in.cyl.radius);
   return detail::triangleCylinderUndecided<K>(q, tests, left, early);
+}
+template <bool kFma>
+TRICYL_ALWAYS_INLINE Tri dwTests(const Inputs& in, const DwFrame& f,
+                                 std::uint32_t tests, std::uint32_t* left,
+                                 detail::EarlyOuts* early) {
+  return frameTests<detail::DwKernel<kFma>>(in, f, tests, left, early);
+}
+template <bool kFma>
+TRICYL_ALWAYS_INLINE Tri dwfTests(const Inputs& in, const DwFrame& f,
+                                  std::uint32_t tests, std::uint32_t* left,
+                                  detail::EarlyOuts* early) {
+  return frameTests<detail::DwFilterKernel<kFma>>(in, f, tests, left, early);
 }
 #if TRICYL_FMA_DISPATCH
 __attribute__((target("fma"), flatten, noinline)) Tri dwfTestsFma(

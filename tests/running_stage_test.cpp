@@ -335,8 +335,10 @@ TEST(DoubleWordFrame, AccurateCoordinatesEncloseTheExact) {
 // answer. Its rules are the adaptive run's first check of every sign
 // (src/adaptive.h) and the line interval's first stage; its sign() is
 // tested here on the whole triangle kernel.
-template <class K>
-void agreesWithOracle(scenes::Family family, long n, std::uint64_t seed) {
+// `make(k, rho)`: the kernel's local frame for case k (rho = max |R_jk|).
+template <class K, class MakeLocal>
+void agreesWithOracleOn(scenes::Family family, long n, std::uint64_t seed,
+                        MakeLocal make) {
   long decided = 0, failures = 0;
   for (long i = 0; i < n && failures < 10; ++i) {
     const scenes::TriCase k = scenes::generate(family, seed, std::uint64_t(i));
@@ -347,7 +349,7 @@ void agreesWithOracle(scenes::Family family, long n, std::uint64_t seed) {
       len = std::max({len, std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
     if (!detail::rangeGateOk(len, rho)) continue;  // the stages' precondition
     bool early = false;
-    const auto q = detail::makeLocal<K>(k.cyl, k.pose, k.tri, rho);
+    const detail::TriCylLocal<K> q = make(k, rho);
     const Tri t = detail::triangleCylinder<K>(q, &early);
     if (t == Tri::kUnknown) continue;
     ++decided;
@@ -362,6 +364,14 @@ void agreesWithOracle(scenes::Family family, long n, std::uint64_t seed) {
               scenes::familyName(family), decided, n);
   EXPECT_EQ(failures, 0);
   EXPECT_GT(decided, n / 2);
+}
+
+template <class K>
+void agreesWithOracle(scenes::Family family, long n, std::uint64_t seed) {
+  agreesWithOracleOn<K>(
+      family, n, seed, [](const scenes::TriCase& k, double rho) {
+        return detail::makeLocal<K>(k.cyl, k.pose, k.tri, rho);
+      });
 }
 
 TYPED_TEST(RunningFrameTest, TriangleKernelAgreesWithTheOracle) {
@@ -382,46 +392,24 @@ TEST(DwFilterTriangle, AgreesWithTheOracle) {
   using K = detail::DwFilterKernel<false>;
   const std::uint64_t seed = test::baseSeed() + 78;
   SCOPED_TRACE(test::seedTrace(seed));
+  auto frame = [](const scenes::TriCase& k, double) {
+    detail::TriCylLocal<K> q;
+    const Vec3<double>* P[3] = {&k.tri.a, &k.tri.b, &k.tri.c};
+    for (int v = 0; v < 3; ++v) {
+      detail::DwKernel<false>::Num c[3];
+      detail::DwKernel<false>::toLocal(k.pose, *P[v], c[0], c[1], c[2]);
+      q.x[v] = K::leaf({c[0].v, c[0].e});
+      q.y[v] = K::leaf({c[1].v, c[1].e});
+      q.Z[v] = K::leaf({c[2].v, c[2].e});
+    }
+    q.H = K::lift(k.cyl.lz);
+    q.r = K::lift(k.cyl.radius);
+    return q;
+  };
   for (scenes::Family f :
        {scenes::Family::kNear, scenes::Family::kThin, scenes::Family::kFar,
-        scenes::Family::kAligned, scenes::Family::kSliver}) {
-    const long n = test::scaled(1500);
-    long decided = 0, failures = 0;
-    for (long i = 0; i < n && failures < 10; ++i) {
-      const scenes::TriCase k = scenes::generate(f, seed, std::uint64_t(i));
-      double rho = 0, len = std::max(k.cyl.radius, k.cyl.lz);
-      for (const auto& row : k.pose.R)
-        for (double v : row) rho = std::max(rho, std::fabs(v));
-      for (const Vec3<double>& v : {k.pose.t, k.tri.a, k.tri.b, k.tri.c})
-        len = std::max({len, std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
-      if (!detail::rangeGateOk(len, rho)) continue;
-      detail::TriCylLocal<K> q;
-      const Vec3<double>* P[3] = {&k.tri.a, &k.tri.b, &k.tri.c};
-      for (int v = 0; v < 3; ++v) {
-        detail::DwKernel<false>::Num c[3];
-        detail::DwKernel<false>::toLocal(k.pose, *P[v], c[0], c[1], c[2]);
-        q.x[v] = K::leaf({c[0].v, c[0].e});
-        q.y[v] = K::leaf({c[1].v, c[1].e});
-        q.Z[v] = K::leaf({c[2].v, c[2].e});
-      }
-      q.H = K::lift(k.cyl.lz);
-      q.r = K::lift(k.cyl.radius);
-      bool early = false;
-      const Tri t = detail::triangleCylinder<K>(q, &early);
-      if (t == Tri::kUnknown) continue;
-      ++decided;
-      const bool truth = oracle::triangleCylinder(k.cyl, k.pose, k.tri);
-      if ((t == Tri::kTrue) != truth) {
-        ++failures;
-        ADD_FAILURE() << scenes::familyName(f) << " case " << i << ": oracle "
-                      << truth;
-      }
-    }
-    std::printf("[ stats    ] %s: %ld of %ld decided\n", scenes::familyName(f),
-                decided, n);
-    EXPECT_EQ(failures, 0);
-    EXPECT_GT(decided, n / 2);
-  }
+        scenes::Family::kAligned, scenes::Family::kSliver})
+    agreesWithOracleOn<K>(f, test::scaled(1500), seed, frame);
 }
 
 // The double-word kernel's coordinates (DwKernel::toLocal, src/dw_kernel.h)
