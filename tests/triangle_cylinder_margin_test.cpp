@@ -566,9 +566,84 @@ TEST(Margin, HostileThresholdsAgreeWithOracle) {
   EXPECT_EQ(found, n) << "too few thresholds decided by a torus";
 }
 
+// Thresholds near the last two queries of the regression list (a cylinder
+// 2^-600 and more below the margin, vertices' coordinates up to 2^1000:
+// every part ties at the flip beyond the windows' 1,280 bits, and the
+// capsule around the axis, capsulePart in src/triangle_cylinder_margin.cpp,
+// decides both ways): r and lz each scaled by 2^-k (k < 200), the vertices
+// in a random cyclic order, the threshold bracketed by bisection steered by
+// the kernel and confirmed by the oracle at both ends.
+TEST(Margin, TinyCylinderThresholdsAgreeWithOracle) {
+  const char* const kBase[] = {
+      "0x1.39e0e76f66999p-801 0x1.02415754bc196p-947 0x1.e8a13ecef8153p-544 "
+      "0x1.918dfadc46b49p+411 0x1.6860aa3475be3p+688 0x1.47d9203c7179ep+309 "
+      "-0x1.58a1dcf72ba37p-424 -0x1.9cda02beb521ap-781 "
+      "-0x1.484516dabad5bp+305 -0x1.a89d680258d11p-941 "
+      "-0x1.8b172632e13b3p-1006 0x1.c29ac9f2ed1ffp+82 "
+      "-0x1.1cf371dba08f6p+441 0x1.5ebfbd7b021a1p+294 0x1.a8f1f48b25f7dp+919 "
+      "0x1.be9c46174af66p-964 -0x1.787b87f57f806p-985 "
+      "0x1.c2af12c14ea52p-1021 0x1.c70770262a19ap+83 0x1.77e1e1c8d8707p-531 "
+      "-0x1.c4d1d8b399a1ap-918 -0x1.eb17aa2203144p+525 "
+      "0x1.166810bff91abp-779 0x1.d8caeaa1ffa6dp-134",
+      "0x0.0000000000066p-1022 0x1.de64a5c8392e2p-481 "
+      "-0x1.e47eaedd1e05cp-778 0x1.2a978e7f9ab21p+832 "
+      "-0x1.7db80db0e41f8p-158 0x1.b13b9e7d07cbap+513 0x1.d16706b2b33c4p-460 "
+      "-0x1.d3ee46168a3eap+1014 0x1.cf55ea81ad6dep-605 "
+      "-0x1.ead7b0bad8b6dp-504 -0x1.a5d620b1ca65p+187 -0x1.013bf9c7fb6p+187 "
+      "-0x1.1491263979849p-21 0x1.fe918a3a56bd1p-156 0x1.4c753a9625bc1p+971 "
+      "0x1.840c6c52565acp+862 0x1.413e572af22d2p-869 -0x1.e809f72bc4a8ap+888 "
+      "0x1.59584441afc2fp+486 -0x1.d92b59053dep-340 0x1.427f862dc0d3ep+1000 "
+      "-0x1.4808464b9c8fcp+953 0x1.fcbcb752713f2p-359 0x1.8576efb20f1b2p-469",
+  };
+  const std::uint64_t seed = test::baseSeed();
+  SCOPED_TRACE(test::seedTrace(seed));
+  scenes::Rng g(seed ^ 0x43617073u);
+  const long n = test::scaled(4);
+  auto at = [](std::int64_t bits) {
+    double x;
+    std::memcpy(&x, &bits, sizeof x);
+    return x;
+  };
+  for (long i = 0; i < n; ++i) {
+    double v[24];
+    const char* p = kBase[i % 2];
+    for (double& x : v) {
+      char* end = nullptr;
+      x = std::strtod(p, &end);
+      ASSERT_NE(end, p);
+      p = end;
+    }
+    TriCase k{};
+    k.cyl = {std::ldexp(v[0], -int(g.next() % 200)),
+             std::ldexp(v[1], -int(g.next() % 200))};
+    k.pose = identityPose<double>();
+    for (int j = 0; j < 3; ++j)
+      for (int c = 0; c < 3; ++c) k.pose.R[j][c] = v[2 + 3 * j + c];
+    k.pose.t = {v[11], v[12], v[13]};
+    const int s = int(g.next() % 3);
+    const V w[3] = {
+        {v[14], v[15], v[16]}, {v[17], v[18], v[19]}, {v[20], v[21], v[22]}};
+    k.tri = {w[s], w[(s + 1) % 3], w[(s + 2) % 3]};
+    auto kernel = [&](double m) {
+      return tryWithinDistance(k.cyl, k.pose, k.tri, m) == Answer::kIntersect;
+    };
+    std::int64_t lo = 0, hi = 0x7fefffffffffffff;
+    ASSERT_FALSE(kernel(0));
+    ASSERT_TRUE(kernel(at(hi)));
+    while (hi - lo > 1) {
+      const std::int64_t mid = lo + (hi - lo) / 2;
+      (kernel(at(mid)) ? hi : lo) = mid;
+    }
+    SCOPED_TRACE("case " + std::to_string(i) + " " + describe(k, at(lo)));
+    ASSERT_FALSE(oracleWithin(k, at(lo))) << "bracket, low end";
+    ASSERT_TRUE(oracleWithin(k, at(hi))) << "bracket, high end";
+  }
+}
+
 // The regression list bench/data/margin_worst.txt (the slowest threshold
 // queries of tricyl-margin-stage-costs, margins 1 ulp below and above the
-// flip: the wide torus edges' local certificate decides them): each answer
+// flip: the wide torus edges' local certificate decides most of them, the
+// capsule around the axis the last two): each answer
 // against the exact oracle, with the margin and its two neighbours.
 TEST(Margin, RegressionListAgreesWithOracle) {
   const char* const kList[] = {
@@ -669,6 +744,25 @@ TEST(Margin, RegressionListAgreesWithOracle) {
       "0x1.a93da8eb0864cp-642 0x1.52d4d336ea9cp+17 0x1.dd4803b2978b3p+466 "
       "0x1.ccd4ebdddd9efp+485 -0x1.7d1c6cf1ed0b7p-833 -0x1.7683dd047ed11p-986 "
       "-0x1.32c12ce121d64p+0 -0x0.00202f56e593ep-1022 0x1.913d9381cedddp+709",
+      "0x1.39e0e76f66999p-801 0x1.02415754bc196p-947 0x1.e8a13ecef8153p-544 "
+      "0x1.918dfadc46b49p+411 0x1.6860aa3475be3p+688 0x1.47d9203c7179ep+309 "
+      "-0x1.58a1dcf72ba37p-424 -0x1.9cda02beb521ap-781 "
+      "-0x1.484516dabad5bp+305 -0x1.a89d680258d11p-941 "
+      "-0x1.8b172632e13b3p-1006 0x1.c29ac9f2ed1ffp+82 "
+      "-0x1.1cf371dba08f6p+441 0x1.5ebfbd7b021a1p+294 0x1.a8f1f48b25f7dp+919 "
+      "0x1.be9c46174af66p-964 -0x1.787b87f57f806p-985 "
+      "0x1.c2af12c14ea52p-1021 0x1.c70770262a19ap+83 0x1.77e1e1c8d8707p-531 "
+      "-0x1.c4d1d8b399a1ap-918 -0x1.eb17aa2203144p+525 "
+      "0x1.166810bff91abp-779 0x1.d8caeaa1ffa6dp-134",
+      "0x0.0000000000066p-1022 0x1.de64a5c8392e2p-481 "
+      "-0x1.e47eaedd1e05cp-778 0x1.2a978e7f9ab21p+832 "
+      "-0x1.7db80db0e41f8p-158 0x1.b13b9e7d07cbap+513 0x1.d16706b2b33c4p-460 "
+      "-0x1.d3ee46168a3eap+1014 0x1.cf55ea81ad6dep-605 "
+      "-0x1.ead7b0bad8b6dp-504 -0x1.a5d620b1ca65p+187 -0x1.013bf9c7fb6p+187 "
+      "-0x1.1491263979849p-21 0x1.fe918a3a56bd1p-156 0x1.4c753a9625bc1p+971 "
+      "0x1.840c6c52565acp+862 0x1.413e572af22d2p-869 -0x1.e809f72bc4a8ap+888 "
+      "0x1.59584441afc2fp+486 -0x1.d92b59053dep-340 0x1.427f862dc0d3ep+1000 "
+      "-0x1.4808464b9c8fcp+953 0x1.fcbcb752713f2p-359 0x1.8576efb20f1b2p-469",
   };
   for (const char* line : kList) {
     double v[24];
