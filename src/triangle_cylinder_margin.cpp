@@ -1348,7 +1348,9 @@ int torusDominated(const TorusInput<ZKernel>& t) {
 /// signs, at Z = (w_a Z_a + w_b Z_b + w_c Z_c) / d; then |Z| <= C + M.
 /// Integer products of the inputs' size (nine, and one for the bound); a
 /// triangle parallel to the axis (d = 0) is left to the parts.
-bool axisHit(const TorusInput<ZKernel>& t) {
+/// axisCrossing: the axis meets the closed triangle and d != 0 (n and d
+/// set, Z = n / d); axisHit: and |Z| <= C + M.
+bool axisCrossing(const TorusInput<ZKernel>& t, mpz_class* n, mpz_class* d) {
   mpz_class w[3];
   int pos = 0, neg = 0;
   for (int i = 0; i < 3; ++i) {
@@ -1358,10 +1360,14 @@ bool axisHit(const TorusInput<ZKernel>& t) {
     neg += sgn(w[i]) < 0;
   }
   if (pos > 0 && neg > 0) return false;  // the axis misses the triangle
-  const mpz_class d = w[0] + w[1] + w[2];
-  if (sgn(d) == 0) return false;
-  const mpz_class n = w[0] * t.Z[0] + w[1] * t.Z[1] + w[2] * t.Z[2];
-  return abs(n) <= (t.C + t.M) * abs(d);
+  *d = w[0] + w[1] + w[2];
+  if (sgn(*d) == 0) return false;
+  *n = w[0] * t.Z[0] + w[1] * t.Z[1] + w[2] * t.Z[2];
+  return true;
+}
+bool axisHit(const TorusInput<ZKernel>& t) {
+  mpz_class n, d;
+  return axisCrossing(t, &n, &d) && abs(n) <= (t.C + t.M) * abs(d);
 }
 
 /// a b <= c d for a b >= 0 and c, d >= 0, the products formed only where
@@ -1411,23 +1417,13 @@ Tri capsulePart(const TorusInput<ZKernel>& t) {
     return productAtMost(a, b, m2, mpz_class(c * d)) ? Tri::kTrue
                                                      : Tri::kUnknown;
   };
-  // (i) The axis meets the closed triangle (w as in axisHit) at
-  // Z = n / d; inside S iff |n| <= C |d|. For d = 0 the triangle's plane
-  // contains the axis's direction: no transversal crossing.
+  // (i) The axis meets the closed triangle (axisCrossing) at Z = n / d;
+  // inside S iff |n| <= C |d|. For d = 0 the triangle's plane contains the
+  // axis's direction: no transversal crossing.
   {
-    mpz_class w[3];
-    int pos = 0, neg = 0;
-    for (int i = 0; i < 3; ++i) {
-      const int j = (i + 1) % 3, k = (i + 2) % 3;
-      w[i] = t.X[j] * t.Y[k] - t.Y[j] * t.X[k];
-      pos += sgn(w[i]) > 0;
-      neg += sgn(w[i]) < 0;
-    }
-    const mpz_class d = w[0] + w[1] + w[2];
-    if (!(pos > 0 && neg > 0) && sgn(d) != 0) {
-      const mpz_class n = w[0] * t.Z[0] + w[1] * t.Z[1] + w[2] * t.Z[2];
-      if (abs(n) <= t.C * abs(d)) return Tri::kTrue;  // T meets S
-    }
+    mpz_class n, d;
+    if (axisCrossing(t, &n, &d) && abs(n) <= t.C * abs(d))
+      return Tri::kTrue;  // T meets S
   }
   // (ii) The ends p = +-C e_z of S whose projection on the plane lies in
   // the closed triangle: with n = (P_1 - P_0) x (P_2 - P_0), the plane's
