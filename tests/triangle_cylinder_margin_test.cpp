@@ -731,9 +731,10 @@ TEST(Margin, RegressionListAgreesWithOracle) {
 // 2^-600 and more below the margin, vertices' coordinates up to 2^1000:
 // every part ties at the flip beyond the windows' 1,280 bits, and the
 // capsule around the axis, capsulePart in src/triangle_cylinder_margin.cpp,
-// decides both ways): r and lz each scaled by 2^-k (k < 200), the vertices
-// in a random cyclic order, the threshold bracketed by bisection steered by
-// the kernel and confirmed by the oracle at both ends.
+// decides both ways): r and lz each scaled by 2^-k (k < 200), or r set to
+// m 2^-k (48 <= k < 60), the vertices in a random cyclic order, the
+// threshold bracketed by bisection steered by the kernel and confirmed by
+// the oracle at both ends.
 TEST(Margin, TinyCylinderThresholdsAgreeWithOracle) {
   constexpr std::size_t kCount = sizeof kRegressionList / sizeof(char*);
   const std::uint64_t seed = test::baseSeed();
@@ -749,8 +750,12 @@ TEST(Margin, TinyCylinderThresholdsAgreeWithOracle) {
     TriCase k;
     double m0 = 0;
     ASSERT_TRUE(parseListCase(kRegressionList[kCount - 2 + i % 2], &k, &m0));
-    k.cyl = {std::ldexp(k.cyl.radius, -int(g.next() % 200)),
-             std::ldexp(k.cyl.lz, -int(g.next() % 200))};
+    // Every other pair: r near the gap between the distance and the
+    // threshold (an ulp of m), where the capsule's band of width r (neither
+    // beyond r + m nor within m) decides some and leaves some to the parts.
+    const double r = i % 4 < 2 ? std::ldexp(k.cyl.radius, -int(g.next() % 200))
+                               : std::ldexp(m0, -48 - int(g.next() % 12));
+    k.cyl = {r, std::ldexp(k.cyl.lz, -int(g.next() % 200))};
     const int s = int(g.next() % 3);
     const V w[3] = {k.tri.a, k.tri.b, k.tri.c};
     k.tri = {w[s], w[(s + 1) % 3], w[(s + 2) % 3]};
