@@ -1348,7 +1348,9 @@ int torusDominated(const TorusInput<ZKernel>& t) {
 /// signs, at Z = (w_a Z_a + w_b Z_b + w_c Z_c) / d; then |Z| <= C + M.
 /// Integer products of the inputs' size (nine, and one for the bound); a
 /// triangle parallel to the axis (d = 0) is left to the parts.
-bool axisHit(const TorusInput<ZKernel>& t) {
+/// axisCrossing: the axis meets the closed triangle and d != 0 (n and d
+/// set, Z = n / d); axisHit: and |Z| <= C + M.
+bool axisCrossing(const TorusInput<ZKernel>& t, mpz_class* n, mpz_class* d) {
   mpz_class w[3];
   int pos = 0, neg = 0;
   for (int i = 0; i < 3; ++i) {
@@ -1358,10 +1360,165 @@ bool axisHit(const TorusInput<ZKernel>& t) {
     neg += sgn(w[i]) < 0;
   }
   if (pos > 0 && neg > 0) return false;  // the axis misses the triangle
-  const mpz_class d = w[0] + w[1] + w[2];
-  if (sgn(d) == 0) return false;
-  const mpz_class n = w[0] * t.Z[0] + w[1] * t.Z[1] + w[2] * t.Z[2];
-  return abs(n) <= (t.C + t.M) * abs(d);
+  *d = w[0] + w[1] + w[2];
+  if (sgn(*d) == 0) return false;
+  *n = w[0] * t.Z[0] + w[1] * t.Z[1] + w[2] * t.Z[2];
+  return true;
+}
+bool axisHit(const TorusInput<ZKernel>& t) {
+  mpz_class n, d;
+  return axisCrossing(t, &n, &d) && abs(n) <= (t.C + t.M) * abs(d);
+}
+
+/// a b <= c d for a b >= 0 and c, d >= 0, the products formed only where
+/// the operands' bit lengths do not decide: for an i-bit and a j-bit
+/// number, 2^(i + j - 2) <= |a b| < 2^(i + j).
+bool productAtMost(const mpz_class& a, const mpz_class& b, const mpz_class& c,
+                   const mpz_class& d) {
+  if (sgn(a) == 0 || sgn(b) == 0) return true;
+  if (sgn(c) == 0 || sgn(d) == 0) return false;
+  auto bits = [](const mpz_class& z) {
+    return long(mpz_sizeinbase(z.get_mpz_t(), 2));
+  };
+  const long ab = bits(a) + bits(b), cd = bits(c) + bits(d);
+  if (ab + 2 <= cd) return true;  // a b < 2^ab <= 2^(cd - 2) <= c d
+  if (cd + 2 <= ab) return false;
+  return mpz_class(a * b) <= mpz_class(c * d);
+}
+
+/// The capsule around the axis. Every point of C lies within r of the
+/// segment S = [-h, h] e_z, so C + B_m lies in S + B_(r + m), and
+/// dist(S, T) > r + m gives |t - c| >= dist(t, S) - dist(c, S) > m for
+/// every t in T and c in C: an exact no (kFalse). S lies in C, so a
+/// distance at most m between a point of S and a point of T is an exact
+/// yes (kTrue). Both decide where r is small beside the gap between the
+/// distance and m, which is where the sized parts and the faces cancel
+/// the most bits (docs/margin.md, "seventh pass"); kUnknown otherwise. On
+/// the exact torus input `t` (torusExactInput(q, 1): doubled local
+/// coordinates, so S runs from -C e_z to C e_z, the radius is R + M and
+/// the margin M). dist(S, T) is attained at (i) a crossing of S and T
+/// inside T, (ii) an end of S whose projection on T's plane lies in T, or
+/// (iii) S against an edge of T (the closest pair of two convex polytopes
+/// lies on a pair of their faces; with t interior to T and s interior to
+/// S, either the distance is 0, case (i), or S is parallel to the plane and
+/// sliding s to an end keeps the distance, cases (ii) and (iii)); each
+/// candidate is tested only where it is realized, so the first one within
+/// r + m is an actual distance. Integer products of up to six times the
+/// inputs' size.
+Tri capsulePart(const TorusInput<ZKernel>& t) {
+  const mpz_class rho = t.R + t.M;
+  const mpz_class rho2 = rho * rho, m2 = t.M * t.M;
+  // A distance that some point of S and some point of T realize, at most
+  // r + m (squared: a b <= (R + M)^2 c d): the capsule cannot exclude;
+  // at most m, a hit.
+  auto near = [&](const mpz_class& a, const mpz_class& b, const mpz_class& c,
+                  const mpz_class& d) -> Tri {
+    if (!productAtMost(a, b, rho2, mpz_class(c * d))) return Tri::kFalse;
+    return productAtMost(a, b, m2, mpz_class(c * d)) ? Tri::kTrue
+                                                     : Tri::kUnknown;
+  };
+  // (i) The axis meets the closed triangle (axisCrossing) at Z = n / d;
+  // inside S iff |n| <= C |d|. For d = 0 the triangle's plane contains the
+  // axis's direction: no transversal crossing.
+  {
+    mpz_class n, d;
+    if (axisCrossing(t, &n, &d) && abs(n) <= t.C * abs(d))
+      return Tri::kTrue;  // T meets S
+  }
+  // (ii) The ends p = +-C e_z of S whose projection on the plane lies in
+  // the closed triangle: with n = (P_1 - P_0) x (P_2 - P_0), the plane's
+  // distance (n . (p - P_0))^2 > (R + M)^2 |n|^2 is needed only where the
+  // projection is inside: ((B - A) x (p - A)) . n >= 0 for the three edges
+  // A -> B, that is k . n +- C (D_y n_x - D_x n_y) >= 0 with D = B - A and
+  // k = A x D. First (on the hostile thresholds every failure of the
+  // capsule at the true side was here); the inside test only for an end
+  // whose plane distance fails. A degenerate triangle (n = 0) is its
+  // edges.
+  {
+    const mpz_class e1[3] = {t.X[1] - t.X[0], t.Y[1] - t.Y[0], t.Z[1] - t.Z[0]};
+    const mpz_class e2[3] = {t.X[2] - t.X[0], t.Y[2] - t.Y[0], t.Z[2] - t.Z[0]};
+    const mpz_class n[3] = {e1[1] * e2[2] - e1[2] * e2[1],
+                            e1[2] * e2[0] - e1[0] * e2[2],
+                            e1[0] * e2[1] - e1[1] * e2[0]};
+    const mpz_class nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    if (sgn(nn) != 0) {
+      const mpz_class np0 = n[0] * t.X[0] + n[1] * t.Y[0] + n[2] * t.Z[0];
+      const mpz_class cn = t.C * n[2];
+      Tri plane[2];  // the end's plane distance: kFalse beyond R + M
+      bool inside[2];
+      for (int i = 0; i < 2; ++i) {
+        const mpz_class pl =
+            i == 0 ? mpz_class(cn - np0) : mpz_class(-cn - np0);
+        plane[i] = near(pl, pl, 1, nn);
+        inside[i] = plane[i] != Tri::kFalse;
+      }
+      for (int e = 0; e < 3 && (inside[0] || inside[1]); ++e) {
+        const int ia = kEdge[e][0], ib = kEdge[e][1];
+        const mpz_class &ax = t.X[ia], &ay = t.Y[ia], &az = t.Z[ia];
+        const mpz_class dx = t.X[ib] - ax, dy = t.Y[ib] - ay, dz = t.Z[ib] - az;
+        const mpz_class kn = (ay * dz - az * dy) * n[0] +
+                             (az * dx - ax * dz) * n[1] +
+                             (ax * dy - ay * dx) * n[2];
+        const mpz_class cg = t.C * (dy * n[0] - dx * n[1]);
+        inside[0] = inside[0] && sgn(kn + cg) >= 0;
+        inside[1] = inside[1] && sgn(kn - cg) >= 0;
+      }
+      for (int i = 0; i < 2; ++i)  // inside: the plane's distance realized
+        if (inside[i]) return plane[i];
+    }
+  }
+  // Every vertex beyond r + m of S (the ends of the edges in (iii)):
+  // rho_xy^2 + max(|Z| - C, 0)^2 > (R + M)^2.
+  for (int i = 0; i < 3; ++i) {
+    mpz_class d2 = t.X[i] * t.X[i] + t.Y[i] * t.Y[i];
+    const mpz_class ez = abs(t.Z[i]) - t.C;
+    if (sgn(ez) > 0) d2 += ez * ez;
+    if (d2 <= rho2) return d2 <= m2 ? Tri::kTrue : Tri::kUnknown;
+  }
+  // (iii) S against each edge A + s D, s in [0, 1] (D = B - A, k = A x D,
+  // a = -A_xy . D_xy): the squared distance |A + s D - z e_z|^2 is convex
+  // on [0, 1] x [-C, C]; its minimum is at the free minimiser where that
+  // lies in the rectangle (s* = a / |D_xy|^2, z* = A_z + s* D_z: the
+  // distance k_z^2 / |D_xy|^2 of the origin to the edge's line in the xy
+  // plane), else on the rectangle's boundary: the vertices against S
+  // (above) or the ends p = +-C e_z of S against the edge. For u = p - A:
+  // u . D = a - A_z D_z +- C D_z; a foot inside the edge (0 < u . D < |D|^2;
+  // a foot at a vertex is the vertex's case: |p - A| >= dist(A, S)) needs
+  // |u x D|^2 = |k|^2 + C^2 |D_xy|^2 +- 2 C (k_x D_y - k_y D_x)
+  // > (R + M)^2 |D|^2.
+  for (int e = 0; e < 3; ++e) {
+    const int ia = kEdge[e][0], ib = kEdge[e][1];
+    const mpz_class &ax = t.X[ia], &ay = t.Y[ia], &az = t.Z[ia];
+    const mpz_class dx = t.X[ib] - ax, dy = t.Y[ib] - ay, dz = t.Z[ib] - az;
+    const mpz_class dxy = dx * dx + dy * dy;
+    const mpz_class dd = dxy + dz * dz;
+    const mpz_class a = -(ax * dx + ay * dy);
+    const mpz_class base = a - az * dz, cdz = t.C * dz;
+    const mpz_class dot[2] = {base + cdz, base - cdz};
+    const bool foot[2] = {sgn(dot[0]) > 0 && dot[0]<dd, sgn(dot[1])> 0 &&
+                          dot[1] < dd};
+    const bool free_min = sgn(dxy) != 0 && sgn(a) > 0 && a < dxy &&
+                          abs(az * dxy + a * dz) <= t.C * dxy;
+    if (!(foot[0] || foot[1] || free_min)) continue;
+    const mpz_class kz = ax * dy - ay * dx;
+    if (free_min) {
+      const Tri r = near(kz, kz, 1, dxy);
+      if (r != Tri::kFalse) return r;
+    }
+    if (foot[0] || foot[1]) {
+      const mpz_class kx = ay * dz - az * dy, ky = az * dx - ax * dz;
+      const mpz_class lhs = kx * kx + ky * ky + kz * kz + t.C * t.C * dxy;
+      const mpz_class twice_cl = 2 * t.C * (kx * dy - ky * dx);
+      for (int i = 0; i < 2; ++i) {
+        if (!foot[i]) continue;
+        const Tri r =
+            near(i == 0 ? mpz_class(lhs + twice_cl) : mpz_class(lhs - twice_cl),
+                 1, 1, dd);
+        if (r != Tri::kFalse) return r;
+      }
+    }
+  }
+  return Tri::kFalse;
 }
 
 /// A sized part (grow_radius: Cyl(r + m, h), else Cyl(r, h + m)).
@@ -1391,8 +1548,10 @@ bool cylinderPart(const Query& q, bool grow_radius, bool wide, Stage* stage) {
 /// scanned): first in double on the rescaled inputs (torusRobustInput: no
 /// GMP), then on the exact input (supersetStages; the later stages form it
 /// again: kept here, in decide's frame, it cost the queries inside the
-/// gate 30 - 40 ns, measured). kDisjoint: an exact no; kIntersect: the
-/// triangle meets the superset; kInvalidInput: not decided.
+/// gate 30 - 40 ns, measured); where every stage abstains and r <= m, the
+/// capsule (capsulePart). kDisjoint: an exact no; kIntersect: the
+/// triangle meets the superset (Stage::kExtended), or an exact yes by the
+/// capsule (Stage::kExactGmp); kInvalidInput: not decided.
 Decision wideSuperset(const Query& q) {
   Tri w = q.max_len > 0 ? supersetPart<Uk>(torusRobustInput(q, true))
                         : Tri::kUnknown;
@@ -1400,6 +1559,16 @@ Decision wideSuperset(const Query& q) {
   if (w == Tri::kUnknown) {
     const TorusInput<ZKernel> exact = torusExactInput(q, 1);
     w = supersetStages(exact, torusWideInput(exact));
+    // Where every stage abstains and r <= m, the capsule around the axis
+    // (capsulePart) before the kernel's call: exact in products of the
+    // inputs' size where r is small beside the gap between the distance
+    // and m, which is where the parts too go to their exact runs
+    // (docs/margin.md, "seventh pass").
+    if (w == Tri::kUnknown && q.cyl.radius <= q.m) {
+      const Tri c = capsulePart(exact);
+      if (c == Tri::kFalse) return no(Stage::kExactGmp);
+      if (c == Tri::kTrue) return yes(Stage::kExactGmp);
+    }
   }
   if (w == Tri::kFalse) return no(Stage::kExtended);
   if (w == Tri::kTrue) return yes(Stage::kExtended);
@@ -1435,6 +1604,7 @@ Decision decide(Query& q) {
     if (!sized_first) {
       const Decision d = wideSuperset(q);
       if (d.answer == Answer::kDisjoint) return d;
+      if (d.stage == Stage::kExactGmp) return d;          // the capsule's hit
       superset_open = d.answer == Answer::kInvalidInput;  // not decided
     }
   }

@@ -568,132 +568,210 @@ TEST(Margin, HostileThresholdsAgreeWithOracle) {
 
 // The regression list bench/data/margin_worst.txt (the slowest threshold
 // queries of tricyl-margin-stage-costs, margins 1 ulp below and above the
-// flip: the wide torus edges' local certificate decides them): each answer
+// flip: the wide torus edges' local certificate decides most of them, the
+// capsule around the axis the last two): each answer
 // against the exact oracle, with the margin and its two neighbours.
+const char* const kRegressionList[] = {
+    "0x1.59da3c8acde6bp+910 0x1.792ab0d8c910fp-125 -0x1.1f146a2310ebep+268 "
+    "-0x1.429f00dbc4bddp+989 -0x1.e177a56fb5a99p-147 -0x1.ef42713212a28p-894 "
+    "-0x1.3478f5a9b584ap-748 0x1.a9ac590a253f3p+71 -0x1.10c7022c64107p-322 "
+    "-0x1.3a07648ba7d66p+273 0x1.66bfba253d61p-184 -0x1.95cf7783ad969p-704 "
+    "-0x1.b4f8b686e38c7p-818 0x1.233bd579ff134p-209 -0x1.88aa86b5312b6p-602 "
+    "0x1.b922a9aa8bf68p+577 -0x1.91b10f92eee6ap-473 -0x1.e3390a31578ebp+168 "
+    "-0x1.385d846482a06p-66 -0x1.e19b8a60f548fp+219 0x1.7d569f1fa68b8p-556 "
+    "0x1.e8cfc407fe6cbp-192 0x1.91e96a73d20d1p-307 0x1.90805642e76dfp-120",
+    "0x1.7a313fbdd162p+1000 0x1.2690aa754be21p-385 0x1.3293bb3ec27eap-377 "
+    "-0x1.6051b58f68653p-713 0x1.5cef68b190318p+580 -0x1.5fa87d095bccap+949 "
+    "-0x1.2a07dba800a6cp+575 0x1.ace742fd5b66bp+141 0x1.f85905917e228p+1009 "
+    "0x1.8f6b076ae998p-557 0x1.93b96dfe9eca8p+99 0x1.c0feba3d31014p+382 "
+    "-0x1.706416ab004fep-208 -0x1.968b959f25438p-918 0x1.f41600420b481p+941 "
+    "-0x1.842a78d9fc389p-457 -0x1.a0c7616ff68e1p+564 0x1.db565ec15506cp-952 "
+    "0x1.068d1484a7221p-570 0x1.b66a15164f892p-699 -0x1.94f2435c1a7d3p-238 "
+    "0x1.c8331e9c052f1p+503 0x1.eb14090413c0ep-461 0x1.31fca1645f0a1p+963",
+    "0x1.f9cf21c3769c8p+732 0x0.0000000035d86p-1022 0x1.72108368efd7dp+759 "
+    "-0x1.aabc0c52a953cp+690 0x1.a331877d77dbp+347 -0x1.754d1e7f9ca88p+444 "
+    "-0x1.43e9c9b4cf058p+456 -0x1.383e932e29f27p-491 0x1.973b00e712639p-205 "
+    "-0x1.093c91e735a6cp-770 -0x1.6fd639ef214a7p+139 -0x1.07497c7f897b9p-716 "
+    "0x1.6742f436ab08p-533 0x1.92bae1bb62b47p+241 0x1.4b74065ccd0efp+281 "
+    "-0x1.4e477c2eee94dp-91 -0x1.e0474198fa8f6p+452 -0x1.8f4145c077b4fp+636 "
+    "0x1.6f4836d09f6a2p-633 -0x1.8f519a41f4259p-797 0x1.dffbe0fb6fcc2p+195 "
+    "0x1.2a7fc05891f4bp+291 0x1.c214526807224p-784 0x1.59086b741ad9bp+592",
+    "0x1.b68a87ef19129p+435 0x1.d2363cf333fcep-438 -0x1.eb49ac557b68ep-761 "
+    "-0x1.633e3fb3cb1c6p+415 0x1.4b8adb6454e87p-384 -0x1.6c4c05799037fp-309 "
+    "-0x1.77d9496e85c8cp-916 0x1.6a383438caa25p+408 0x1.0bbfa9bd8e53bp-924 "
+    "0x1.fe4079c6d4fb5p+298 -0x1.2cf1f6d3aff0fp+325 -0x1.e669ebe4e849p-973 "
+    "-0x1.bc4b5f72dfadep-833 0x1.f8c7fc1688edfp-666 0x1.0d411b2d6f902p-418 "
+    "-0x1.bff93c7494023p-949 -0x1.4b55221109fep-50 -0x1.29bde39aa75cp-75 "
+    "0x1.c78b406850977p-49 0x1.e798c7f204fabp+34 -0x1.0c4c19a98423ep+120 "
+    "0x1.6800ec1944406p-902 0x1.fdf581a82cc12p-848 0x1.8580ee86d35e8p+275",
+    "0x1.d842f5fa54dd1p+221 0x1.5453a206ac0b7p-192 -0x1.a55ce73143fd7p+1020 "
+    "0x1.9bddaa6ee6f3ap+847 -0x1.01b85213be7c2p+955 0x1.4d1f163f04879p+385 "
+    "0x1.be0841aeedb5cp+58 -0x1.17c85168bd599p-660 -0x1.aa684cdaf3959p+1015 "
+    "-0x1.549d8c6476285p-156 0x1.0857f0ecf2477p-155 0x1.faae4ce075ff8p-127 "
+    "0x1.eb1d5c43e8083p-959 -0x1.221404c7cf4c6p+884 0x1.bb252407d1b64p-44 "
+    "-0x1.7e6992452d67dp-1009 0x1.a24d9f9267fb7p-3 0x1.a22ee4c73540ap+345 "
+    "0x1.d07c3214abdc6p+493 -0x1.b0ff720cbc4a6p+949 -0x1.e3da3d15a5da5p+523 "
+    "-0x1.26becf81da635p-266 -0x1.a153be2ae438p-607 0x1.0f147b736f7dcp+487",
+    "0x1.4d223d5da856ep+516 0x0.007a7e5c1f987p-1022 0x1.be1cdd0f18c3fp-380 "
+    "0x1.b5f855cee9d45p-517 -0x1.037b0bff535bfp-56 0x1.0192d802b9befp+422 "
+    "-0x1.8db92f9686a46p+930 0x1.fd151a57006e4p-626 0x0.0000000000064p-1022 "
+    "-0x1.a3fb1488d4c93p-198 -0x1.5a69e634e5d69p+33 0x1.eb8b24130c974p+512 "
+    "-0x1.e736fc24cc126p-448 -0x1.05b5a02d63134p-936 "
+    "-0x0.00000000938d5p-1022 -0x1.7a9d53f2c96fcp-404 "
+    "-0x1.5dcc108e6a2b1p-888 0x1.5f20c8b43f9dap+472 0x1.234391e7ebbc3p+647 "
+    "-0x1.a2986ae9ba593p-765 -0x1.c5eaa6ae3000ep-226 0x1.2e9b50c35b998p-14 "
+    "-0x1.d1e857bcb0c3bp-671 0x1.f23a0862d5187p+456",
+    "0x1.c0eaa86204022p-382 0x1.4b48bef50f70fp-969 0x1.b619266ed82f7p+190 "
+    "0x1.21cad09f282c8p+828 -0x1.5d19c1c89da9ap+757 0x1.a46f3787397f4p+9 "
+    "0x1.f6ed8de0216b6p-394 -0x1.e5b115f5c4759p+518 0x1.e5b1089222fb6p-1000 "
+    "-0x1.ed69c331d84a9p-696 0x1.bd7a5ba0d50a8p+537 0x1.27046ac75442cp+745 "
+    "-0x1.5303972aa32b8p+72 0x1.b2abb3ee96267p+283 0x1.1dedaae21e63dp-679 "
+    "-0x1.01a0557a64e72p+978 0x1.9743e25a6340dp-188 0x1.1a5b4eda7c3f6p+939 "
+    "0x1.fcf6bbecae1f1p+574 -0x1.634400bc7b58fp-603 -0x1.b1f9655185a14p-491 "
+    "0x1.da1a516363f2dp-753 0x1.723252e30d2e1p+415 0x1.42193548528d7p+953",
+    "0x1.b9553669e3a67p+384 0x1.59cecf7343874p+730 -0x1.e8dbdc88873d8p-957 "
+    "0x1.3e3c48ed93f39p+963 -0x1.73ff181dbc90ep-225 -0x1.f818b74e6c6c7p+779 "
+    "0x1.ce82549884d28p+926 0x1.e3b2d96f69ba4p+818 -0x1.91075461b97dbp-733 "
+    "0x1.139ecf73e68adp-994 -0x1.c73b24f01caf2p-947 -0x1.312006ca710dap-235 "
+    "0x1.6477a3999bac1p+100 0x1.6639925604a9bp+385 -0x1.6cb165719da4p-502 "
+    "-0x1.690ddd25ee7efp+637 0x1.73b4b4e14b95ep-302 0x1.ee011a0148f8dp+1009 "
+    "0x1.df41090417f55p+252 -0x1.f81568e643625p+70 -0x1.cab69a9befa38p-283 "
+    "0x1.d448464c710fdp-93 -0x1.659d906746ab8p+702 0x1.50c361cf8f24cp+919",
+    "0x1.b7e708bdda62bp-641 0x1.d3ab433251df5p-209 -0x1.4a22f80c6e6adp+317 "
+    "-0x1.2dceb3ccedb35p+919 0x1.0c3255be3b294p-502 0x1.f7a58ccab86efp-282 "
+    "0x1.a5f0324d98c02p-787 -0x1.052eaa648cd18p-975 -0x1.bb7610ed6471bp-496 "
+    "0x1.08a484d43b4a6p+256 -0x1.1b5f567a0c13p+156 -0x1.5da5de94d0bedp-501 "
+    "-0x1.9617411c4a2e7p-967 0x1.12a97b130d3cep-200 -0x1.042d6978bc77ap+800 "
+    "0x1.8ca5f1269fef9p+122 0x1.fcabef3fb353fp+900 -0x1.cc9a74d7a8ba1p-531 "
+    "-0x1.65e7789a81187p+570 -0x1.a49a251ea15c6p-133 -0x1.e00b25422f77ep-65 "
+    "0x1.ed4beb8cb79d2p+176 -0x1.60027f44ddfa4p-872 0x1.6010a07f27d7bp+289",
+    "0x1.5cb088c296307p-786 0x1.38e2945a3072p-400 -0x1.5a51500d67f2dp+797 "
+    "-0x1.89330d8ce6d39p+860 -0x1.8d4e43d5eb042p+410 0x1.4c422105c2af8p-86 "
+    "-0x1.a8be768fbddccp+388 -0x1.7febf8bada7b7p-204 0x1.961e08dd122d2p-186 "
+    "0x1.da3adbfcf0094p-27 0x1.fb05563909127p+372 -0x1.54a958e87e882p+493 "
+    "-0x1.a14e15a8a8356p+407 -0x1.7766ed6e0adap+517 0x1.98358998474bcp+806 "
+    "0x1.8a7195f972d4p+646 0x1.b9e98bf6d5aadp-1022 -0x1.de0925f627be1p+485 "
+    "-0x1.60283d11b5923p-875 0x1.4a49acd65ab05p+251 -0x1.1439e63a68e3p+553 "
+    "0x1.ec5d450c5c151p+170 -0x1.92d481cc7a749p-884 0x1.73c055d5e4cfcp+890",
+    "0x1.a2a3d7737ae5dp-660 0x1.9a381ad27da4fp+682 0x1.78f0fb694075fp+953 "
+    "0x1.09d079eab1cddp-168 0x1.17c51664095ecp-16 0x1.78857f0282372p-810 "
+    "-0x1.28f8bdb598ddcp-698 0x1.a5b9c6e537568p-327 -0x1.3a0b59c67ad9dp-894 "
+    "-0x1.a0b8a443f0082p-420 -0x1.c44642810cb9bp+385 0x1.3f13aaf4597e3p+847 "
+    "0x1.5fdef10e021afp+153 -0x1.8d013e9344d45p+358 0x1.c3f735d07d89cp+867 "
+    "-0x1.4e1e96d0035a3p+127 0x1.1e9e6c540863ep-847 -0x1.4b410d04de3ccp+241 "
+    "-0x1.74662b2973b24p+445 0x0.000000053aebfp-1022 0x1.fb02a2f070143p+433 "
+    "0x1.2c22130df37a6p+67 0x1.e9b402df3993ep+410 0x1.5eb193facaa52p+744",
+    "0x1.1e6b8b0fb90cdp-41 0x1.ae48d0a069a92p-555 -0x1.0c5c1fe71063fp+271 "
+    "-0x1.4ab8e39bd86e8p+916 0x1.d59435f3bba92p+456 -0x1.56bfcd27e81a8p-411 "
+    "-0x1.1000eaddee99cp+866 -0x1.234ef5a6898f6p+123 -0x1.ca51562380432p-650 "
+    "0x1.2f0a129f56b41p+82 -0x1.a1e5f1b666265p-546 0x1.1375807472a58p+284 "
+    "-0x1.221e294d65c4fp-329 -0x1.5a1a7ca4d2a0bp+459 0x1.3da85fad50798p-929 "
+    "0x1.a93da8eb0864cp-642 0x1.52d4d336ea9cp+17 0x1.dd4803b2978b3p+466 "
+    "0x1.ccd4ebdddd9efp+485 -0x1.7d1c6cf1ed0b7p-833 -0x1.7683dd047ed11p-986 "
+    "-0x1.32c12ce121d64p+0 -0x0.00202f56e593ep-1022 0x1.913d9381cedddp+709",
+    "0x1.39e0e76f66999p-801 0x1.02415754bc196p-947 0x1.e8a13ecef8153p-544 "
+    "0x1.918dfadc46b49p+411 0x1.6860aa3475be3p+688 0x1.47d9203c7179ep+309 "
+    "-0x1.58a1dcf72ba37p-424 -0x1.9cda02beb521ap-781 "
+    "-0x1.484516dabad5bp+305 -0x1.a89d680258d11p-941 "
+    "-0x1.8b172632e13b3p-1006 0x1.c29ac9f2ed1ffp+82 "
+    "-0x1.1cf371dba08f6p+441 0x1.5ebfbd7b021a1p+294 0x1.a8f1f48b25f7dp+919 "
+    "0x1.be9c46174af66p-964 -0x1.787b87f57f806p-985 "
+    "0x1.c2af12c14ea52p-1021 0x1.c70770262a19ap+83 0x1.77e1e1c8d8707p-531 "
+    "-0x1.c4d1d8b399a1ap-918 -0x1.eb17aa2203144p+525 "
+    "0x1.166810bff91abp-779 0x1.d8caeaa1ffa6dp-134",
+    "0x0.0000000000066p-1022 0x1.de64a5c8392e2p-481 "
+    "-0x1.e47eaedd1e05cp-778 0x1.2a978e7f9ab21p+832 "
+    "-0x1.7db80db0e41f8p-158 0x1.b13b9e7d07cbap+513 0x1.d16706b2b33c4p-460 "
+    "-0x1.d3ee46168a3eap+1014 0x1.cf55ea81ad6dep-605 "
+    "-0x1.ead7b0bad8b6dp-504 -0x1.a5d620b1ca65p+187 -0x1.013bf9c7fb6p+187 "
+    "-0x1.1491263979849p-21 0x1.fe918a3a56bd1p-156 0x1.4c753a9625bc1p+971 "
+    "0x1.840c6c52565acp+862 0x1.413e572af22d2p-869 -0x1.e809f72bc4a8ap+888 "
+    "0x1.59584441afc2fp+486 -0x1.d92b59053dep-340 0x1.427f862dc0d3ep+1000 "
+    "-0x1.4808464b9c8fcp+953 0x1.fcbcb752713f2p-359 0x1.8576efb20f1b2p-469",
+};
+
+// A line of kRegressionList: the cylinder r lz, R row-major, t, the three
+// vertices, the margin. False if a number is missing.
+bool parseListCase(const char* line, TriCase* k, double* m) {
+  double v[24];
+  const char* p = line;
+  for (double& x : v) {
+    char* end = nullptr;
+    x = std::strtod(p, &end);
+    if (end == p) return false;
+    p = end;
+  }
+  *k = TriCase{};
+  k->cyl = {v[0], v[1]};
+  k->pose = identityPose<double>();
+  for (int j = 0; j < 3; ++j)
+    for (int c = 0; c < 3; ++c) k->pose.R[j][c] = v[2 + 3 * j + c];
+  k->pose.t = {v[11], v[12], v[13]};
+  k->tri = {
+      {v[14], v[15], v[16]}, {v[17], v[18], v[19]}, {v[20], v[21], v[22]}};
+  *m = v[23];
+  return true;
+}
+
 TEST(Margin, RegressionListAgreesWithOracle) {
-  const char* const kList[] = {
-      "0x1.59da3c8acde6bp+910 0x1.792ab0d8c910fp-125 -0x1.1f146a2310ebep+268 "
-      "-0x1.429f00dbc4bddp+989 -0x1.e177a56fb5a99p-147 -0x1.ef42713212a28p-894 "
-      "-0x1.3478f5a9b584ap-748 0x1.a9ac590a253f3p+71 -0x1.10c7022c64107p-322 "
-      "-0x1.3a07648ba7d66p+273 0x1.66bfba253d61p-184 -0x1.95cf7783ad969p-704 "
-      "-0x1.b4f8b686e38c7p-818 0x1.233bd579ff134p-209 -0x1.88aa86b5312b6p-602 "
-      "0x1.b922a9aa8bf68p+577 -0x1.91b10f92eee6ap-473 -0x1.e3390a31578ebp+168 "
-      "-0x1.385d846482a06p-66 -0x1.e19b8a60f548fp+219 0x1.7d569f1fa68b8p-556 "
-      "0x1.e8cfc407fe6cbp-192 0x1.91e96a73d20d1p-307 0x1.90805642e76dfp-120",
-      "0x1.7a313fbdd162p+1000 0x1.2690aa754be21p-385 0x1.3293bb3ec27eap-377 "
-      "-0x1.6051b58f68653p-713 0x1.5cef68b190318p+580 -0x1.5fa87d095bccap+949 "
-      "-0x1.2a07dba800a6cp+575 0x1.ace742fd5b66bp+141 0x1.f85905917e228p+1009 "
-      "0x1.8f6b076ae998p-557 0x1.93b96dfe9eca8p+99 0x1.c0feba3d31014p+382 "
-      "-0x1.706416ab004fep-208 -0x1.968b959f25438p-918 0x1.f41600420b481p+941 "
-      "-0x1.842a78d9fc389p-457 -0x1.a0c7616ff68e1p+564 0x1.db565ec15506cp-952 "
-      "0x1.068d1484a7221p-570 0x1.b66a15164f892p-699 -0x1.94f2435c1a7d3p-238 "
-      "0x1.c8331e9c052f1p+503 0x1.eb14090413c0ep-461 0x1.31fca1645f0a1p+963",
-      "0x1.f9cf21c3769c8p+732 0x0.0000000035d86p-1022 0x1.72108368efd7dp+759 "
-      "-0x1.aabc0c52a953cp+690 0x1.a331877d77dbp+347 -0x1.754d1e7f9ca88p+444 "
-      "-0x1.43e9c9b4cf058p+456 -0x1.383e932e29f27p-491 0x1.973b00e712639p-205 "
-      "-0x1.093c91e735a6cp-770 -0x1.6fd639ef214a7p+139 -0x1.07497c7f897b9p-716 "
-      "0x1.6742f436ab08p-533 0x1.92bae1bb62b47p+241 0x1.4b74065ccd0efp+281 "
-      "-0x1.4e477c2eee94dp-91 -0x1.e0474198fa8f6p+452 -0x1.8f4145c077b4fp+636 "
-      "0x1.6f4836d09f6a2p-633 -0x1.8f519a41f4259p-797 0x1.dffbe0fb6fcc2p+195 "
-      "0x1.2a7fc05891f4bp+291 0x1.c214526807224p-784 0x1.59086b741ad9bp+592",
-      "0x1.b68a87ef19129p+435 0x1.d2363cf333fcep-438 -0x1.eb49ac557b68ep-761 "
-      "-0x1.633e3fb3cb1c6p+415 0x1.4b8adb6454e87p-384 -0x1.6c4c05799037fp-309 "
-      "-0x1.77d9496e85c8cp-916 0x1.6a383438caa25p+408 0x1.0bbfa9bd8e53bp-924 "
-      "0x1.fe4079c6d4fb5p+298 -0x1.2cf1f6d3aff0fp+325 -0x1.e669ebe4e849p-973 "
-      "-0x1.bc4b5f72dfadep-833 0x1.f8c7fc1688edfp-666 0x1.0d411b2d6f902p-418 "
-      "-0x1.bff93c7494023p-949 -0x1.4b55221109fep-50 -0x1.29bde39aa75cp-75 "
-      "0x1.c78b406850977p-49 0x1.e798c7f204fabp+34 -0x1.0c4c19a98423ep+120 "
-      "0x1.6800ec1944406p-902 0x1.fdf581a82cc12p-848 0x1.8580ee86d35e8p+275",
-      "0x1.d842f5fa54dd1p+221 0x1.5453a206ac0b7p-192 -0x1.a55ce73143fd7p+1020 "
-      "0x1.9bddaa6ee6f3ap+847 -0x1.01b85213be7c2p+955 0x1.4d1f163f04879p+385 "
-      "0x1.be0841aeedb5cp+58 -0x1.17c85168bd599p-660 -0x1.aa684cdaf3959p+1015 "
-      "-0x1.549d8c6476285p-156 0x1.0857f0ecf2477p-155 0x1.faae4ce075ff8p-127 "
-      "0x1.eb1d5c43e8083p-959 -0x1.221404c7cf4c6p+884 0x1.bb252407d1b64p-44 "
-      "-0x1.7e6992452d67dp-1009 0x1.a24d9f9267fb7p-3 0x1.a22ee4c73540ap+345 "
-      "0x1.d07c3214abdc6p+493 -0x1.b0ff720cbc4a6p+949 -0x1.e3da3d15a5da5p+523 "
-      "-0x1.26becf81da635p-266 -0x1.a153be2ae438p-607 0x1.0f147b736f7dcp+487",
-      "0x1.4d223d5da856ep+516 0x0.007a7e5c1f987p-1022 0x1.be1cdd0f18c3fp-380 "
-      "0x1.b5f855cee9d45p-517 -0x1.037b0bff535bfp-56 0x1.0192d802b9befp+422 "
-      "-0x1.8db92f9686a46p+930 0x1.fd151a57006e4p-626 0x0.0000000000064p-1022 "
-      "-0x1.a3fb1488d4c93p-198 -0x1.5a69e634e5d69p+33 0x1.eb8b24130c974p+512 "
-      "-0x1.e736fc24cc126p-448 -0x1.05b5a02d63134p-936 "
-      "-0x0.00000000938d5p-1022 -0x1.7a9d53f2c96fcp-404 "
-      "-0x1.5dcc108e6a2b1p-888 0x1.5f20c8b43f9dap+472 0x1.234391e7ebbc3p+647 "
-      "-0x1.a2986ae9ba593p-765 -0x1.c5eaa6ae3000ep-226 0x1.2e9b50c35b998p-14 "
-      "-0x1.d1e857bcb0c3bp-671 0x1.f23a0862d5187p+456",
-      "0x1.c0eaa86204022p-382 0x1.4b48bef50f70fp-969 0x1.b619266ed82f7p+190 "
-      "0x1.21cad09f282c8p+828 -0x1.5d19c1c89da9ap+757 0x1.a46f3787397f4p+9 "
-      "0x1.f6ed8de0216b6p-394 -0x1.e5b115f5c4759p+518 0x1.e5b1089222fb6p-1000 "
-      "-0x1.ed69c331d84a9p-696 0x1.bd7a5ba0d50a8p+537 0x1.27046ac75442cp+745 "
-      "-0x1.5303972aa32b8p+72 0x1.b2abb3ee96267p+283 0x1.1dedaae21e63dp-679 "
-      "-0x1.01a0557a64e72p+978 0x1.9743e25a6340dp-188 0x1.1a5b4eda7c3f6p+939 "
-      "0x1.fcf6bbecae1f1p+574 -0x1.634400bc7b58fp-603 -0x1.b1f9655185a14p-491 "
-      "0x1.da1a516363f2dp-753 0x1.723252e30d2e1p+415 0x1.42193548528d7p+953",
-      "0x1.b9553669e3a67p+384 0x1.59cecf7343874p+730 -0x1.e8dbdc88873d8p-957 "
-      "0x1.3e3c48ed93f39p+963 -0x1.73ff181dbc90ep-225 -0x1.f818b74e6c6c7p+779 "
-      "0x1.ce82549884d28p+926 0x1.e3b2d96f69ba4p+818 -0x1.91075461b97dbp-733 "
-      "0x1.139ecf73e68adp-994 -0x1.c73b24f01caf2p-947 -0x1.312006ca710dap-235 "
-      "0x1.6477a3999bac1p+100 0x1.6639925604a9bp+385 -0x1.6cb165719da4p-502 "
-      "-0x1.690ddd25ee7efp+637 0x1.73b4b4e14b95ep-302 0x1.ee011a0148f8dp+1009 "
-      "0x1.df41090417f55p+252 -0x1.f81568e643625p+70 -0x1.cab69a9befa38p-283 "
-      "0x1.d448464c710fdp-93 -0x1.659d906746ab8p+702 0x1.50c361cf8f24cp+919",
-      "0x1.b7e708bdda62bp-641 0x1.d3ab433251df5p-209 -0x1.4a22f80c6e6adp+317 "
-      "-0x1.2dceb3ccedb35p+919 0x1.0c3255be3b294p-502 0x1.f7a58ccab86efp-282 "
-      "0x1.a5f0324d98c02p-787 -0x1.052eaa648cd18p-975 -0x1.bb7610ed6471bp-496 "
-      "0x1.08a484d43b4a6p+256 -0x1.1b5f567a0c13p+156 -0x1.5da5de94d0bedp-501 "
-      "-0x1.9617411c4a2e7p-967 0x1.12a97b130d3cep-200 -0x1.042d6978bc77ap+800 "
-      "0x1.8ca5f1269fef9p+122 0x1.fcabef3fb353fp+900 -0x1.cc9a74d7a8ba1p-531 "
-      "-0x1.65e7789a81187p+570 -0x1.a49a251ea15c6p-133 -0x1.e00b25422f77ep-65 "
-      "0x1.ed4beb8cb79d2p+176 -0x1.60027f44ddfa4p-872 0x1.6010a07f27d7bp+289",
-      "0x1.5cb088c296307p-786 0x1.38e2945a3072p-400 -0x1.5a51500d67f2dp+797 "
-      "-0x1.89330d8ce6d39p+860 -0x1.8d4e43d5eb042p+410 0x1.4c422105c2af8p-86 "
-      "-0x1.a8be768fbddccp+388 -0x1.7febf8bada7b7p-204 0x1.961e08dd122d2p-186 "
-      "0x1.da3adbfcf0094p-27 0x1.fb05563909127p+372 -0x1.54a958e87e882p+493 "
-      "-0x1.a14e15a8a8356p+407 -0x1.7766ed6e0adap+517 0x1.98358998474bcp+806 "
-      "0x1.8a7195f972d4p+646 0x1.b9e98bf6d5aadp-1022 -0x1.de0925f627be1p+485 "
-      "-0x1.60283d11b5923p-875 0x1.4a49acd65ab05p+251 -0x1.1439e63a68e3p+553 "
-      "0x1.ec5d450c5c151p+170 -0x1.92d481cc7a749p-884 0x1.73c055d5e4cfcp+890",
-      "0x1.a2a3d7737ae5dp-660 0x1.9a381ad27da4fp+682 0x1.78f0fb694075fp+953 "
-      "0x1.09d079eab1cddp-168 0x1.17c51664095ecp-16 0x1.78857f0282372p-810 "
-      "-0x1.28f8bdb598ddcp-698 0x1.a5b9c6e537568p-327 -0x1.3a0b59c67ad9dp-894 "
-      "-0x1.a0b8a443f0082p-420 -0x1.c44642810cb9bp+385 0x1.3f13aaf4597e3p+847 "
-      "0x1.5fdef10e021afp+153 -0x1.8d013e9344d45p+358 0x1.c3f735d07d89cp+867 "
-      "-0x1.4e1e96d0035a3p+127 0x1.1e9e6c540863ep-847 -0x1.4b410d04de3ccp+241 "
-      "-0x1.74662b2973b24p+445 0x0.000000053aebfp-1022 0x1.fb02a2f070143p+433 "
-      "0x1.2c22130df37a6p+67 0x1.e9b402df3993ep+410 0x1.5eb193facaa52p+744",
-      "0x1.1e6b8b0fb90cdp-41 0x1.ae48d0a069a92p-555 -0x1.0c5c1fe71063fp+271 "
-      "-0x1.4ab8e39bd86e8p+916 0x1.d59435f3bba92p+456 -0x1.56bfcd27e81a8p-411 "
-      "-0x1.1000eaddee99cp+866 -0x1.234ef5a6898f6p+123 -0x1.ca51562380432p-650 "
-      "0x1.2f0a129f56b41p+82 -0x1.a1e5f1b666265p-546 0x1.1375807472a58p+284 "
-      "-0x1.221e294d65c4fp-329 -0x1.5a1a7ca4d2a0bp+459 0x1.3da85fad50798p-929 "
-      "0x1.a93da8eb0864cp-642 0x1.52d4d336ea9cp+17 0x1.dd4803b2978b3p+466 "
-      "0x1.ccd4ebdddd9efp+485 -0x1.7d1c6cf1ed0b7p-833 -0x1.7683dd047ed11p-986 "
-      "-0x1.32c12ce121d64p+0 -0x0.00202f56e593ep-1022 0x1.913d9381cedddp+709",
-  };
-  for (const char* line : kList) {
-    double v[24];
-    const char* p = line;
-    for (double& x : v) {
-      char* end = nullptr;
-      x = std::strtod(p, &end);
-      ASSERT_NE(end, p) << line;
-      p = end;
-    }
-    TriCase k{};
-    k.cyl = {v[0], v[1]};
-    k.pose = identityPose<double>();
-    for (int j = 0; j < 3; ++j)
-      for (int c = 0; c < 3; ++c) k.pose.R[j][c] = v[2 + 3 * j + c];
-    k.pose.t = {v[11], v[12], v[13]};
-    k.tri = {
-        {v[14], v[15], v[16]}, {v[17], v[18], v[19]}, {v[20], v[21], v[22]}};
+  for (const char* line : kRegressionList) {
+    TriCase k;
+    double m0 = 0;
+    ASSERT_TRUE(parseListCase(line, &k, &m0)) << line;
     SCOPED_TRACE(line);
-    for (double m :
-         {std::nextafter(v[23], 0.0), v[23], std::nextafter(v[23], 1e308)})
+    for (double m : {std::nextafter(m0, 0.0), m0, std::nextafter(m0, 1e308)})
       EXPECT_EQ(
           tryWithinDistance(k.cyl, k.pose, k.tri, m) == Answer::kIntersect,
           oracleWithin(k, m))
           << "margin " << m;
+  }
+}
+
+// Thresholds near the last two queries of kRegressionList (a cylinder
+// 2^-600 and more below the margin, vertices' coordinates up to 2^1000:
+// every part ties at the flip beyond the windows' 1,280 bits, and the
+// capsule around the axis, capsulePart in src/triangle_cylinder_margin.cpp,
+// decides both ways): r and lz each scaled by 2^-k (k < 200), or r set to
+// m 2^-k (48 <= k < 60), the vertices in a random cyclic order, the
+// threshold bracketed by bisection steered by the kernel and confirmed by
+// the oracle at both ends.
+TEST(Margin, TinyCylinderThresholdsAgreeWithOracle) {
+  constexpr std::size_t kCount = sizeof kRegressionList / sizeof(char*);
+  const std::uint64_t seed = test::baseSeed();
+  SCOPED_TRACE(test::seedTrace(seed));
+  scenes::Rng g(seed ^ 0x43617073u);
+  const long n = test::scaled(4);
+  auto at = [](std::int64_t bits) {
+    double x;
+    std::memcpy(&x, &bits, sizeof x);
+    return x;
+  };
+  for (long i = 0; i < n; ++i) {
+    TriCase k;
+    double m0 = 0;
+    ASSERT_TRUE(parseListCase(kRegressionList[kCount - 2 + i % 2], &k, &m0));
+    // Every other pair: r near the gap between the distance and the
+    // threshold (an ulp of m), where the capsule's band of width r (neither
+    // beyond r + m nor within m) decides some and leaves some to the parts.
+    const double r = i % 4 < 2 ? std::ldexp(k.cyl.radius, -int(g.next() % 200))
+                               : std::ldexp(m0, -48 - int(g.next() % 12));
+    k.cyl = {r, std::ldexp(k.cyl.lz, -int(g.next() % 200))};
+    const int s = int(g.next() % 3);
+    const V w[3] = {k.tri.a, k.tri.b, k.tri.c};
+    k.tri = {w[s], w[(s + 1) % 3], w[(s + 2) % 3]};
+    auto kernel = [&](double m) {
+      return tryWithinDistance(k.cyl, k.pose, k.tri, m) == Answer::kIntersect;
+    };
+    std::int64_t lo = 0, hi = 0x7fefffffffffffff;
+    ASSERT_FALSE(kernel(0));
+    ASSERT_TRUE(kernel(at(hi)));
+    while (hi - lo > 1) {
+      const std::int64_t mid = lo + (hi - lo) / 2;
+      (kernel(at(mid)) ? hi : lo) = mid;
+    }
+    SCOPED_TRACE("case " + std::to_string(i) + " " + describe(k, at(lo)));
+    ASSERT_FALSE(oracleWithin(k, at(lo))) << "bracket, low end";
+    ASSERT_TRUE(oracleWithin(k, at(hi))) << "bracket, high end";
   }
 }
 
