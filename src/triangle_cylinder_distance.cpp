@@ -255,8 +255,7 @@ TRICYL_DIST_NOINLINE Pass doublePass(const Problem<double>& P,
       const double sb = -(a.x * d.x + a.y * d.y) / dxy2;
       if (sb > 0 && sb < 1) {
         const P3<double> p = a + d * sb;
-        if ((absd(p.z) <= P.h || d.z == 0) &&
-            p.x * p.x + p.y * p.y > P.r * P.r)
+        if ((absd(p.z) <= P.h || d.z == 0) && p.x * p.x + p.y * p.y > P.r * P.r)
           s = sb;
       }
     }
