@@ -145,26 +145,16 @@ DwRun Tape::dw(std::uint32_t id) {
 
 // A local coordinate to within 2^-104 or so of ITS OWN magnitude, where
 // dwCoord's bound is 2^-100 of the terms' magnitude M: its exact value as
-// an expansion (expansionCoord, below), compressed, rounded to its two
-// largest components (hi, lo) = TwoSum(c_n-1, c_n-2), with the bound
-// e = (sum of the other components' magnitudes) (1 + 2^-40): the sum of at
-// most 96 non-negative doubles rounds down by less than that factor, and
-// the components are exact. For needles and discs, whose local coordinates
-// are far smaller than the terms they cancel from, this is what decides a
-// near tie that dwCoord's absolute bound leaves to the expansions. An
-// expansion that cannot be formed (src/expansion.h) keeps dwCoord's value.
+// an expansion (expansionCoord, below), compressed, rounded to a double
+// word with a bound (dwFromExpansion, src/dw_kernel.h). For needles and
+// discs, whose local coordinates are far smaller than the terms they cancel
+// from, this is what decides a near tie that dwCoord's absolute bound leaves
+// to the expansions. An expansion that cannot be formed (src/expansion.h)
+// keeps dwCoord's value.
 DwRun Tape::dwCoordAccurate(const Node& nd) const {
   const Expansion x = expansionCoord(nd).compressed();
   if (!x.ok()) return dwCoord<false>(nd);
-  const int n = x.size();
-  const double* c = x.data();
-  DwRun r{{0.0, 0.0}, 0.0};
-  if (n == 0) return r;
-  twoSum(c[n - 1], n >= 2 ? c[n - 2] : 0.0, r.v.hi, r.v.lo);
-  double rest = 0;
-  for (int i = 0; i + 2 < n; ++i) rest += std::fabs(c[i]);
-  r.e = rest * (1 + 0x1p-40);
-  return r;
+  return dwFromExpansion(x);
 }
 
 // ---------------------------------------------------------------------------

@@ -195,19 +195,35 @@ TRICYL_DW_INLINE DwRun dwCoordinate(const double R[3], const double D[3],
   return r;
 }
 
+/// A compressed expansion (src/expansion.h) rounded to its two largest
+/// components, (hi, lo) = TwoSum(c_n-1, c_n-2), with the bound e = (sum of
+/// the other components' magnitudes) (1 + 2^-40): at most 96 non-negative
+/// doubles, whose rounded sum is below the exact one by less than that
+/// factor, and the components are exact. For a compressed expansion the
+/// bound is about 2^-104 of the value itself. Shared by the tape
+/// (Tape::dwCoordAccurate, src/adaptive.cpp) and dwCoordinateAccurate.
+inline DwRun dwFromExpansion(const Expansion& x) {
+  const int n = x.size();
+  const double* c = x.data();
+  DwRun r{{0.0, 0.0}, 0.0};
+  if (n == 0) return r;
+  twoSum(c[n - 1], n >= 2 ? c[n - 2] : 0.0, r.v.hi, r.v.lo);
+  double rest = 0;
+  for (int m = 0; m + 2 < n; ++m) rest += std::fabs(c[m]);
+  r.e = rest * (1 + 0x1p-40);
+  return r;
+}
+
 /// Coordinate j of y = R^T (p - t) (doubled for j = 2: Z = 2 z) to within
 /// about 2^-104 of ITS OWN magnitude, where dwCoordinate's bound is 2^-100
 /// of the terms' magnitude M (the tape's dwCoordAccurate, src/adaptive.cpp,
-/// for the straight-line stage): the exact value as a stack expansion
-/// (src/expansion.h), compressed, rounded to its two largest components
-/// (hi, lo) = TwoSum(c_n-1, c_n-2), with the bound e = (sum of the other
-/// components' magnitudes) (1 + 2^-40): at most 96 non-negative doubles,
-/// whose rounded sum is below the exact one by less than that factor, and
-/// the components are exact. An exact pair with lo != 0 is not a double:
-/// bound kNotDouble (DwKernel's convention). Returns false, and leaves `out`
-/// alone, where the expansion cannot be formed (near underflow).
-/// Needles and discs have local coordinates far below the terms they cancel
-/// from: their near ties fail in double word for dwCoordinate's bound alone.
+/// for the straight-line stage): the exact value as a stack expansion,
+/// compressed and rounded by dwFromExpansion. An exact pair with lo != 0 is
+/// not a double: bound kNotDouble (DwKernel's convention). Returns false,
+/// and leaves `out` alone, where the expansion cannot be formed (near
+/// underflow). Needles and discs have local coordinates far below the terms
+/// they cancel from: their near ties fail in double word for dwCoordinate's
+/// bound alone.
 inline bool dwCoordinateAccurate(const Pose<double>& pose,
                                  const Vec3<double>& p, int j, DwRun* out) {
   const double pp[3] = {p.x, p.y, p.z};
@@ -218,13 +234,7 @@ inline bool dwCoordinateAccurate(const Pose<double>& pose,
   if (j == 2) x = x + x;
   x = x.compressed();
   if (!x.ok()) return false;
-  const int n = x.size();
-  const double* c = x.data();
-  DwRun r{{0.0, 0.0}, 0.0};
-  if (n > 0) twoSum(c[n - 1], n >= 2 ? c[n - 2] : 0.0, r.v.hi, r.v.lo);
-  double rest = 0;
-  for (int m = 0; m + 2 < n; ++m) rest += std::fabs(c[m]);
-  r.e = rest * (1 + 0x1p-40);
+  DwRun r = dwFromExpansion(x);
   if (r.e == 0 && r.v.lo != 0) r.e = kNotDouble;
   *out = r;
   return true;
